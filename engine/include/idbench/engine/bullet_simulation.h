@@ -1,0 +1,60 @@
+// Bullet (btMultiBody, double precision) simulation of a RobotModel with a
+// fixed base, driven by joint torques, with joint feedback: the wrench every
+// hinge transmits. Bullet types never leave this module (pimpl).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "idbench/engine/robot_model.h"
+
+namespace idbench {
+
+enum class JointFeedbackMode {
+  // Bullet 3.24's stock btMultiBodyJointFeedback. It re-runs the articulated
+  // body pass after the velocity update, counting the joint torque twice and
+  // the velocity-product terms at the new velocity (bullet3 #2966, #4451).
+  kStock,
+  // The feedback pass runs with joint velocities and torques zeroed, so it
+  // only adds constraint forces: the feedback then describes the state at the
+  // start of the step exactly.
+  kCorrected,
+};
+
+// The wrench a hinge transmits from the parent onto its link, world axes.
+struct HingeWrench {
+  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();     // force [N]
+  Eigen::Vector3d m_Bo_W = Eigen::Vector3d::Zero();  // moment about the hinge point [N m]
+};
+
+class BulletSimulation {
+ public:
+  // Builds the btMultiBody (zero link damping, gyroscopic term on, no
+  // coordinate-velocity clamp, no colliders).
+  BulletSimulation(const RobotModel& model, JointFeedbackMode feedback = JointFeedbackMode::kCorrected);
+  ~BulletSimulation();
+  BulletSimulation(const BulletSimulation&) = delete;
+  BulletSimulation& operator=(const BulletSimulation&) = delete;
+
+  void SetState(const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  void GetState(Eigen::VectorXd* q, Eigen::VectorXd* qd) const;
+
+  // One semi-implicit Euler step of dt with the joint torques tau:
+  // qd ← qd + dt·qdd(q, qd, tau), q ← q + dt·qd.
+  void Step(const Eigen::VectorXd& tau, double dt);
+
+  // Joint feedback of the last Step, describing the state at its start.
+  const std::vector<HingeWrench>& joint_feedback() const { return feedback_; }
+
+  // Pose of link i's frame B in the world as Bullet holds it (for tests).
+  Eigen::Isometry3d LinkPose(int i) const;
+
+ private:
+  struct Impl;
+  const RobotModel& model_;
+  std::unique_ptr<Impl> impl_;
+  std::vector<HingeWrench> feedback_;
+};
+
+}  // namespace idbench

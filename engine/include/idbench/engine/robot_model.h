@@ -1,0 +1,86 @@
+// Robot model: rigid links in a tree of revolute joints, fixed base.
+//
+// Frames (Drake-style names): W world, P parent link frame, J joint frame,
+// B link (body) frame, Bcm the link's centre of mass. Every link B has one
+// inboard revolute joint whose frame J is fixed in the parent P; at q = 0
+// the frames J and B coincide, and B rotates by +q about the joint axis:
+//   X_PB(q) = X_PJ · Rot(axis_J, q).
+// The hinge point of a link is the origin of J (= origin of B).
+//
+// The model is immutable once built; algorithms take `const RobotModel&` and
+// write into a RobotData (see kinematics.h).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace idbench {
+
+// Mass properties of one link, expressed in its link frame B.
+struct LinkInertia {
+  double mass = 0.0;                                    // [kg]
+  Eigen::Vector3d p_BoBcm_B = Eigen::Vector3d::Zero();  // centre of mass [m]
+  Eigen::Matrix3d I_Bcm_B = Eigen::Matrix3d::Zero();    // inertia about Bcm [kg m²]
+};
+
+struct JointLimits {
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  double q_min = -kInf;   // [rad]
+  double q_max = kInf;    // [rad]
+  double qd_max = kInf;   // [rad/s]
+  double qdd_max = kInf;  // [rad/s²]
+  double tau_max = kInf;  // [N m]
+};
+
+// A visual/collision primitive attached to a link.
+struct Shape {
+  enum class Kind { kCylinder, kBox, kSphere };
+  Kind kind = Kind::kCylinder;
+  // Cylinder: (radius, radius, length) with the axis along z of G;
+  // box: full edge lengths; sphere: (radius, radius, radius).
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  // shape frame G in B
+};
+
+struct Link {
+  std::string name;
+  int parent = -1;  // parent link index; -1 is the ground (world frame)
+  std::string joint_name;
+  Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  // joint frame in parent
+  Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();       // unit hinge axis in J (and B)
+  JointLimits limits;
+  LinkInertia inertia;
+  std::vector<Shape> shapes;
+};
+
+class RobotModel {
+ public:
+  // Validates and builds the model. Throws std::invalid_argument naming the
+  // offending link when: no links, a parent index not smaller than the link's
+  // own index, an axis that is not unit length, mass <= 0, an inertia that is
+  // not symmetric positive definite, or limits with lo >= hi.
+  RobotModel(std::string name, std::vector<Link> links,
+             Eigen::Vector3d g_W = Eigen::Vector3d(0.0, 0.0, -9.80665));
+
+  const std::string& name() const { return name_; }
+  int n_links() const { return static_cast<int>(links_.size()); }
+  int n_dof() const { return n_links(); }  // one revolute joint per link
+  const Link& link(int i) const { return links_.at(static_cast<size_t>(i)); }
+  const std::vector<Link>& links() const { return links_; }
+  const Eigen::Vector3d& gravity_W() const { return g_W_; }
+  // Indices of the links whose parent is link i (i = -1: the ground).
+  const std::vector<int>& children(int i) const {
+    return children_.at(static_cast<size_t>(i + 1));
+  }
+
+ private:
+  std::string name_;
+  std::vector<Link> links_;
+  Eigen::Vector3d g_W_;
+  std::vector<std::vector<int>> children_;  // indexed by parent + 1
+};
+
+}  // namespace idbench

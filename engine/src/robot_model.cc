@@ -1,0 +1,42 @@
+#include "idbench/engine/robot_model.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <stdexcept>
+
+namespace idbench {
+namespace {
+
+void Check(bool ok, const std::string& model, const Link& link, const std::string& what) {
+  if (!ok) {
+    throw std::invalid_argument("robot '" + model + "', link '" + link.name + "': " + what);
+  }
+}
+
+}  // namespace
+
+RobotModel::RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3d g_W)
+    : name_(std::move(name)), links_(std::move(links)), g_W_(g_W) {
+  if (links_.empty()) throw std::invalid_argument("robot '" + name_ + "': no links");
+  children_.assign(links_.size() + 1, {});
+  for (int i = 0; i < n_links(); ++i) {
+    const Link& link = links_[static_cast<size_t>(i)];
+    Check(link.parent >= -1 && link.parent < i, name_, link,
+          "parent index must be in [-1, " + std::to_string(i - 1) + "], got " +
+              std::to_string(link.parent));
+    Check(std::abs(link.axis_J.norm() - 1.0) < 1e-9, name_, link, "joint axis must be a unit vector");
+    Check(std::isfinite(link.inertia.mass) && link.inertia.mass > 0.0, name_, link,
+          "mass must be > 0, got " + std::to_string(link.inertia.mass));
+    const Eigen::Matrix3d& I = link.inertia.I_Bcm_B;
+    Check(I.allFinite() && (I - I.transpose()).norm() <= 1e-12 * I.norm(), name_, link,
+          "inertia tensor must be symmetric");
+    Check(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues().minCoeff() > 0.0, name_, link,
+          "inertia tensor must be positive definite");
+    Check(link.limits.q_min < link.limits.q_max, name_, link, "joint limits need q_min < q_max");
+    Check(link.limits.qd_max > 0.0 && link.limits.qdd_max > 0.0 && link.limits.tau_max > 0.0, name_,
+          link, "velocity, acceleration and torque limits must be > 0");
+    children_[static_cast<size_t>(link.parent + 1)].push_back(i);
+  }
+}
+
+}  // namespace idbench

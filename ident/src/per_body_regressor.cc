@@ -1,0 +1,45 @@
+#include "idbench/ident/per_body_regressor.h"
+
+namespace idbench {
+
+Eigen::Matrix3d EulerRegressorOmega(const Eigen::Vector3d& w_B, const Eigen::Vector3d& wd_B) {
+  Eigen::Matrix3d w_cross;
+  w_cross << 0, -w_B.z(), w_B.y(),  //
+      w_B.z(), 0, -w_B.x(),         //
+      -w_B.y(), w_B.x(), 0;
+  return Eigen::Matrix3d(wd_B.asDiagonal()) + w_cross * w_B.asDiagonal();
+}
+
+Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates) {
+  const Eigen::Matrix<double, 3, 4> L = QuaternionL(rates.lambda);
+  return EulerRegressorOmega(2.0 * L * rates.lambda_d, 2.0 * L * rates.lambda_dd);
+}
+
+PerBodyRows ComputePerBodyRows(const RobotModel& model, int body, const LogStep& step) {
+  const size_t b = static_cast<size_t>(body);
+  const BodySample& sample = step.body[b];
+  const Link& link = model.link(body);
+  PerBodyRows rows;
+
+  // Newton: the inboard hinge pushes B, each child's hinge pulls it back.
+  rows.newton_regressor = sample.a_WBcm_W - model.gravity_W();
+  rows.newton_force = step.hinge[b].f_W;
+  for (int c : model.children(body)) rows.newton_force -= step.hinge[static_cast<size_t>(c)].f_W;
+
+  // Euler about the centroid, in body axes. Hinge points relative to Bcm are
+  // known geometry: the inboard one at Bo, each child's at the origin of its J.
+  const Eigen::Matrix3d R_WB = RotationFromQuaternion(sample.quaternion.lambda);
+  const Eigen::Vector3d& p_BoBcm_B = link.inertia.p_BoBcm_B;
+  const HingeWrench& inboard = step.hinge[b];
+  Eigen::Vector3d N_B = (-p_BoBcm_B).cross(R_WB.transpose() * inboard.f_W) + R_WB.transpose() * inboard.m_Bo_W;
+  for (int c : model.children(body)) {
+    const HingeWrench& outboard = step.hinge[static_cast<size_t>(c)];
+    const Eigen::Vector3d p_BcmCo_B = model.link(c).X_PJ.translation() - p_BoBcm_B;
+    N_B -= p_BcmCo_B.cross(R_WB.transpose() * outboard.f_W) + R_WB.transpose() * outboard.m_Bo_W;
+  }
+  rows.euler_regressor = EulerRegressorQuaternion(sample.quaternion);
+  rows.euler_moment = N_B;
+  return rows;
+}
+
+}  // namespace idbench
