@@ -1,0 +1,161 @@
+// Runs the `idbench` executable as a user would (path in $IDBENCH).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string Slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const char* exe = std::getenv("IDBENCH");
+    ASSERT_NE(exe, nullptr) << "set IDBENCH to the idbench executable";
+    exe_ = exe;
+    dir_ = fs::temp_directory_path() /
+           ("idbench_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Result Run(const std::string& args) {
+    const std::string cmd = exe_ + " " + args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(cmd.c_str());
+    return {WEXITSTATUS(status), Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
+  }
+
+  // Checks results.json: every identifiable parameter within tol, B1's
+  // m_e1, m_e2, J22, J33 flagged with null values, all others identified.
+  void ExpectPaperTables(const fs::path& results, double tol) {
+    const nlohmann::json j = nlohmann::json::parse(Slurp(results));
+    ASSERT_EQ(j["bodies"].size(), 6u);
+    double worst = 0.0;
+    for (const auto& body : j["bodies"]) {
+      ASSERT_EQ(body["parameters"].size(), 7u);
+      for (const auto& p : body["parameters"]) {
+        const std::string name = p["name"];
+        const bool expect_flag = body["name"] == "B1" && (name == "m_e1" || name == "m_e2" || name == "J22" || name == "J33");
+        EXPECT_EQ(p["identifiable"].get<bool>(), !expect_flag) << body["name"] << "." << name;
+        if (expect_flag) {
+          EXPECT_TRUE(p["identified"].is_null());
+          EXPECT_FALSE(p["reason"].get<std::string>().empty());
+          continue;
+        }
+        const double truth = p["true"], identified = p["identified"];
+        EXPECT_LT(std::abs(identified - truth) / truth, tol) << body["name"] << "." << name;
+        worst = std::max(worst, std::abs(identified - truth) / truth);
+      }
+    }
+    EXPECT_NEAR(j["max_rel_error"].get<double>(), worst, 1e-3 * worst + 1e-300);
+    EXPECT_LT(j["max_rel_error"].get<double>(), tol);
+  }
+
+  std::string exe_;
+  fs::path dir_;
+};
+
+TEST_F(CliTest, DefaultRunReproducesThePaperFarMoreAccurately) {
+  const Result r = Run("run --out " + (dir_ / "run").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("NOT IDENTIFIABLE"), std::string::npos);
+  EXPECT_NE(r.out.find("largest relative error"), std::string::npos);
+  ExpectPaperTables(dir_ / "run" / "results.json", 1e-9);
+  const nlohmann::json j = nlohmann::json::parse(Slurp(dir_ / "run" / "results.json"));
+  EXPECT_EQ(j["sample_times"], nlohmann::json({0.3, 0.6, 0.9, 1.2, 1.5}));
+  // log.csv: a header and one row per step, every row with the header's width.
+  std::ifstream log(dir_ / "run" / "log.csv");
+  std::string header, line;
+  std::getline(log, header);
+  EXPECT_EQ(header.rfind("t,q1,q2", 0), 0u);
+  const auto width = std::count(header.begin(), header.end(), ',');
+  int rows = 0;
+  while (std::getline(log, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), width) << "row " << rows;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2000);
+}
+
+TEST_F(CliTest, GeneralMotionAlsoReproducesTheTables) {
+  const Result r = Run("run --motion general --out " + (dir_ / "run").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ExpectPaperTables(dir_ / "run" / "results.json", 1e-9);
+}
+
+TEST_F(CliTest, AllSamplesAndCustomSampling) {
+  Result r = Run("run --all-samples --duration 1 --dt 0.002 --out " + (dir_ / "a").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ExpectPaperTables(dir_ / "a" / "results.json", 1e-9);
+  r = Run("run --samples 0.1,0.25,0.5,0.75 --accel 45 --out " + (dir_ / "b").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ExpectPaperTables(dir_ / "b" / "results.json", 1e-9);
+}
+
+TEST_F(CliTest, BadUsageNamesTheValueAndExitsWith2) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"run --dt 0", "--dt"},
+      {"run --dt abc", "--dt"},
+      {"run --duration -1", "--duration"},
+      {"run --accel 0", "--accel"},
+      {"run --samples 0.3,2.5", "2.5"},
+      {"run --samples 0.3,0.6", "at least 4"},
+      {"run --samples 0.3,0.3001,0.6,0.9", "same step"},
+      {"run --motion wobble", "wobble"},
+      {"run --robot nosuch", "nosuch"},
+      {"run --frobnicate", "--frobnicate"},
+      {"", "subcommand"},
+  };
+  for (const auto& [args, fragment] : cases) {
+    const Result r = Run(args + " --out " + (dir_ / "never").string());
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << " -> " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "never")) << args;
+  }
+}
+
+TEST_F(CliTest, ExistingOutputDirectoryIsNeverWiped) {
+  const fs::path out = dir_ / "mine";
+  fs::create_directories(out);
+  std::ofstream(out / "notes.txt") << "keep me";
+  const Result r = Run("run --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Slurp(out / "notes.txt"), "keep me");
+  EXPECT_TRUE(fs::exists(out / "results.json"));
+  // No temporary files are left behind.
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
+  EXPECT_EQ(entries, 3);
+}
+
+TEST_F(CliTest, OutputPathThatIsAFileFailsWithoutTouchingIt) {
+  const fs::path file = dir_ / "afile";
+  std::ofstream(file) << "precious";
+  const Result r = Run("run --out " + file.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(Slurp(file), "precious");
+}
+
+}  // namespace
