@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs idbench's build and test dependencies from Debian 12 packages.
+set -euo pipefail
+packages=(build-essential cmake pkg-config
+          libbullet-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
+          libgtest-dev libbenchmark-dev)
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+# Only refresh the package lists when something is missing.
+if ! dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | grep -qv "install ok installed" \
+   && [ "$(dpkg-query -W -f='${Status}\n' "${packages[@]}" 2>/dev/null | wc -l)" -eq "${#packages[@]}" ]; then
+  exit 0
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${packages[@]}"
