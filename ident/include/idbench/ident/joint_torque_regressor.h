@@ -1,0 +1,49 @@
+// Joint-torque regressor: τ = Y(q, qd, qdd) · π, linear in the standard
+// parameters π of every link and the per-joint friction parameters.
+//
+// Per link, 10 inertial parameters about the link frame origin Bo, in B axes,
+// in one order (Pinocchio's):
+//   [m, m·c_x, m·c_y, m·c_z, Ixx, Ixy, Iyy, Ixz, Iyz, Izz]
+// where c = p_BoBcm_B and I = I_Bcm + m (cᵀc 𝟙 − c cᵀ) is the inertia about Bo.
+// Then, per joint j and in this order for all joints, the enabled friction
+// terms: Fv (viscous, τ += Fv·qd), Fc (Coulomb, τ += Fc·sign(qd), or
+// tanh(qd/v) with a smoothing velocity v > 0), offset (τ += τ0), Ia (rotor
+// inertia, τ += Ia·qdd).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/kinematics.h"
+#include "idbench/engine/robot_model.h"
+
+namespace idbench {
+
+inline constexpr int kInertialParametersPerLink = 10;
+
+struct FrictionModel {
+  bool viscous = false;               // Fv per joint [N m s/rad]
+  bool coulomb = false;               // Fc per joint [N m]
+  bool offset = false;                // τ0 per joint [N m]
+  bool rotor_inertia = false;         // Ia per joint [kg m²]
+  double coulomb_smoothing = 0.0;     // v [rad/s]; 0 = sign(qd)
+
+  int per_joint() const { return int(viscous) + int(coulomb) + int(offset) + int(rotor_inertia); }
+};
+
+// Number of standard parameters: 10 per link plus the friction terms.
+int NumStandardParameters(const RobotModel& model, const FrictionModel& friction);
+
+// Names in π order: "B1.m", "B1.mcx", …, "B1.Izz", then "Fv1", "Fc1", … (by joint).
+std::vector<std::string> StandardParameterNames(const RobotModel& model, const FrictionModel& friction);
+
+// The standard inertial parameters of the model (friction entries zero).
+Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel& friction);
+
+// Writes Y (n_dof × NumStandardParameters) at (q, qd, qdd); data is workspace.
+void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,
+                                 const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                 const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y);
+
+}  // namespace idbench

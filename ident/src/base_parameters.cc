@@ -1,0 +1,83 @@
+#include "idbench/ident/base_parameters.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace idbench {
+
+Eigen::MatrixXd BaseParameters::Reduce(const Eigen::MatrixXd& Y) const {
+  Eigen::MatrixXd Yb(Y.rows(), n_base());
+  for (int k = 0; k < n_base(); ++k) Yb.col(k) = Y.col(independent[static_cast<size_t>(k)]);
+  return Yb;
+}
+
+BaseParameters ComputeBaseParameters(const RobotModel& model, const FrictionModel& friction,
+                                     const BaseParameterOptions& options) {
+  const int n = model.n_dof();
+  const int p = NumStandardParameters(model, friction);
+  // 1. Stack the regressor over random states.
+  std::mt19937 rng(options.seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::MatrixXd W(options.n_samples * n, p), Y;
+  Eigen::VectorXd q(n), qd(n), qdd(n);
+  RobotData data(model);
+  for (int s = 0; s < options.n_samples; ++s) {
+    for (int j = 0; j < n; ++j) {
+      q[j] = options.q_range * u(rng);
+      qd[j] = options.qd_range * u(rng);
+      qdd[j] = options.qdd_range * u(rng);
+    }
+    ComputeJointTorqueRegressor(model, friction, q, qd, qdd, &data, &Y);
+    W.middleRows(s * n, n) = Y;
+  }
+  // 2. Zero columns, then QR with column pivoting of the normalised rest.
+  const Eigen::VectorXd norms = W.colwise().norm();
+  const double max_norm = norms.maxCoeff();
+  BaseParameters base;
+  std::vector<int> live;
+  for (int c = 0; c < p; ++c) {
+    if (norms[c] > options.rank_tolerance * max_norm) live.push_back(c);
+    else base.unexcited.push_back(c);
+  }
+  Eigen::MatrixXd Wn(W.rows(), static_cast<int>(live.size()));
+  for (size_t c = 0; c < live.size(); ++c) Wn.col(static_cast<int>(c)) = W.col(live[c]) / norms[live[c]];
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Wn);
+  qr.setThreshold(options.rank_tolerance);
+  const int rank = static_cast<int>(qr.rank());
+  for (int k = 0; k < rank; ++k) base.independent.push_back(live[static_cast<size_t>(qr.colsPermutation().indices()[k])]);
+  std::sort(base.independent.begin(), base.independent.end());
+
+  // 3. K from W_d = W_b K (W_b has full column rank).
+  std::vector<int> dependent;
+  for (int c : live) {
+    if (!std::binary_search(base.independent.begin(), base.independent.end(), c)) dependent.push_back(c);
+  }
+  const Eigen::MatrixXd Wb = base.Reduce(W);
+  Eigen::MatrixXd Wd(W.rows(), static_cast<int>(dependent.size()));
+  for (size_t c = 0; c < dependent.size(); ++c) Wd.col(static_cast<int>(c)) = W.col(dependent[c]);
+  const Eigen::MatrixXd K = Wb.colPivHouseholderQr().solve(Wd);
+
+  // 4. β = π_b + K π_d, with readable names.
+  const std::vector<std::string> names = StandardParameterNames(model, friction);
+  base.combination = Eigen::MatrixXd::Zero(rank, p);
+  for (int k = 0; k < rank; ++k) {
+    const int b = base.independent[static_cast<size_t>(k)];
+    base.combination(k, b) = 1.0;
+    std::string name = names[static_cast<size_t>(b)];
+    for (size_t c = 0; c < dependent.size(); ++c) {
+      double v = K(k, static_cast<int>(c));
+      if (std::abs(v) < 1e-9) continue;
+      base.combination(k, dependent[c]) = v;
+      char term[96];
+      std::snprintf(term, sizeof(term), " %s %.6g %s", v < 0 ? "-" : "+", std::abs(v), names[dependent[c]].c_str());
+      name += term;
+    }
+    base.names.push_back(name);
+  }
+  return base;
+}
+
+}  // namespace idbench

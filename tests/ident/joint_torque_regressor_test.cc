@@ -1,0 +1,64 @@
+#include "idbench/ident/joint_torque_regressor.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/test_robots.h"
+#include "engine/test_util.h"
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/paper6r.h"
+
+namespace idbench {
+namespace {
+
+using testing::RandomVector;
+
+class JointTorqueRegressorTest : public ::testing::TestWithParam<int> {
+ protected:
+  RobotModel model_ = GetParam() == 0 ? MakePaper6r() : testing::MakeTiltedRobot();
+};
+
+// Y(q, qd, qdd)·π equals the RNEA (an independent recursion) on random states.
+TEST_P(JointTorqueRegressorTest, TimesParametersEqualsInverseDynamics) {
+  RobotData d(model_);
+  const FrictionModel none;
+  const Eigen::VectorXd pi = StandardParameters(model_, none);
+  ASSERT_EQ(pi.size(), 10 * model_.n_links());
+  std::mt19937 rng(41);
+  Eigen::MatrixXd Y;
+  const int n = model_.n_dof();
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                          qdd = RandomVector(n, 5.0, &rng);
+    ComputeJointTorqueRegressor(model_, none, q, qd, qdd, &d, &Y);
+    const Eigen::VectorXd tau = InverseDynamics(model_, q, qd, qdd, &d);
+    EXPECT_LT(testing::RelativeError(Y * pi, tau), 1e-12) << "trial " << trial;
+  }
+}
+
+TEST_P(JointTorqueRegressorTest, FrictionColumns) {
+  RobotData d(model_);
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.offset = friction.rotor_inertia = true;
+  const int n = model_.n_dof();
+  Eigen::VectorXd pi = StandardParameters(model_, friction);
+  ASSERT_EQ(pi.size(), 10 * model_.n_links() + 4 * n);
+  const Eigen::VectorXd fv = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0), fc = Eigen::VectorXd::LinSpaced(n, 3.0, 4.0),
+                        off = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0), ia = Eigen::VectorXd::LinSpaced(n, 0.1, 0.2);
+  for (int j = 0; j < n; ++j) pi.segment<4>(10 * n + 4 * j) << fv[j], fc[j], off[j], ia[j];
+  std::mt19937 rng(42);
+  const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng), qdd = RandomVector(n, 5.0, &rng);
+  Eigen::MatrixXd Y;
+  ComputeJointTorqueRegressor(model_, friction, q, qd, qdd, &d, &Y);
+  const Eigen::VectorXd expected = InverseDynamics(model_, q, qd, qdd, &d) + fv.cwiseProduct(qd) +
+                                   fc.cwiseProduct(qd.cwiseSign()) + off + ia.cwiseProduct(qdd);
+  EXPECT_LT(testing::RelativeError(Y * pi, expected), 1e-12);
+  const std::vector<std::string> names = StandardParameterNames(model_, friction);
+  EXPECT_EQ(names.size(), static_cast<size_t>(pi.size()));
+  EXPECT_EQ(names[10 * n + 1], "Fc1");
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Values(0, 1),
+                         [](const auto& info) { return info.param == 0 ? "paper6r" : "tilted4r"; });
+
+}  // namespace
+}  // namespace idbench
