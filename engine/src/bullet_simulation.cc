@@ -190,8 +190,14 @@ void BulletSimulation::GetState(Eigen::VectorXd* q, Eigen::VectorXd* qd) const {
 void BulletSimulation::Step(const Eigen::VectorXd& tau, double dt) {
   Impl& s = *impl_;
   const int n = model_.n_dof();
+  if (tau.size() != n) {
+    throw std::invalid_argument("BulletSimulation::Step: expected " + std::to_string(n) + " joint torques, got " +
+                                std::to_string(tau.size()));
+  }
   for (int i = 0; i < n; ++i) s.body->getJointTorqueMultiDof(i)[0] = tau[i];
-  s.world->stepSimulation(dt, /*maxSubSteps=*/0);
+  if (s.world->stepSimulation(dt, /*maxSubSteps=*/0) != 1) {
+    throw std::invalid_argument("BulletSimulation::Step: Bullet did not step with dt = " + std::to_string(dt));
+  }
   // m_topVec is the force, m_bottomVec the moment; world axes, about the pivot.
   for (int i = 0; i < n; ++i) {
     const btSpatialForceVector& reaction = s.feedback[i].m_reactionForces;

@@ -15,7 +15,13 @@ bool SimulationOptions::IsValid(std::string* why) const {
   if (!(dt > 0.0) || !std::isfinite(dt)) return fail("dt must be > 0, got " + std::to_string(dt));
   if (!(duration > 0.0) || !std::isfinite(duration))
     return fail("duration must be > 0, got " + std::to_string(duration));
+  if (dt < kMinDt) return fail("dt must be >= " + std::to_string(kMinDt) + " s");
   if (duration < 2.0 * dt) return fail("duration must cover at least two steps of dt");
+  if (duration / dt > kMaxSteps) return fail("duration/dt gives more than 1e6 steps");
+  if (tracking_bandwidth * dt > kMaxBandwidthTimesDt) {
+    return fail("dt must be <= " + std::to_string(kMaxBandwidthTimesDt / tracking_bandwidth) +
+                " s for stable tracking at " + std::to_string(tracking_bandwidth) + " rad/s");
+  }
   if (!(tracking_bandwidth >= 0.0)) return fail("tracking bandwidth must be >= 0");
   return true;
 }
@@ -88,10 +94,20 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
       body.wd_B = BodyAngularAcceleration(data, i);
       body.quaternion = QuaternionRatesFromBodyRates(data.R_WB[static_cast<size_t>(i)], body.w_B, body.wd_B);
       body.a_WBcm_W = data.a_WBcm_W[static_cast<size_t>(i)];
+      // Λ and −Λ are the same rotation: keep the logged series continuous.
+      if (n > 0 && body.quaternion.lambda.dot(log.steps[static_cast<size_t>(n - 1)].body[static_cast<size_t>(i)]
+                                                  .quaternion.lambda) < 0.0) {
+        body.quaternion.lambda = -body.quaternion.lambda;
+        body.quaternion.lambda_d = -body.quaternion.lambda_d;
+        body.quaternion.lambda_dd = -body.quaternion.lambda_dd;
+      }
     }
     step.hinge = sim.joint_feedback();
     q = q_next;
     qd = qd_next;
+  }
+  if (!log.steps.back().q.allFinite() || !log.steps.back().tau.allFinite()) {
+    throw std::runtime_error("simulation diverged (non-finite state); reduce dt or the motion's accelerations");
   }
   return log;
 }

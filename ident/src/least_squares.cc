@@ -24,6 +24,9 @@ LeastSquaresSolution SolveLeastSquares(const Eigen::MatrixXd& A, const Eigen::Ve
     throw std::invalid_argument("SolveLeastSquares: A has " + std::to_string(A.rows()) + " rows, b has " +
                                 std::to_string(b.size()));
   }
+  if (!A.allFinite() || !b.allFinite()) {
+    throw std::invalid_argument("SolveLeastSquares: the data contain NaN or Inf");
+  }
   auto name = [&](int j) { return j < static_cast<int>(names.size()) ? names[j] : "x" + std::to_string(j); };
 
   LeastSquaresSolution sol;

@@ -19,7 +19,14 @@ struct BodySystem {
   Eigen::VectorXd euler_L;
 };
 
-void CheckSteps(const SimulationLog& log, const std::vector<int>& steps) {
+void CheckInputs(const RobotModel& model, const SimulationLog& log, const std::vector<int>& steps) {
+  for (const Link& link : model.links()) {
+    const Eigen::Matrix3d& I = link.inertia.I_Bcm_B;
+    if ((I - Eigen::Matrix3d(I.diagonal().asDiagonal())).norm() > 1e-12 * I.norm()) {
+      throw std::invalid_argument("per-body identification: link '" + link.name +
+                                  "' axes are not principal axes (off-diagonal inertia)");
+    }
+  }
   if (steps.empty()) throw std::invalid_argument("per-body identification: no samples");
   for (int s : steps) {
     if (s < 0 || s >= static_cast<int>(log.steps.size())) {
@@ -63,7 +70,7 @@ BlockReport MakeBlock(const LeastSquaresSolution& sol, int n_unknowns) {
 
 PerBodyIdentificationResult IdentifyPerBody(const RobotModel& model, const SimulationLog& log,
                                             const std::vector<int>& steps, const LeastSquaresOptions& options) {
-  CheckSteps(log, steps);
+  CheckInputs(model, log, steps);
   PerBodyIdentificationResult result;
   result.n_samples = static_cast<int>(steps.size());
   const int n = result.n_samples;
@@ -113,22 +120,28 @@ PerBodyIdentificationResult IdentifyPerBody(const RobotModel& model, const Simul
 
 LeastSquaresSolution IdentifyWholeRobot(const RobotModel& model, const SimulationLog& log,
                                         const std::vector<int>& steps, const LeastSquaresOptions& options) {
-  CheckSteps(log, steps);
+  CheckInputs(model, log, steps);
   const int n_bodies = model.n_links();
   const int rows_per_body = 6 * static_cast<int>(steps.size());
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(rows_per_body * n_bodies, 4 * n_bodies);
   Eigen::VectorXd L(rows_per_body * n_bodies);
+  Eigen::VectorXd scale(4 * n_bodies);
   std::vector<std::string> names;
   for (int i = 0; i < n_bodies; ++i) {
     const BodySystem sys = StackBody(model, i, log, steps);
     const int r0 = i * rows_per_body, half = rows_per_body / 2;
-    K.block(r0, 4 * i, half, 1) = sys.newton_K;
-    K.block(r0 + half, 4 * i + 1, half, 3) = sys.euler_K;
+    scale[4 * i] = sys.newton_K.norm();
+    scale.segment<3>(4 * i + 1).setConstant(sys.euler_K.colwise().norm().maxCoeff());
+    for (int c = 0; c < 4; ++c) if (!(scale[4 * i + c] > 0.0)) scale[4 * i + c] = 1.0;
+    K.block(r0, 4 * i, half, 1) = sys.newton_K / scale[4 * i];
+    K.block(r0 + half, 4 * i + 1, half, 3) = sys.euler_K / scale[4 * i + 1];
     L.segment(r0, half) = sys.newton_L;
     L.segment(r0 + half, half) = sys.euler_L;
     for (const char* p : {"m", "J11", "J22", "J33"}) names.push_back(model.link(i).name + "." + p);
   }
-  return SolveLeastSquares(K, L, names, options);
+  LeastSquaresSolution sol = SolveLeastSquares(K, L, names, options);
+  sol.x = sol.x.cwiseQuotient(scale);
+  return sol;
 }
 
 }  // namespace idbench

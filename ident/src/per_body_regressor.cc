@@ -12,7 +12,11 @@ Eigen::Matrix3d EulerRegressorOmega(const Eigen::Vector3d& w_B, const Eigen::Vec
 
 Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates) {
   const Eigen::Matrix<double, 3, 4> L = QuaternionL(rates.lambda);
-  return EulerRegressorOmega(2.0 * L * rates.lambda_d, 2.0 * L * rates.lambda_dd);
+  const Eigen::Matrix<double, 3, 4> L_d = QuaternionL(rates.lambda_d);
+  const Eigen::Vector3d L_lambda_dd = L * rates.lambda_dd;
+  const Eigen::Vector3d L_lambda_d = L * rates.lambda_d;
+  return 2.0 * Eigen::Matrix3d(L_lambda_dd.asDiagonal()) +
+         4.0 * (L * L_d.transpose()) * L_lambda_d.asDiagonal();
 }
 
 PerBodyRows ComputePerBodyRows(const RobotModel& model, int body, const LogStep& step) {

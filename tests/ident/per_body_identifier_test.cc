@@ -1,5 +1,7 @@
 #include "idbench/ident/per_body_identifier.h"
 
+#include "idbench/engine/simulation.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,7 @@
 #include "idbench/ident/per_body_regressor.h"
 
+#include "idbench/engine/simulation.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

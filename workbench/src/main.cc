@@ -29,8 +29,8 @@ int RunCommand(const idbench::RunOptions& options) {
   std::fputs(idbench::FormatRunTables(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
-  idbench::WriteFileAtomically(dir / "log.csv", idbench::FormatLogCsv(model, report.log));
-  idbench::WriteFileAtomically(dir / "results.json", idbench::FormatRunResultsJson(options, report));
+  idbench::WriteFilesAtomically({{dir / "log.csv", idbench::FormatLogCsv(model, report.log)},
+                                 {dir / "results.json", idbench::FormatRunResultsJson(options, report)}});
   std::printf("wrote %s and %s\n", (dir / "results.json").c_str(), (dir / "log.csv").c_str());
   return 0;
 }
@@ -39,7 +39,6 @@ int RunCommand(const idbench::RunOptions& options) {
 
 int main(int argc, char** argv) {
   CLI::App app{"idbench: a workbench for robot excitation design and dynamic parameter identification"};
-  app.require_subcommand(1);
 
   idbench::RunOptions run;
   for (int i = 0; i < argc; ++i) run.command_line += (i ? " " : "") + std::string(i ? argv[i] : "idbench");
@@ -51,8 +50,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run_cmd->add_option("--duration", run.duration, "Simulated time [s]")->capture_default_str();
   run_cmd->add_option("--dt", run.dt, "Simulation step [s]")->capture_default_str();
-  run_cmd->add_option("--samples", run.sample_times, "Sample times t1,t2,... [s]")->delimiter(',');
-  run_cmd->add_flag("--all-samples", run.all_samples, "Identify from every simulation step");
+  CLI::Option* samples =
+      run_cmd->add_option("--samples", run.sample_times, "Sample times t1,t2,... [s]")->delimiter(',');
+  run_cmd->add_flag("--all-samples", run.all_samples, "Identify from every simulation step")->excludes(samples);
   run_cmd->add_option("--out", run.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
 
@@ -69,5 +69,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;
   }
-  return kExitUsage;
+  return UsageError("a subcommand is required (run); see idbench --help");
 }

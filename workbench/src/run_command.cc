@@ -1,11 +1,12 @@
 #include "run_command.h"
 
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <set>
-#include <sstream>
 
 #include "idbench/excitation/builtin_motions.h"
 
@@ -14,42 +15,59 @@ namespace {
 
 constexpr double kPaperMaxRelError = 3.1e-4;  // the paper's Table 3: 0.031 %
 
+// Shortest decimal that reads back as v.
 std::string Num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof(buffer), v).ptr);
 }
 
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 }  // namespace
 
+SimulationOptions RunOptions::simulation() const {
+  SimulationOptions sim;
+  sim.dt = dt;
+  sim.duration = duration;
+  return sim;
+}
+
 bool RunOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
-    *why = message;
+    if (why) *why = message;
     return false;
   };
   if (robot != "paper6r") return fail("--robot: unknown robot '" + robot + "' (built-in: paper6r)");
   if (motion != "paper" && motion != "general")
     return fail("--motion: expected 'paper' or 'general', got '" + motion + "'");
-  if (!std::isfinite(accel_deg_s2) || accel_deg_s2 <= 0.0)
-    return fail("--accel: must be > 0 deg/s^2, got " + Num(accel_deg_s2));
+  if (!std::isfinite(accel_deg_s2) || accel_deg_s2 <= 0.0 || accel_deg_s2 > kMaxAccelDegS2)
+    return fail("--accel: must be in (0, " + Num(kMaxAccelDegS2) + "] deg/s^2, got " + Num(accel_deg_s2));
   if (!std::isfinite(dt) || dt <= 0.0) return fail("--dt: must be > 0 s, got " + Num(dt));
   if (!std::isfinite(duration) || duration <= 0.0) return fail("--duration: must be > 0 s, got " + Num(duration));
-  if (duration < 2.0 * dt)
-    return fail("--duration: " + Num(duration) + " s is shorter than two steps of --dt " + Num(dt) + " s");
-  if (duration / dt > 1e8) return fail("--duration/--dt: " + Num(duration / dt) + " steps is more than 1e8");
+  // A whole number of steps, so that the run is exactly as long as asked.
+  const double steps = duration / dt;
+  if (std::abs(steps - std::round(steps)) > 1e-6 * steps)
+    return fail("--duration: " + Num(duration) + " s is not a whole number of --dt " + Num(dt) + " s steps");
+  std::string sim_why;
+  if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
+  if (out_dir.empty()) return fail("--out: empty path");
+  std::error_code ec;
+  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    return fail("--out: '" + out_dir + "' exists and is not a directory");
   if (all_samples) return true;
-  // Samples need the next step for the acceleration: t in [0, duration − dt].
-  const double last = duration - dt;
-  std::set<long long> steps;
+  // Samples lie on the step grid and need the next step for the
+  // acceleration: t = n·dt with n in [0, steps − 1].
+  const long long n_steps = std::llround(steps);
+  std::set<long long> used;
   for (double t : sample_times) {
-    if (!std::isfinite(t) || t < 0.0 || t > last + 1e-9 * duration) {
-      return fail("--samples: time " + Num(t) + " s is outside the run [0, " + Num(last) + "] s");
+    const double n = t / dt;
+    if (!std::isfinite(t) || std::llround(n) < 0 || std::llround(n) > n_steps - 1) {
+      return fail("--samples: time " + Num(t) + " s is outside the run [0, " + Num((n_steps - 1) * dt) + "] s");
     }
-    if (!steps.insert(std::llround(t / dt)).second) {
-      return fail("--samples: time " + Num(t) + " s falls on the same step as another sample");
+    if (std::abs(n - std::round(n)) > 1e-6) {
+      return fail("--samples: time " + Num(t) + " s is not on the step grid of --dt " + Num(dt) + " s");
     }
+    if (!used.insert(std::llround(n)).second) return fail("--samples: time " + Num(t) + " s is given twice");
   }
   if (static_cast<int>(sample_times.size()) < kMinSamples) {
     return fail("--samples: " + std::to_string(sample_times.size()) + " sample time(s) given, need at least " +
@@ -63,11 +81,8 @@ RunReport RunExperiment(const RobotModel& model, const RunOptions& options) {
       options.motion == "general"
           ? MakeGeneralMotion(model.n_dof(), options.duration)
           : MakePaperMotion(model.n_dof(), options.accel_deg_s2 * std::numbers::pi / 180.0, options.duration);
-  SimulationOptions sim;
-  sim.dt = options.dt;
-  sim.duration = options.duration;
   RunReport report;
-  report.log = Simulate(model, *motion, sim);
+  report.log = Simulate(model, *motion, options.simulation());
   if (options.all_samples) {
     for (int n = 0; n < static_cast<int>(report.log.steps.size()); ++n) report.sample_steps.push_back(n);
   } else {

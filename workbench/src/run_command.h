@@ -24,8 +24,12 @@ struct RunOptions {
 
   // Minimum number of samples: the unknowns of one body (m, J11, J22, J33).
   static constexpr int kMinSamples = 4;
+  static constexpr double kMaxAccelDegS2 = 1e4;
 
-  // Checks ranges and consistency; *why names the bad value.
+  SimulationOptions simulation() const;
+
+  // Checks ranges and consistency (including that --out is usable); *why
+  // names the bad value.
   bool IsValid(std::string* why) const;
 };
 

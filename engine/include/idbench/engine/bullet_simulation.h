@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
 
 namespace idbench {
@@ -22,12 +23,6 @@ enum class JointFeedbackMode {
   kCorrected,
 };
 
-// The wrench a hinge transmits from the parent onto its link, world axes.
-struct HingeWrench {
-  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();     // force [N]
-  Eigen::Vector3d m_Bo_W = Eigen::Vector3d::Zero();  // moment about the hinge point [N m]
-};
-
 class BulletSimulation {
  public:
   // Builds the btMultiBody (zero link damping, gyroscopic term on, no
@@ -41,7 +36,8 @@ class BulletSimulation {
   void GetState(Eigen::VectorXd* q, Eigen::VectorXd* qd) const;
 
   // One semi-implicit Euler step of dt with the joint torques tau:
-  // qd ← qd + dt·qdd(q, qd, tau), q ← q + dt·qd.
+  // qd ← qd + dt·qdd(q, qd, tau), q ← q + dt·qd. Throws std::invalid_argument
+  // if tau has the wrong size or dt is too small for Bullet to step.
   void Step(const Eigen::VectorXd& tau, double dt);
 
   // Joint feedback of the last Step, describing the state at its start.
@@ -52,7 +48,7 @@ class BulletSimulation {
 
  private:
   struct Impl;
-  const RobotModel& model_;
+  RobotModel model_;  // a copy: the simulation outlives temporaries
   std::unique_ptr<Impl> impl_;
   std::vector<HingeWrench> feedback_;
 };

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "idbench/engine/bullet_simulation.h"
-#include "idbench/engine/quaternion.h"
+#include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
 
@@ -20,36 +20,12 @@ struct SimulationOptions {
   // Computed-torque tracking: qdd_cmd = qdd_ref + 2ζω (qd_ref − qd) + ω² (q_ref − q),
   // critically damped (ζ = 1). 0 = pure feed-forward.
   double tracking_bandwidth = 20.0;  // ω [rad/s]
+  // Semi-implicit Euler with this PD is stable for ω·dt below ~0.8; keep a margin.
+  static constexpr double kMaxBandwidthTimesDt = 0.5;
+  static constexpr double kMinDt = 1e-9;         // Bullet skips steps below its epsilon
+  static constexpr double kMaxSteps = 1e6;       // the log keeps every step (~5 kB each)
 
   bool IsValid(std::string* why) const;
-};
-
-// Kinematics of one link at one step, as the per-body identifier reads it.
-struct BodySample {
-  QuaternionRates quaternion;                           // Λ, Λ', Λ''
-  Eigen::Vector3d w_B = Eigen::Vector3d::Zero();        // angular velocity, body frame [rad/s]
-  Eigen::Vector3d wd_B = Eigen::Vector3d::Zero();       // angular acceleration, body frame [rad/s²]
-  Eigen::Vector3d a_WBcm_W = Eigen::Vector3d::Zero();   // centroid acceleration [m/s²]
-};
-
-// State at the start of step n (t = n·dt) and what happened during the step.
-struct LogStep {
-  double t = 0.0;        // [s]
-  Eigen::VectorXd q;     // [rad]
-  Eigen::VectorXd qd;    // [rad/s]
-  Eigen::VectorXd qdd;   // (qd_{n+1} − qd_n)/dt [rad/s²]
-  Eigen::VectorXd tau;   // applied joint torques [N m]
-  std::vector<BodySample> body;    // per link, from kinematics at (q, qd, qdd)
-  std::vector<HingeWrench> hinge;  // per link, Bullet's joint feedback
-};
-
-struct SimulationLog {
-  std::string robot;
-  double dt = 0.0;
-  std::vector<LogStep> steps;
-
-  // Index of the step nearest to time t, or -1 if t is outside the log.
-  int StepAt(double t) const;
 };
 
 // Simulates round(duration/dt) steps from the reference's state at t = 0.

@@ -31,7 +31,8 @@ struct LeastSquaresSolution {
 // Solves min ‖A x − b‖ and classifies every unknown: identifiable iff its unit
 // vector lies in the row space of A, i.e. the data fix it uniquely. Unknowns
 // that are not identifiable get a reason naming the zero or dependent column
-// (by `names`, if given) and x = NaN.
+// (by `names`, if given) and x = NaN. Throws std::invalid_argument if the
+// sizes differ or A or b holds NaN or Inf.
 LeastSquaresSolution SolveLeastSquares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
                                        const std::vector<std::string>& names = {},
                                        const LeastSquaresOptions& options = {});

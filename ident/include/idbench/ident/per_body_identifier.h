@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "idbench/engine/robot_model.h"
-#include "idbench/engine/simulation.h"
+#include "idbench/engine/measurements.h"
 #include "idbench/ident/least_squares.h"
 
 namespace idbench {
@@ -60,7 +60,10 @@ PerBodyIdentificationResult IdentifyPerBody(const RobotModel& model, const Simul
                                             const LeastSquaresOptions& options = {});
 
 // The whole robot as one block-diagonal system (eq. 27): unknowns
-// [m, J11, J22, J33] per body, stacked. Must agree with IdentifyPerBody.
+// [m, J11, J22, J33] per body, stacked. Each body's Newton and Euler columns
+// are scaled to unit largest norm first (units differ), so a column counts as
+// zero relative to its own block; cond refers to that scaled matrix.
+// Must agree with IdentifyPerBody.
 LeastSquaresSolution IdentifyWholeRobot(const RobotModel& model, const SimulationLog& log,
                                         const std::vector<int>& steps, const LeastSquaresOptions& options = {});
 

@@ -11,11 +11,13 @@
 
 #include "idbench/engine/quaternion.h"
 #include "idbench/engine/robot_model.h"
-#include "idbench/engine/simulation.h"
+#include "idbench/engine/measurements.h"
 
 namespace idbench {
 
-// Euler regressor in the paper's quaternion form (eq. 18).
+// Euler regressor in the paper's quaternion form (eqs. 7, 18), written in the
+// λ's without forming ω: J ω̇ + ω × J ω = 2 L(Λ)Λ'' ∘ J + 4 L(Λ) L(Λ')ᵀ J L(Λ) Λ', so
+//   S = 2 diag(L Λ'') + 4 L L'ᵀ diag(L Λ').
 Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates);
 // The same from body-frame ω, ω̇ (eq. 5): S = diag(ω̇) + [ω]× diag(ω).
 Eigen::Matrix3d EulerRegressorOmega(const Eigen::Vector3d& w_B, const Eigen::Vector3d& wd_B);

@@ -1,0 +1,46 @@
+// What a simulated (or measured) identification experiment records per step.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/quaternion.h"
+
+namespace idbench {
+
+// The wrench a hinge transmits from the parent onto its link, world axes.
+struct HingeWrench {
+  Eigen::Vector3d f_W = Eigen::Vector3d::Zero();     // force [N]
+  Eigen::Vector3d m_Bo_W = Eigen::Vector3d::Zero();  // moment about the hinge point [N m]
+};
+
+// Kinematics of one link at one step, as the per-body identifier reads it.
+struct BodySample {
+  QuaternionRates quaternion;                           // Λ, Λ', Λ''
+  Eigen::Vector3d w_B = Eigen::Vector3d::Zero();        // angular velocity, body frame [rad/s]
+  Eigen::Vector3d wd_B = Eigen::Vector3d::Zero();       // angular acceleration, body frame [rad/s²]
+  Eigen::Vector3d a_WBcm_W = Eigen::Vector3d::Zero();   // centroid acceleration [m/s²]
+};
+
+// State at the start of step n (t = n·dt) and what happened during the step.
+struct LogStep {
+  double t = 0.0;        // [s]
+  Eigen::VectorXd q;     // [rad]
+  Eigen::VectorXd qd;    // [rad/s]
+  Eigen::VectorXd qdd;   // (qd_{n+1} − qd_n)/dt [rad/s²]
+  Eigen::VectorXd tau;   // applied joint torques [N m]
+  std::vector<BodySample> body;    // per link, from kinematics at (q, qd, qdd)
+  std::vector<HingeWrench> hinge;  // per link, the joint feedback
+};
+
+struct SimulationLog {
+  std::string robot;
+  double dt = 0.0;
+  std::vector<LogStep> steps;
+
+  // Index of the step nearest to time t, or -1 if t is outside the log.
+  int StepAt(double t) const;
+};
+
+}  // namespace idbench
