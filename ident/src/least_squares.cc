@@ -6,15 +6,11 @@
 #include <stdexcept>
 
 namespace idbench {
-namespace {
-
-double Cond(const Eigen::MatrixXd& A) {
+double ConditionNumber(const Eigen::MatrixXd& A) {
   if (A.cols() == 0) return 0.0;
   const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
   return s[s.size() - 1] > 0.0 ? s[0] / s[s.size() - 1] : std::numeric_limits<double>::infinity();
 }
-
-}  // namespace
 
 LeastSquaresSolution SolveLeastSquares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
                                        const std::vector<std::string>& names,
@@ -82,9 +78,8 @@ LeastSquaresSolution SolveLeastSquares(const Eigen::MatrixXd& A, const Eigen::Ve
   }
 
   // 4. Minimum-norm solution; its identifiable entries are unique.
-  Eigen::VectorXd xs = Eigen::VectorXd::Zero(k);
   const Eigen::VectorXd Utb = svd.matrixU().leftCols(rank).transpose() * b;
-  xs = svd.matrixV().leftCols(rank) * (Utb.array() / s.head(rank).array()).matrix();
+  const Eigen::VectorXd xs = svd.matrixV().leftCols(rank) * (Utb.array() / s.head(rank).array()).matrix();
   Eigen::VectorXd x_all = Eigen::VectorXd::Zero(n);
   for (int c = 0; c < k; ++c) x_all[nonzero[c]] = xs[c] / norms[nonzero[c]];
   sol.residual_norm = (A * x_all - b).norm();
@@ -93,9 +88,9 @@ LeastSquaresSolution SolveLeastSquares(const Eigen::MatrixXd& A, const Eigen::Ve
   // 5. Conditioning of the identifiable block, raw and column-normalised.
   Eigen::MatrixXd Ai(A.rows(), static_cast<int>(identified.size()));
   for (size_t c = 0; c < identified.size(); ++c) Ai.col(static_cast<int>(c)) = A.col(identified[c]);
-  sol.cond = Cond(Ai);
+  sol.cond = ConditionNumber(Ai);
   for (int c = 0; c < Ai.cols(); ++c) Ai.col(c).normalize();
-  sol.cond_normalized = Cond(Ai);
+  sol.cond_normalized = ConditionNumber(Ai);
   return sol;
 }
 

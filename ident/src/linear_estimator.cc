@@ -1,7 +1,8 @@
 #include "idbench/ident/linear_estimator.h"
 
+#include "idbench/ident/least_squares.h"
+
 #include <Eigen/QR>
-#include <Eigen/SVD>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -44,8 +45,7 @@ LinearFit Fit(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
   fit.covariance = P * cov_perm * P.transpose() * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
-  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(W).singularValues();
-  fit.cond = sv[sv.size() - 1] > 0.0 ? sv[0] / sv[sv.size() - 1] : INFINITY;
+  fit.cond = ConditionNumber(W);
   return fit;
 }
 

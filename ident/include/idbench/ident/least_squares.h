@@ -28,6 +28,10 @@ struct LeastSquaresSolution {
   double residual_norm = 0.0;        // ‖A x − b‖
 };
 
+// cond(A) = σ_max/σ_min by SVD (never cond(AᵀA)); +inf if rank deficient,
+// 0 for a matrix without columns.
+double ConditionNumber(const Eigen::MatrixXd& A);
+
 // Solves min ‖A x − b‖ and classifies every unknown: identifiable iff its unit
 // vector lies in the row space of A, i.e. the data fix it uniquely. Unknowns
 // that are not identifiable get a reason naming the zero or dependent column
