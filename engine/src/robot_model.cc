@@ -35,6 +35,9 @@ RobotModel::RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3
     Check(link.limits.q_min < link.limits.q_max, name_, link, "joint limits need q_min < q_max");
     Check(link.limits.qd_max > 0.0 && link.limits.qdd_max > 0.0 && link.limits.tau_max > 0.0, name_,
           link, "velocity, acceleration and torque limits must be > 0");
+    const JointDynamics& dyn = link.dynamics;
+    Check(dyn.viscous >= 0.0 && dyn.coulomb >= 0.0 && dyn.rotor_inertia >= 0.0, name_, link,
+          "joint friction and rotor inertia must be >= 0");
     children_[static_cast<size_t>(link.parent + 1)].push_back(i);
   }
 }

@@ -35,6 +35,14 @@ struct JointLimits {
   double tau_max = kInf;  // [N m]
 };
 
+// Joint-side drive and friction, the true values of the joint-torque model's
+// friction terms: τ_joint = τ_rigid + viscous·qd + coulomb·sign(qd) + rotor_inertia·qdd.
+struct JointDynamics {
+  double viscous = 0.0;        // Fv [N m s/rad]
+  double coulomb = 0.0;        // Fc [N m]
+  double rotor_inertia = 0.0;  // Ia, reflected to the joint [kg m²]
+};
+
 // A visual/collision primitive attached to a link.
 struct Shape {
   enum class Kind { kCylinder, kBox, kSphere };
@@ -52,6 +60,7 @@ struct Link {
   Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  // joint frame in parent
   Eigen::Vector3d axis_J = Eigen::Vector3d::UnitZ();       // unit hinge axis in J (and B)
   JointLimits limits;
+  JointDynamics dynamics;
   LinkInertia inertia;
   std::vector<Shape> shapes;
 };
