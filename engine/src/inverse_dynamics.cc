@@ -34,4 +34,13 @@ const Eigen::VectorXd& InverseDynamics(const RobotModel& model, const Eigen::Vec
   return d.tau;
 }
 
+void AddJointDynamicsTorque(const RobotModel& model, const Eigen::VectorXd& qd,
+                            const Eigen::VectorXd& qdd, Eigen::VectorXd* tau) {
+  for (int j = 0; j < model.n_dof(); ++j) {
+    const JointDynamics& dyn = model.link(j).dynamics;
+    const double sign = (qd[j] > 0.0) - (qd[j] < 0.0);
+    (*tau)[j] += dyn.viscous * qd[j] + dyn.coulomb * sign + dyn.rotor_inertia * qdd[j];
+  }
+}
+
 }  // namespace idbench

@@ -42,4 +42,18 @@ RobotModel::RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3
   }
 }
 
+std::vector<std::string> InertiaWarnings(const RobotModel& model) {
+  std::vector<std::string> warnings;
+  for (const Link& link : model.links()) {
+    const Eigen::Vector3d d =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(link.inertia.I_Bcm_B).eigenvalues();  // ascending
+    if (d[0] + d[1] < d[2] * (1.0 - 1e-9)) {
+      warnings.push_back("robot '" + model.name() + "', link '" + link.name +
+                         "': principal inertias violate the triangle inequality (" + std::to_string(d[0]) +
+                         " + " + std::to_string(d[1]) + " < " + std::to_string(d[2]) + " kg m²)");
+    }
+  }
+  return warnings;
+}
+
 }  // namespace idbench

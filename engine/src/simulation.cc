@@ -87,6 +87,8 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
     step.q = q;
     step.qd = qd;
     step.qdd = (qd_next - qd) / options.dt;
+    // The motor also supplies what joint friction and the rotor consume.
+    AddJointDynamicsTorque(model, step.qd, step.qdd, &step.tau);
     ComputeKinematics(model, step.q, step.qd, step.qdd, &data);
     for (int i = 0; i < n_dof; ++i) {
       BodySample& body = step.body[static_cast<size_t>(i)];

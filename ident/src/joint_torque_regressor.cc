@@ -53,6 +53,13 @@ Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel&
     pi.segment<kInertialParametersPerLink>(kInertialParametersPerLink * i) << in.mass, in.mass * c.x(),
         in.mass * c.y(), in.mass * c.z(), I_Bo(0, 0), I_Bo(0, 1), I_Bo(1, 1), I_Bo(0, 2), I_Bo(1, 2), I_Bo(2, 2);
   }
+  int k = model.n_links() * kInertialParametersPerLink;
+  for (const Link& link : model.links()) {
+    if (friction.viscous) pi[k++] = link.dynamics.viscous;
+    if (friction.coulomb) pi[k++] = link.dynamics.coulomb;
+    if (friction.offset) pi[k++] = 0.0;
+    if (friction.rotor_inertia) pi[k++] = link.dynamics.rotor_inertia;
+  }
   return pi;
 }
 

@@ -1,1 +1,297 @@
-// (being written)
+#include "idbench/ident/signal_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace idbench {
+namespace {
+
+std::string Str(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+// Transposed direct form II, one section over the whole signal, in place:
+//   y = b0 x + z0,  z0 ← b1 x − a1 y + z1,  z1 ← b2 x − a2 y.
+void FilterSection(const Eigen::Matrix<double, 1, 6>& s, double z0, double z1, Eigen::VectorXd* x) {
+  const double b0 = s(0), b1 = s(1), b2 = s(2), a1 = s(4), a2 = s(5);
+  for (double& v : *x) {
+    const double in = v;
+    const double out = b0 * in + z0;
+    z0 = b1 * in - a1 * out + z1;
+    z1 = b2 * in - a2 * out;
+    v = out;
+  }
+}
+
+// Filters x in place through all sections, each starting in the state it
+// would have after an infinitely long constant input equal to x[0]
+// (scipy.signal.sosfilt_zi · x[0]).
+void FilterSteadyStart(const SosMatrix& sos, Eigen::VectorXd* x) {
+  double level = (*x)(0);  // the constant at the current section's input
+  for (Eigen::Index i = 0; i < sos.rows(); ++i) {
+    const Eigen::Matrix<double, 1, 6> s = sos.row(i);
+    // Steady state for a unit input: y = G = H_i(1); from the update
+    // equations z1 = b2 − a2 G, z0 = b1 + z1 − a1 G.
+    const double gain = (s(0) + s(1) + s(2)) / (1.0 + s(4) + s(5));
+    const double z1 = s(2) - s(5) * gain;
+    const double z0 = s(1) + z1 - s(4) * gain;
+    FilterSection(s, level * z0, level * z1, x);
+    level *= gain;
+  }
+}
+
+void CheckSos(const SosMatrix& sos) {
+  if (sos.rows() == 0) throw std::invalid_argument("filter: expected at least one section, got 0");
+  for (Eigen::Index i = 0; i < sos.rows(); ++i) {
+    if (sos(i, 3) != 1.0) {
+      throw std::invalid_argument("filter: expected a0 = 1 in every section, got " + Str(sos(i, 3)) +
+                                  " in section " + std::to_string(i));
+    }
+    if (!sos.row(i).allFinite()) {
+      throw std::invalid_argument("filter: expected finite coefficients, section " + std::to_string(i) +
+                                  " is not");
+    }
+  }
+}
+
+void CheckDerivativeInput(Eigen::Index n, double dt, Eigen::Index min_samples, const char* what) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    throw std::invalid_argument(std::string(what) + ": expected dt > 0, got " + Str(dt));
+  }
+  if (n < min_samples) {
+    throw std::invalid_argument(std::string(what) + ": expected at least " + std::to_string(min_samples) +
+                                " samples, got " + std::to_string(n));
+  }
+}
+
+// Applies a per-channel operation to each column.
+template <typename Op>
+Eigen::MatrixXd PerColumn(const Eigen::MatrixXd& x, Eigen::Index out_rows, Op op) {
+  Eigen::MatrixXd y(out_rows, x.cols());
+  for (Eigen::Index j = 0; j < x.cols(); ++j) y.col(j) = op(Eigen::VectorXd(x.col(j)));
+  return y;
+}
+
+}  // namespace
+
+SosMatrix DesignButterworthLowPass(int order, double cutoff_hz, double sample_rate_hz) {
+  if (order < 1 || order > LogFilterOptions::kMaxOrder) {
+    throw std::invalid_argument("butterworth: expected order in 1.." + std::to_string(LogFilterOptions::kMaxOrder) +
+                                ", got " + std::to_string(order));
+  }
+  if (!(sample_rate_hz > 0.0) || !std::isfinite(sample_rate_hz)) {
+    throw std::invalid_argument("butterworth: expected sample rate > 0 Hz, got " + Str(sample_rate_hz));
+  }
+  if (!(cutoff_hz > 0.0 && cutoff_hz < 0.5 * sample_rate_hz)) {
+    throw std::invalid_argument("butterworth: expected cutoff in (0, " + Str(0.5 * sample_rate_hz) +
+                                ") Hz (below fs/2), got " + Str(cutoff_hz));
+  }
+  using Complex = std::complex<double>;
+  const double pi = std::numbers::pi;
+  const int n_pairs = order / 2;
+  const bool has_real_pole = order % 2 == 1;
+
+  // Analog prototype poles on the unit circle, pre-warped so the digital
+  // cutoff lands at fc, mapped by the bilinear transform. Only the upper
+  // half-plane pole of each conjugate pair is kept.
+  const double K = std::tan(pi * cutoff_hz / sample_rate_hz);
+  Complex gain_denominator = 1.0;  // Π_k (1 − K s_k) over all N poles
+  std::vector<Complex> pair_poles;
+  for (int k = 0; k < n_pairs; ++k) {
+    const double phi = pi * (2 * k + 1) / (2.0 * order);
+    const Complex s(-std::sin(phi), std::cos(phi));
+    pair_poles.push_back((1.0 + K * s) / (1.0 - K * s));
+    gain_denominator *= (1.0 - K * s) * (1.0 - K * std::conj(s));
+  }
+  double real_pole = 0.0;
+  if (has_real_pole) {
+    real_pole = (1.0 - K) / (1.0 + K);
+    gain_denominator *= 1.0 + K;
+  }
+  // Gain so that H(1) = 1: from H(z) ∝ Π (1 + z⁻¹) / Π (1 − z_k z⁻¹) with
+  // the bilinear map, k = K^N / Re Π (1 − K s_k) (SciPy's bilinear_zpk).
+  const double gain = std::pow(K, order) / gain_denominator.real();
+
+  // Sections by increasing pole radius (the real pole is the smallest), each
+  // with two zeros at z = −1. For odd N one section has a single zero; as in
+  // SciPy's zpk2sos it is the last one, b = [1 1 0].
+  std::sort(pair_poles.begin(), pair_poles.end(),
+            [](const Complex& a, const Complex& b) { return std::abs(a) < std::abs(b); });
+  const Eigen::Index n_sections = n_pairs + (has_real_pole ? 1 : 0);
+  SosMatrix sos(n_sections, 6);
+  Eigen::Index row = 0;
+  if (has_real_pole) sos.row(row++) << 1.0, 2.0, 1.0, 1.0, -real_pole, 0.0;
+  for (const Complex& p : pair_poles) sos.row(row++) << 1.0, 2.0, 1.0, 1.0, -2.0 * p.real(), std::norm(p);
+  if (has_real_pole) sos.row(n_sections - 1).head<3>() << 1.0, 1.0, 0.0;
+  sos.row(0).head<3>() *= gain;
+  return sos;
+}
+
+int FiltFiltMinSamples(const SosMatrix& sos) {
+  const auto n_zero_b2 = (sos.col(2).array() == 0.0).count();
+  const auto n_zero_a2 = (sos.col(5).array() == 0.0).count();
+  const int ntaps = static_cast<int>(2 * sos.rows() + 1 - std::min(n_zero_b2, n_zero_a2));
+  return ntaps + 1;
+}
+
+Eigen::VectorXd FiltFilt(const SosMatrix& sos, const Eigen::VectorXd& x) {
+  CheckSos(sos);
+  const Eigen::Index n = x.size();
+  const int min_samples = FiltFiltMinSamples(sos);
+  if (n < min_samples) {
+    throw std::invalid_argument("filtfilt: expected at least " + std::to_string(min_samples) + " samples for " +
+                                std::to_string(sos.rows()) + " sections, got " + std::to_string(n));
+  }
+  const Eigen::Index ntaps = min_samples - 1;
+  const Eigen::Index pad = std::min<Eigen::Index>(3 * ntaps, n - 1);
+
+  // Odd extension: the reflection of x through (0, x[0]) and (n−1, x[n−1]).
+  Eigen::VectorXd y(n + 2 * pad);
+  y.segment(pad, n) = x;
+  for (Eigen::Index i = 1; i <= pad; ++i) {
+    y(pad - i) = 2.0 * x(0) - x(i);
+    y(pad + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
+  }
+
+  // Forward pass, then backward pass on the reversed output.
+  FilterSteadyStart(sos, &y);
+  y.reverseInPlace();
+  FilterSteadyStart(sos, &y);
+  y.reverseInPlace();
+  return y.segment(pad, n);
+}
+
+Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x) {
+  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return FiltFilt(sos, c); });
+}
+
+Eigen::VectorXd FirstDerivative(const Eigen::VectorXd& x, double dt) {
+  const Eigen::Index n = x.size();
+  CheckDerivativeInput(n, dt, 3, "first derivative");
+  Eigen::VectorXd d(n);
+  const double c = 1.0 / (2.0 * dt);
+  d(0) = c * (-3.0 * x(0) + 4.0 * x(1) - x(2));
+  d.segment(1, n - 2) = c * (x.tail(n - 2) - x.head(n - 2));
+  d(n - 1) = c * (3.0 * x(n - 1) - 4.0 * x(n - 2) + x(n - 3));
+  return d;
+}
+
+Eigen::MatrixXd FirstDerivative(const Eigen::MatrixXd& x, double dt) {
+  CheckDerivativeInput(x.rows(), dt, 3, "first derivative");
+  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return FirstDerivative(c, dt); });
+}
+
+Eigen::VectorXd SecondDerivative(const Eigen::VectorXd& x, double dt) {
+  const Eigen::Index n = x.size();
+  CheckDerivativeInput(n, dt, 4, "second derivative");
+  Eigen::VectorXd d(n);
+  const double c = 1.0 / (dt * dt);
+  d(0) = c * (2.0 * x(0) - 5.0 * x(1) + 4.0 * x(2) - x(3));
+  d.segment(1, n - 2) = c * (x.tail(n - 2) - 2.0 * x.segment(1, n - 2) + x.head(n - 2));
+  d(n - 1) = c * (2.0 * x(n - 1) - 5.0 * x(n - 2) + 4.0 * x(n - 3) - x(n - 4));
+  return d;
+}
+
+Eigen::MatrixXd SecondDerivative(const Eigen::MatrixXd& x, double dt) {
+  CheckDerivativeInput(x.rows(), dt, 4, "second derivative");
+  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return SecondDerivative(c, dt); });
+}
+
+Eigen::MatrixXd Decimate(const Eigen::MatrixXd& x, int factor) {
+  if (factor < 1) throw std::invalid_argument("decimate: expected factor >= 1, got " + std::to_string(factor));
+  const Eigen::Index n_out = (x.rows() + factor - 1) / factor;
+  Eigen::MatrixXd y(n_out, x.cols());
+  for (Eigen::Index i = 0; i < n_out; ++i) y.row(i) = x.row(i * factor);
+  return y;
+}
+
+Eigen::VectorXd Decimate(const Eigen::VectorXd& x, int factor) {
+  return Decimate(Eigen::MatrixXd(x), factor).col(0);
+}
+
+Eigen::MatrixXd FilterAndDecimate(const Eigen::MatrixXd& x, int factor, int order) {
+  if (factor < 1) throw std::invalid_argument("decimate: expected factor >= 1, got " + std::to_string(factor));
+  if (factor == 1) return x;
+  // Normalised to fs = 2, so the new Nyquist frequency is 1/factor.
+  const SosMatrix sos = DesignButterworthLowPass(order, 0.8 / factor, 2.0);
+  return Decimate(FiltFilt(sos, x), factor);
+}
+
+bool LogFilterOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (order < 1 || order > kMaxOrder) {
+    return fail("expected order in 1.." + std::to_string(kMaxOrder) + ", got " + std::to_string(order));
+  }
+  if (!(cutoff_hz > 0.0) || !std::isfinite(cutoff_hz)) {
+    return fail("expected cutoff_hz > 0, got " + Str(cutoff_hz));
+  }
+  if (decimation < 1) return fail("expected decimation >= 1, got " + std::to_string(decimation));
+  return true;
+}
+
+JointSignals ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
+                             const LogFilterOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("log filter options: " + why);
+
+  // Shapes.
+  const Eigen::Index n = t.size();
+  if (q.rows() != n || tau.rows() != n || q.cols() != tau.cols() || q.cols() < 1) {
+    throw std::invalid_argument("joint log: expected q and tau of " + std::to_string(n) +
+                                " rows (t.size()) and equal n_dof >= 1 columns, got q " +
+                                std::to_string(q.rows()) + "x" + std::to_string(q.cols()) + ", tau " +
+                                std::to_string(tau.rows()) + "x" + std::to_string(tau.cols()));
+  }
+  if (n < 2) throw std::invalid_argument("joint log: expected at least 2 samples, got " + std::to_string(n));
+  if (!t.allFinite() || !q.allFinite() || !tau.allFinite()) {
+    throw std::invalid_argument("joint log: expected finite t, q and tau");
+  }
+
+  // Uniform sampling: every step equals the first one within 1e-6 relative.
+  const double step0 = t(1) - t(0);
+  if (!(step0 > 0.0)) {
+    throw std::invalid_argument("joint log: expected increasing t, got t[1] - t[0] = " + Str(step0) + " s");
+  }
+  for (Eigen::Index i = 2; i < n; ++i) {
+    const double step = t(i) - t(i - 1);
+    if (std::abs(step - step0) > 1e-6 * step0) {
+      throw std::invalid_argument("joint log: expected uniform sampling with step " + Str(step0) +
+                                  " s (t[1] - t[0]), got t[" + std::to_string(i) + "] - t[" +
+                                  std::to_string(i - 1) + "] = " + Str(step) + " s at sample " +
+                                  std::to_string(i));
+    }
+  }
+  const double dt = (t(n - 1) - t(0)) / static_cast<double>(n - 1);
+  const double fs = 1.0 / dt;
+
+  // The kept samples must not alias: the cutoff below the new Nyquist rate.
+  const double nyquist_out = 0.5 * fs / options.decimation;
+  if (!(options.cutoff_hz < nyquist_out)) {
+    throw std::invalid_argument("joint log: expected cutoff_hz < fs/(2·decimation) = " + Str(nyquist_out) +
+                                " Hz, got " + Str(options.cutoff_hz) + " Hz (fs = " + Str(fs) + " Hz)");
+  }
+  const SosMatrix sos = DesignButterworthLowPass(options.order, options.cutoff_hz, fs);
+
+  // Filter, differentiate the filtered positions, filter the torques alike.
+  const Eigen::MatrixXd q_f = FiltFilt(sos, q);
+  JointSignals out;
+  out.qd = Decimate(FirstDerivative(q_f, dt), options.decimation);
+  out.qdd = Decimate(SecondDerivative(q_f, dt), options.decimation);
+  out.q = Decimate(q_f, options.decimation);
+  out.tau = Decimate(FiltFilt(sos, tau), options.decimation);
+  out.t = Decimate(t, options.decimation);
+  return out;
+}
+
+}  // namespace idbench

@@ -16,7 +16,7 @@ using testing::RandomVector;
 
 class BulletSimulationTest : public ::testing::TestWithParam<int> {
  protected:
-  RobotModel model_ = GetParam() == 0 ? MakePaper6r() : testing::MakeTiltedRobot();
+  RobotModel model_ = testing::MakeTestRobot(GetParam());
 };
 
 TEST_P(BulletSimulationTest, LinkPosesMatchForwardKinematics) {
@@ -110,8 +110,8 @@ TEST_P(BulletSimulationTest, StockFeedbackCountsTheJointTorqueTwiceAtRest) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, BulletSimulationTest, ::testing::Values(0, 1),
-                         [](const auto& info) { return info.param == 0 ? "paper6r" : "tilted4r"; });
+INSTANTIATE_TEST_SUITE_P(Robots, BulletSimulationTest, ::testing::Range(0, testing::kNumTestRobots),
+                         testing::TestRobotName);
 
 }  // namespace
 }  // namespace idbench

@@ -2,9 +2,13 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <gtest/gtest.h>
 #include <random>
+#include <string>
 
 #include "engine/test_util.h"
+#include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
 #include "idbench/engine/robot_model.h"
 
 namespace idbench::testing {
@@ -28,6 +32,19 @@ inline RobotModel MakeTiltedRobot() {
     link.inertia.I_Bcm_B = A * A.transpose() + 0.2 * Eigen::Matrix3d::Identity();
   }
   return RobotModel("tilted4r", std::move(links));
+}
+
+// The robots every identity is checked on, for parameterised tests.
+inline constexpr int kNumTestRobots = 3;
+inline RobotModel MakeTestRobot(int index) {
+  switch (index) {
+    case 0: return MakePaper6r();
+    case 1: return MakeTiltedRobot();
+    default: return MakePuma560();
+  }
+}
+inline std::string TestRobotName(const ::testing::TestParamInfo<int>& info) {
+  return MakeTestRobot(info.param).name();
 }
 
 }  // namespace idbench::testing

@@ -1,1 +1,558 @@
-// (being written)
+#include "idbench/engine/urdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "engine/test_robots.h"
+#include "engine/test_util.h"
+#include "idbench/engine/paper6r.h"
+
+namespace idbench {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ---- Comparison helpers ----
+
+// max |actual − expected| ≤ tol · max |expected| (exact match for zero).
+template <typename A, typename B>
+void ExpectNear(const A& actual, const B& expected, double tol, const std::string& what) {
+  const double scale = expected.cwiseAbs().maxCoeff();
+  EXPECT_LE((actual - expected).cwiseAbs().maxCoeff(), tol * scale)
+      << what << "\nactual:\n" << actual << "\nexpected:\n" << expected;
+}
+
+// Relative comparison; infinities must match exactly.
+void ExpectNear(double actual, double expected, double tol, const std::string& what) {
+  if (std::isinf(expected)) {
+    EXPECT_EQ(actual, expected) << what;
+  } else {
+    EXPECT_NEAR(actual, expected, tol * std::abs(expected)) << what;
+  }
+}
+
+// Everything URDF can express: names, tree, joint frames, axes, limits
+// (except qdd_max), friction (not rotor inertia), mass properties, shapes.
+void ExpectModelsNear(const RobotModel& actual, const RobotModel& expected, double tol,
+                      bool compare_joint_names = true) {
+  EXPECT_EQ(actual.name(), expected.name());
+  ASSERT_EQ(actual.n_links(), expected.n_links());
+  for (int i = 0; i < expected.n_links(); ++i) {
+    const Link& a = actual.link(i);
+    const Link& e = expected.link(i);
+    const std::string where = "link " + e.name + ": ";
+    EXPECT_EQ(a.name, e.name);
+    if (compare_joint_names) {
+      EXPECT_EQ(a.joint_name, e.joint_name) << where;
+    }
+    EXPECT_EQ(a.parent, e.parent) << where;
+    ExpectNear(a.X_PJ.linear(), e.X_PJ.linear(), tol, where + "R_PJ");
+    if (e.X_PJ.translation().isZero(0.0)) {
+      EXPECT_TRUE(a.X_PJ.translation().isZero(0.0)) << where << a.X_PJ.translation().transpose();
+    } else {
+      ExpectNear(a.X_PJ.translation(), e.X_PJ.translation(), tol, where + "p_PJ");
+    }
+    ExpectNear(a.axis_J, e.axis_J, tol, where + "axis_J");
+    ExpectNear(a.limits.q_min, e.limits.q_min, tol, where + "q_min");
+    ExpectNear(a.limits.q_max, e.limits.q_max, tol, where + "q_max");
+    ExpectNear(a.limits.qd_max, e.limits.qd_max, tol, where + "qd_max");
+    ExpectNear(a.limits.tau_max, e.limits.tau_max, tol, where + "tau_max");
+    EXPECT_EQ(a.limits.qdd_max, kInf) << where;
+    ExpectNear(a.dynamics.viscous, e.dynamics.viscous, tol, where + "viscous");
+    ExpectNear(a.dynamics.coulomb, e.dynamics.coulomb, tol, where + "coulomb");
+    ExpectNear(a.inertia.mass, e.inertia.mass, tol, where + "mass");
+    ExpectNear(a.inertia.p_BoBcm_B, e.inertia.p_BoBcm_B, tol, where + "p_BoBcm_B");
+    ExpectNear(a.inertia.I_Bcm_B, e.inertia.I_Bcm_B, tol, where + "I_Bcm_B");
+    ASSERT_EQ(a.shapes.size(), e.shapes.size()) << where;
+    for (size_t k = 0; k < e.shapes.size(); ++k) {
+      const std::string shape = where + "shape " + std::to_string(k) + " ";
+      EXPECT_EQ(a.shapes[k].kind, e.shapes[k].kind) << shape;
+      ExpectNear(a.shapes[k].size, e.shapes[k].size, tol, shape + "size");
+      ExpectNear(a.shapes[k].X_BG.linear(), e.shapes[k].X_BG.linear(), tol, shape + "R_BG");
+      ExpectNear(a.shapes[k].X_BG.translation(), e.shapes[k].X_BG.translation(), tol, shape + "p_BG");
+    }
+  }
+}
+
+// Elementary rotations written out by hand, independent of Eigen::AngleAxis.
+Eigen::Matrix3d Rx(double a) {
+  Eigen::Matrix3d R;
+  R << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
+  return R;
+}
+Eigen::Matrix3d Ry(double a) {
+  Eigen::Matrix3d R;
+  R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+  return R;
+}
+Eigen::Matrix3d Rz(double a) {
+  Eigen::Matrix3d R;
+  R << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
+  return R;
+}
+
+// ---- Hand-written URDF pieces ----
+
+std::string Robot(const std::string& body) { return "<robot name=\"r\">\n" + body + "</robot>\n"; }
+
+std::string BareLink(const std::string& name) { return "<link name=\"" + name + "\"/>\n"; }
+
+// A link with one inertial: the given mass and inertia (ixx ixy ixz iyy iyz izz).
+std::string MassLink(const std::string& name, const std::string& mass = "1",
+                     const std::string& inertia = "0.1 0 0 0.1 0 0.1") {
+  std::istringstream in(inertia);
+  std::string v[6];
+  for (std::string& s : v) in >> s;
+  return "<link name=\"" + name + "\"><inertial><mass value=\"" + mass + "\"/><inertia ixx=\"" + v[0] +
+         "\" ixy=\"" + v[1] + "\" ixz=\"" + v[2] + "\" iyy=\"" + v[3] + "\" iyz=\"" + v[4] + "\" izz=\"" +
+         v[5] + "\"/></inertial></link>\n";
+}
+
+const std::string kLimit = "<limit lower=\"-1\" upper=\"1\" effort=\"10\" velocity=\"2\"/>";
+
+std::string Joint(const std::string& name, const std::string& type, const std::string& parent,
+                  const std::string& child, const std::string& extra = kLimit) {
+  return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
+         "\"/><child link=\"" + child + "\"/>" + extra + "</joint>\n";
+}
+
+// Loading `xml` must throw std::invalid_argument whose message contains
+// every one of `fragments`.
+void ExpectRejected(const std::string& xml, const std::vector<std::string>& fragments,
+                    const std::string& source = "<string>") {
+  try {
+    LoadUrdfString(xml, source);
+    ADD_FAILURE() << "expected std::invalid_argument for:\n" << xml;
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(source + ": ", 0), 0u) << message;
+    for (const std::string& fragment : fragments) {
+      EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << message;
+    }
+  }
+}
+
+// ---- Round trips ----
+
+TEST(UrdfTest, RoundTripReproducesPaper6r) {
+  const RobotModel expected = MakePaper6r();
+  const UrdfLoadResult loaded = LoadUrdfString(WriteUrdf(expected));
+  EXPECT_TRUE(loaded.warnings.empty());
+  ExpectModelsNear(loaded.model, expected, 1e-12);
+}
+
+// The tilted robot with every URDF-expressible field set: finite and
+// infinite limits, friction, all three shape kinds at random poses, and a
+// rotor inertia, which URDF cannot carry and is dropped.
+TEST(UrdfTest, RoundTripReproducesTiltedRobotWithLimitsFrictionAndShapes) {
+  std::vector<Link> links = testing::MakeTiltedRobot().links();
+  std::mt19937 rng(11);
+  const auto random_pose = [&rng] {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = Eigen::Quaterniond(Eigen::Vector4d(testing::RandomVector(4, 1.0, &rng)).normalized())
+                     .toRotationMatrix();
+    X.translation() = testing::RandomVector(3, 0.5, &rng);
+    return X;
+  };
+  links[0].limits = {-2.5, 1.5, 3.0, kInf, 40.0};
+  links[1].limits = {-1.0, 2.0, kInf, kInf, 25.0};
+  links[2].limits = {-kInf, kInf, 4.0, kInf, kInf};  // continuous with a velocity limit
+  links[0].dynamics = {0.3, 0.1, 0.02};
+  links[3].dynamics = {0.0, 0.7, 0.0};
+  links[0].shapes.push_back({Shape::Kind::kCylinder, {0.05, 0.05, 0.4}, random_pose()});
+  links[1].shapes.push_back({Shape::Kind::kBox, {0.1, 0.2, 0.3}, random_pose()});
+  links[1].shapes.push_back({Shape::Kind::kSphere, {0.07, 0.07, 0.07}, random_pose()});
+  links[3].X_PJ.linear() = Ry(kPi / 2) * Rx(0.3);  // gimbal lock in the joint origin
+  const RobotModel expected("tilted4r", links);
+
+  const UrdfLoadResult loaded = LoadUrdfString(WriteUrdf(expected));
+  EXPECT_TRUE(loaded.warnings.empty());
+  // MakeTiltedRobot leaves joint names empty; the writer makes them up.
+  ExpectModelsNear(loaded.model, expected, 1e-12, /*compare_joint_names=*/false);
+  for (const Link& link : loaded.model.links()) EXPECT_EQ(link.joint_name, link.name + "_joint");
+  EXPECT_EQ(loaded.model.link(0).dynamics.rotor_inertia, 0.0);
+}
+
+TEST(UrdfTest, ShippedPaper6rUrdfEqualsMakePaper6r) {
+  const std::string path = std::string(IDBENCH_SOURCE_DIR) + "/engine/robots/paper6r.urdf";
+  const UrdfLoadResult loaded = LoadUrdfFile(path);
+  EXPECT_TRUE(loaded.warnings.empty());
+  ExpectModelsNear(loaded.model, MakePaper6r(), 1e-12);
+}
+
+// Names URDF would choke on are escaped, and a link called "base" pushes the
+// ground link to another name.
+TEST(UrdfTest, WriterEscapesNamesAndKeepsTheGroundNameUnique) {
+  std::vector<Link> links = MakePaper6r().links();
+  links[0].name = "base";
+  links[1].name = "world";
+  links[2].joint_name = "a<b>&\"c'";
+  const RobotModel expected("r&d <robot>", links);
+  const std::string xml = WriteUrdf(expected);
+  EXPECT_NE(xml.find("<link name=\"world_1\"/>"), std::string::npos) << xml;
+  ExpectModelsNear(LoadUrdfString(xml).model, expected, 1e-12);
+}
+
+TEST(UrdfTest, WriterRejectsOneSidedLimits) {
+  std::vector<Link> links = MakePaper6r().links();
+  links[4].limits.q_max = 1.0;
+  try {
+    WriteUrdf(RobotModel("one_sided", links));
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("link 'B5'"), std::string::npos) << e.what();
+  }
+}
+
+// ---- Fixed joints, inertial frames ----
+
+// Two moving links; the first carries a block on a rotated fixed joint
+// between the two hinges, the second a tool (with mass) and a massless frame.
+// The ground carries a 100 kg base on a rotated fixed joint, which must not
+// count. Truths worked by hand, see the comments.
+TEST(UrdfTest, FixedLinksAreLumpedWithParallelAxes) {
+  const std::string xml = R"(<?xml version="1.0"?>
+<robot name="lumped">
+  <link name="world"/>
+  <joint name="world_to_base" type="fixed">
+    <parent link="world"/><child link="base_link"/>
+    <origin xyz="0 0 0.5" rpy="0 0 3.141592653589793"/>
+  </joint>
+  <link name="base_link">
+    <inertial><mass value="100"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <visual><geometry><box size="1 1 1"/></geometry></visual>
+  </link>
+  <joint name="j1" type="revolute">
+    <parent link="base_link"/><child link="upper"/>
+    <origin xyz="0.1 0 0.2" rpy="0 0 1.5707963267948966"/>
+    <axis xyz="0 0 2"/>
+    <limit lower="-2" upper="2" effort="0" velocity="3"/>
+    <dynamics damping="0.5" friction="0.2"/>
+  </joint>
+  <link name="upper">
+    <inertial>
+      <origin xyz="0.3 0 0" rpy="0 0 1.5707963267948966"/>
+      <mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.03"/>
+    </inertial>
+  </link>
+  <joint name="elbow_mount" type="fixed">
+    <parent link="upper"/><child link="elbow_block"/>
+    <origin xyz="0.6 0 0" rpy="1.5707963267948966 0 0"/>
+  </joint>
+  <link name="elbow_block">
+    <inertial>
+      <origin xyz="0 0 0.3"/>
+      <mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.003"/>
+    </inertial>
+  </link>
+  <joint name="j2" type="continuous">
+    <parent link="elbow_block"/><child link="lower"/>
+    <origin xyz="0 0.1 0"/>
+    <axis xyz="0 0 1"/>
+    <limit effort="50" velocity="0"/>
+  </joint>
+  <link name="lower">
+    <inertial>
+      <origin xyz="0.2 0 0"/>
+      <mass value="1.5"/>
+      <inertia ixx="0.004" ixy="0" ixz="0" iyy="0.005" iyz="0" izz="0.006"/>
+    </inertial>
+    <visual><origin xyz="0.2 0 0"/><geometry><box size="0.4 0.05 0.05"/></geometry></visual>
+    <visual><geometry><mesh filename="package://arm/lower.stl"/></geometry></visual>
+  </link>
+  <joint name="tool_mount" type="fixed">
+    <parent link="lower"/><child link="tool"/>
+    <origin xyz="0.4 0 0" rpy="0 1.5707963267948966 0"/>
+  </joint>
+  <link name="tool">
+    <inertial>
+      <origin xyz="0 0 0.1"/>
+      <mass value="0.5"/>
+      <inertia ixx="0.0002" ixy="0" ixz="0" iyy="0.0003" iyz="0" izz="0.0004"/>
+    </inertial>
+    <visual><origin xyz="0 0 0.1"/><geometry><sphere radius="0.05"/></geometry></visual>
+  </link>
+  <joint name="tool_frame" type="fixed">
+    <parent link="tool"/><child link="tool0"/>
+    <origin xyz="0 0 0.2"/>
+  </joint>
+  <link name="tool0"/>
+</robot>
+)";
+  const UrdfLoadResult loaded = LoadUrdfString(xml, "lumped.urdf");
+  const RobotModel& model = loaded.model;
+  EXPECT_EQ(model.name(), "lumped");
+  ASSERT_EQ(model.n_links(), 2);
+  const Link& upper = model.link(0);
+  const Link& lower = model.link(1);
+  EXPECT_EQ(upper.name, "upper");
+  EXPECT_EQ(upper.joint_name, "j1");
+  EXPECT_EQ(upper.parent, -1);
+  EXPECT_EQ(lower.name, "lower");
+  EXPECT_EQ(lower.joint_name, "j2");
+  EXPECT_EQ(lower.parent, 0);
+  const double tol = 1e-12;
+
+  // j1: the ground's fixed offset (0, 0, 0.5), Rz(π), then (0.1, 0, 0.2),
+  // Rz(π/2): p = (0, 0, 0.5) + Rz(π)·(0.1, 0, 0.2) = (−0.1, 0, 0.7), R = Rz(−π/2).
+  Eigen::Matrix3d R_PJ1;
+  R_PJ1 << 0, 1, 0, -1, 0, 0, 0, 0, 1;
+  ExpectNear(upper.X_PJ.linear(), R_PJ1, tol, "R_PJ of j1");
+  ExpectNear(upper.X_PJ.translation(), Eigen::Vector3d(-0.1, 0, 0.7), tol, "p_PJ of j1");
+  ExpectNear(upper.axis_J, Eigen::Vector3d(0, 0, 1), tol, "axis of j1 (normalised)");
+  EXPECT_EQ(upper.limits.q_min, -2.0);
+  EXPECT_EQ(upper.limits.q_max, 2.0);
+  EXPECT_EQ(upper.limits.qd_max, 3.0);
+  EXPECT_EQ(upper.limits.tau_max, kInf);  // effort 0 = not given
+  EXPECT_EQ(upper.dynamics.viscous, 0.5);
+  EXPECT_EQ(upper.dynamics.coulomb, 0.2);
+
+  // upper = upper (2 kg, COM (0.3, 0, 0), diag(0.01, 0.02, 0.03) turned by
+  // Rz(π/2) → diag(0.02, 0.01, 0.03)) + elbow_block (1 kg; its frame is at
+  // (0.6, 0, 0) turned by Rx(π/2), so its COM (0, 0, 0.3) is at (0.6, −0.3, 0)
+  // and diag(0.001, 0.002, 0.003) becomes diag(0.001, 0.003, 0.002)).
+  // m = 3, c = (2·(0.3, 0, 0) + (0.6, −0.3, 0))/3 = (0.4, −0.1, 0).
+  // Offsets d = (−0.1, 0.1, 0) and (0.2, −0.2, 0); m(|d|²1 − ddᵀ) =
+  // 2·[0.01 0.01 0; 0.01 0.01 0; 0 0 0.02] + [0.04 0.04 0; 0.04 0.04 0; 0 0 0.08].
+  Eigen::Matrix3d I_upper;
+  I_upper << 0.081, 0.06, 0, 0.06, 0.073, 0, 0, 0, 0.152;
+  ExpectNear(upper.inertia.mass, 3.0, tol, "upper mass");
+  ExpectNear(upper.inertia.p_BoBcm_B, Eigen::Vector3d(0.4, -0.1, 0), tol, "upper COM");
+  ExpectNear(upper.inertia.I_Bcm_B, I_upper, tol, "upper inertia");
+  EXPECT_TRUE(upper.shapes.empty());  // the ground's box is not the upper arm's
+
+  // j2 hangs from elbow_block: p = (0.6, 0, 0) + Rx(π/2)·(0, 0.1, 0) =
+  // (0.6, 0, 0.1), R = Rx(π/2). Continuous: no q limits; velocity 0 = not given.
+  Eigen::Matrix3d R_PJ2;
+  R_PJ2 << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  ExpectNear(lower.X_PJ.linear(), R_PJ2, tol, "R_PJ of j2");
+  ExpectNear(lower.X_PJ.translation(), Eigen::Vector3d(0.6, 0, 0.1), tol, "p_PJ of j2");
+  EXPECT_EQ(lower.limits.q_min, -kInf);
+  EXPECT_EQ(lower.limits.q_max, kInf);
+  EXPECT_EQ(lower.limits.qd_max, kInf);
+  EXPECT_EQ(lower.limits.tau_max, 50.0);
+  EXPECT_EQ(lower.dynamics.viscous, 0.0);
+
+  // lower = lower (1.5 kg at (0.2, 0, 0), diag(0.004, 0.005, 0.006)) + tool
+  // (0.5 kg; frame at (0.4, 0, 0) turned by Ry(π/2), so COM (0, 0, 0.1) is at
+  // (0.5, 0, 0) and diag(2, 3, 4)e-4 becomes diag(4, 3, 2)e-4); tool0 has no mass.
+  // m = 2, c = (0.3 + 0.25)/2 = 0.275; m d² = 1.5·0.075² + 0.5·0.225² = 0.03375.
+  ExpectNear(lower.inertia.mass, 2.0, tol, "lower mass");
+  ExpectNear(lower.inertia.p_BoBcm_B, Eigen::Vector3d(0.275, 0, 0), tol, "lower COM");
+  ExpectNear(lower.inertia.I_Bcm_B, Eigen::Vector3d(0.0044, 0.03905, 0.03995).asDiagonal().toDenseMatrix(),
+             tol, "lower inertia");
+
+  // Shapes: lower's box, then the tool's sphere in lower's frame; the mesh is
+  // skipped with a warning.
+  ASSERT_EQ(lower.shapes.size(), 2u);
+  EXPECT_EQ(lower.shapes[0].kind, Shape::Kind::kBox);
+  ExpectNear(lower.shapes[0].size, Eigen::Vector3d(0.4, 0.05, 0.05), tol, "box size");
+  ExpectNear(lower.shapes[0].X_BG.translation(), Eigen::Vector3d(0.2, 0, 0), tol, "box position");
+  EXPECT_EQ(lower.shapes[1].kind, Shape::Kind::kSphere);
+  ExpectNear(lower.shapes[1].size, Eigen::Vector3d(0.05, 0.05, 0.05), tol, "sphere size");
+  ExpectNear(lower.shapes[1].X_BG.translation(), Eigen::Vector3d(0.5, 0, 0), tol, "sphere position");
+  ExpectNear(lower.shapes[1].X_BG.linear(), Ry(kPi / 2), tol, "sphere orientation");
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("link 'lower'"), std::string::npos) << loaded.warnings[0];
+  EXPECT_NE(loaded.warnings[0].find("mesh"), std::string::npos) << loaded.warnings[0];
+}
+
+// A general inertial rpy and joint rpy: I_Bcm_B = R·I·Rᵀ with
+// R = Rz(y)·Ry(p)·Rx(r); the COM is the inertial origin, unrotated.
+TEST(UrdfTest, InertialAndJointRpyAreHonoured) {
+  const std::string xml = Robot(BareLink("base") + R"(
+<link name="arm"><inertial>
+  <origin xyz="0.1 0.2 0.3" rpy="0.3 -0.2 0.7"/><mass value="2.5"/>
+  <inertia ixx="0.5" ixy="0.1" ixz="-0.05" iyy="0.4" iyz="0.02" izz="0.3"/>
+</inertial>
+<visual><origin xyz="0 0 0.25" rpy="0.3 -0.2 0.7"/><geometry><cylinder radius="0.04" length="0.5"/></geometry></visual>
+</link>
+<joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/>
+  <origin xyz="1 2 3" rpy="-1.2 0.4 2.5"/><axis xyz="1 1 0"/>
+  <limit lower="-1" upper="1" effort="10" velocity="2"/></joint>
+)");
+  const Link link = LoadUrdfString(xml).model.link(0);
+  const Eigen::Matrix3d R_BI = Rz(0.7) * Ry(-0.2) * Rx(0.3);
+  Eigen::Matrix3d I_I;
+  I_I << 0.5, 0.1, -0.05, 0.1, 0.4, 0.02, -0.05, 0.02, 0.3;
+  ExpectNear(link.inertia.I_Bcm_B, (R_BI * I_I * R_BI.transpose()).eval(), 1e-14, "I_Bcm_B");
+  ExpectNear(link.inertia.p_BoBcm_B, Eigen::Vector3d(0.1, 0.2, 0.3), 1e-15, "p_BoBcm_B");
+  ExpectNear(link.X_PJ.linear(), (Rz(2.5) * Ry(0.4) * Rx(-1.2)).eval(), 1e-14, "R_PJ");
+  ExpectNear(link.X_PJ.translation(), Eigen::Vector3d(1, 2, 3), 0.0, "p_PJ");
+  ExpectNear(link.axis_J, Eigen::Vector3d(1, 1, 0) / std::sqrt(2.0), 1e-15, "axis_J");
+  ASSERT_EQ(link.shapes.size(), 1u);
+  EXPECT_EQ(link.shapes[0].kind, Shape::Kind::kCylinder);
+  ExpectNear(link.shapes[0].size, Eigen::Vector3d(0.04, 0.04, 0.5), 0.0, "cylinder size");
+  ExpectNear(link.shapes[0].X_BG.linear(), R_BI, 1e-14, "R_BG");
+}
+
+// ---- Roll-pitch-yaw ----
+
+TEST(UrdfTest, RotationFromRpyIsFixedAxesXThenYThenZ) {
+  const Eigen::Vector3d rpy(0.3, -1.1, 2.9);
+  ExpectNear(RotationFromRpy(rpy), (Rz(rpy.z()) * Ry(rpy.y()) * Rx(rpy.x())).eval(), 1e-15, "R");
+}
+
+TEST(UrdfTest, RpyRoundTripsOnRandomRotations) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(Eigen::Vector4d(testing::RandomVector(4, 1.0, &rng)).normalized()).toRotationMatrix();
+    const Eigen::Vector3d rpy = RpyFromRotation(R);
+    EXPECT_LE(std::abs(rpy.y()), kPi / 2);
+    ExpectNear(RotationFromRpy(rpy), R, 1e-14, "R, trial " + std::to_string(trial));
+  }
+  // Away from gimbal lock the angles themselves come back.
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::Vector3d rpy = testing::RandomVector(3, 1.0, &rng);
+    rpy.x() *= 3.1;
+    rpy.y() *= 1.5;
+    rpy.z() *= 3.1;
+    ExpectNear(RpyFromRotation(RotationFromRpy(rpy)), rpy, 1e-13, "rpy, trial " + std::to_string(trial));
+  }
+}
+
+// At pitch = ±π/2 only yaw ∓ roll is defined; just short of it the split is
+// ill-conditioned. The rotation must still come back to rounding.
+TEST(UrdfTest, RpyRoundTripsAtAndNearGimbalLock) {
+  std::mt19937 rng(4);
+  for (double pitch : {kPi / 2, -kPi / 2, kPi / 2 - 1e-7, -kPi / 2 + 1e-7, kPi / 2 - 1e-12, -kPi / 2 + 1e-13}) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const Eigen::Vector3d angles = testing::RandomVector(2, 3.1, &rng);
+      const Eigen::Matrix3d R = Rz(angles[1]) * Ry(pitch) * Rx(angles[0]);
+      const Eigen::Vector3d rpy = RpyFromRotation(R);
+      ExpectNear(RotationFromRpy(rpy), R, 1e-14, "R at pitch " + std::to_string(pitch));
+      EXPECT_NEAR(rpy.y(), pitch, 1e-7);
+    }
+  }
+  // Through URDF text and urdfdom's rpy → quaternion conversion.
+  std::vector<Link> links = MakePaper6r().links();
+  links[0].X_PJ.linear() = Rz(0.4) * Ry(kPi / 2) * Rx(-2.0);
+  links[1].X_PJ.linear() = Rz(-3.0) * Ry(-kPi / 2 + 1e-9) * Rx(1.0);
+  const RobotModel expected("gimbal", links);
+  ExpectModelsNear(LoadUrdfString(WriteUrdf(expected)).model, expected, 1e-14);
+}
+
+// ---- Rejections, each naming the culprit ----
+
+TEST(UrdfTest, RejectsUnsupportedJointTypesNamingTheJoint) {
+  for (const std::string type : {"prismatic", "floating", "planar"}) {
+    ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("slider", type, "base", "a")),
+                   {"joint 'slider'", type + " joints are not supported"});
+  }
+  // Also when hanging off a merged fixed link, below a revolute joint.
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + MassLink("c") +
+                       Joint("j1", "revolute", "base", "a") + Joint("mount", "fixed", "a", "b", "") +
+                       Joint("rail", "prismatic", "b", "c")),
+                 {"joint 'rail'", "prismatic"});
+}
+
+TEST(UrdfTest, RejectsBranchingNamingTheLink) {
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + MassLink("c") +
+                       Joint("j1", "revolute", "base", "a") + Joint("j2", "revolute", "a", "b") +
+                       Joint("j3", "continuous", "a", "c", "")),
+                 {"link 'a'", "'j2'", "'j3'"});
+  // The second chain starts with a fixed joint: still diverges at 'a'.
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + BareLink("mount") + MassLink("c") +
+                       Joint("j1", "revolute", "base", "a") + Joint("j2", "revolute", "a", "b") +
+                       Joint("fix", "fixed", "a", "mount", "") + Joint("j3", "revolute", "mount", "c")),
+                 {"link 'a'"});
+  // Two chains from the ground.
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + Joint("j1", "revolute", "base", "a") +
+                       Joint("j2", "revolute", "base", "b")),
+                 {"link 'base'"});
+  // Fixed side branches carry no moving joint and are fine.
+  const UrdfLoadResult ok =
+      LoadUrdfString(Robot(BareLink("base") + MassLink("a") + MassLink("b") + BareLink("camera") +
+                           BareLink("stand") + Joint("j1", "revolute", "base", "a") +
+                           Joint("j2", "revolute", "a", "b") + Joint("cam", "fixed", "a", "camera", "") +
+                           Joint("stand_fix", "fixed", "base", "stand", "")));
+  EXPECT_EQ(ok.model.n_links(), 2);
+}
+
+TEST(UrdfTest, RejectsMissingMassOrBadInertiaNamingTheLink) {
+  const std::string chain = BareLink("base") + MassLink("a") + Joint("j1", "revolute", "base", "a") +
+                            Joint("j2", "revolute", "a", "b");
+  ExpectRejected(Robot(chain + BareLink("b")), {"link 'b'", "<inertial>"});
+  ExpectRejected(Robot(chain + MassLink("b", "0")), {"link 'b'", "mass must be > 0"});
+  ExpectRejected(Robot(chain + MassLink("b", "-2")), {"link 'b'", "mass"});
+  ExpectRejected(Robot(chain + MassLink("b", "1", "-1 0 0 0.1 0 0.1")), {"link 'b'", "inertia"});
+  // A point mass alone has no positive definite inertia.
+  ExpectRejected(Robot(chain + MassLink("b", "1", "0 0 0 0 0 0")), {"link 'b'", "positive definite"});
+  // A negative mass on a fixed attachment names the attachment.
+  ExpectRejected(Robot(chain + MassLink("b") + MassLink("tool", "-1") + Joint("fix", "fixed", "b", "tool", "")),
+                 {"link 'tool'", "mass"});
+}
+
+TEST(UrdfTest, RejectsBadJointDataNamingTheJoint) {
+  const std::string links = BareLink("base") + MassLink("a") + MassLink("b") + Joint("j1", "revolute", "base", "a");
+  ExpectRejected(Robot(links + Joint("j2", "revolute", "a", "b",
+                                     "<limit lower=\"1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>")),
+                 {"joint 'j2'", "lower < upper"});
+  ExpectRejected(Robot(links + Joint("j2", "revolute", "a", "b",
+                                     "<limit lower=\"2\" upper=\"-2\" effort=\"1\" velocity=\"1\"/>")),
+                 {"joint 'j2'", "lower < upper"});
+  // No lower/upper at all: urdfdom's defaults 0, 0.
+  ExpectRejected(Robot(links + Joint("j2", "revolute", "a", "b", "<limit effort=\"1\" velocity=\"1\"/>")),
+                 {"joint 'j2'"});
+  ExpectRejected(Robot(links + Joint("j2", "revolute", "a", "b", "<axis xyz=\"0 0 0\"/>" + kLimit)),
+                 {"joint 'j2'", "axis"});
+  ExpectRejected(Robot(links + Joint("j2", "revolute", "a", "b", "<dynamics damping=\"-1\"/>" + kLimit)),
+                 {"joint 'j2'", "damping"});
+}
+
+TEST(UrdfTest, RejectsRobotsWithoutMovingJoints) {
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("weld", "fixed", "base", "a", "")),
+                 {"no revolute or continuous joint", "'base'"});
+}
+
+TEST(UrdfTest, RejectsWhatUrdfdomCannotParse) {
+  ExpectRejected("this is not xml", {"broken.urdf: not a valid URDF"}, "broken.urdf");
+  ExpectRejected("<robot name=\"r\"><link name=\"a\"/><joint name=\"j\" type=\"revolute\">", {"not a valid URDF"});
+  // A joint whose child link does not exist.
+  ExpectRejected(Robot(BareLink("base") + Joint("j1", "revolute", "base", "ghost")), {"not a valid URDF"});
+  // A revolute joint without <limit> (URDF requires it).
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("j1", "revolute", "base", "a", "")),
+                 {"not a valid URDF"});
+}
+
+TEST(UrdfTest, RejectsUnreadableFilesNamingThePath) {
+  for (const std::string& path : {std::string("/nonexistent/dir/robot.urdf"), std::string(IDBENCH_SOURCE_DIR)}) {
+    try {
+      LoadUrdfFile(path);
+      ADD_FAILURE() << "expected std::invalid_argument for " << path;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+}
+
+// ---- Warnings ----
+
+// PUMA 560 link 3 as commonly tabulated (Armstrong et al. 1986): principal
+// moments 0.066, 0.086, 0.0125 kg m², and 0.066 + 0.0125 < 0.086.
+TEST(UrdfTest, WarnsAboutInertiasBreakingTheTriangleInequality) {
+  const std::string puma = Robot(BareLink("base") + MassLink("link3", "4.4", "0.066 0 0 0.086 0 0.0125") +
+                                 Joint("joint3", "revolute", "base", "link3"));
+  const UrdfLoadResult loaded = LoadUrdfString(puma);
+  EXPECT_EQ(loaded.model.link(0).inertia.I_Bcm_B(1, 1), 0.086);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("link 'link3'"), std::string::npos) << loaded.warnings[0];
+  EXPECT_NE(loaded.warnings[0].find("triangle inequality"), std::string::npos) << loaded.warnings[0];
+
+  // A uniform rod has moments (0, I, I): on the boundary, no warning.
+  const std::string rod = Robot(BareLink("base") + MassLink("rod", "1", "1e-12 0 0 0.5 0 0.5") +
+                                Joint("j", "revolute", "base", "rod"));
+  EXPECT_TRUE(LoadUrdfString(rod).warnings.empty());
+}
+
+}  // namespace
+}  // namespace idbench

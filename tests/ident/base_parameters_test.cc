@@ -15,7 +15,7 @@ using testing::RandomVector;
 
 class BaseParametersTest : public ::testing::TestWithParam<int> {
  protected:
-  RobotModel model_ = GetParam() == 0 ? MakePaper6r() : testing::MakeTiltedRobot();
+  RobotModel model_ = testing::MakeTestRobot(GetParam());
 };
 
 TEST_P(BaseParametersTest, BaseRegressorReproducesEveryTorqueOnFreshStates) {
@@ -52,8 +52,20 @@ TEST(BaseParametersPaper6rTest, FirstBodyKeepsOnlyItsAxialInertia) {
   EXPECT_GT(base.combination.col(4).cwiseAbs().maxCoeff(), 0.0);  // B1.Ixx lives in a base parameter
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, BaseParametersTest, ::testing::Values(0, 1),
-                         [](const auto& info) { return info.param == 0 ? "paper6r" : "tilted4r"; });
+// The literature's count (Gautier & Khalil; Armstrong's PUMA): 36 inertial
+// base parameters for a PUMA-type 6R arm, plus Fv and Fc of every joint.
+TEST(BaseParametersPuma560Test, FortyEightBaseParametersWithViscousAndCoulombFriction) {
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = true;
+  const BaseParameters base = ComputeBaseParameters(MakePuma560(), friction);
+  EXPECT_EQ(base.n_base(), 48);
+  int friction_terms = 0;
+  for (int c : base.independent) friction_terms += c >= 60;
+  EXPECT_EQ(friction_terms, 12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, BaseParametersTest, ::testing::Range(0, testing::kNumTestRobots),
+                         testing::TestRobotName);
 
 }  // namespace
 }  // namespace idbench

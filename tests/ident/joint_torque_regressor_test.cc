@@ -14,7 +14,7 @@ using testing::RandomVector;
 
 class JointTorqueRegressorTest : public ::testing::TestWithParam<int> {
  protected:
-  RobotModel model_ = GetParam() == 0 ? MakePaper6r() : testing::MakeTiltedRobot();
+  RobotModel model_ = testing::MakeTestRobot(GetParam());
 };
 
 // Y(q, qd, qdd)·π equals the RNEA (an independent recursion) on random states.
@@ -57,8 +57,28 @@ TEST_P(JointTorqueRegressorTest, FrictionColumns) {
   EXPECT_EQ(names[10 * n + 1], "Fc1");
 }
 
-INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Values(0, 1),
-                         [](const auto& info) { return info.param == 0 ? "paper6r" : "tilted4r"; });
+// With the model's own friction and rotor inertia (puma560 has them), Y·π is
+// what the motor supplies: RNEA plus the joint dynamics.
+TEST_P(JointTorqueRegressorTest, StandardParametersCarryTheModelsJointDynamics) {
+  RobotData d(model_);
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.rotor_inertia = true;
+  const Eigen::VectorXd pi = StandardParameters(model_, friction);
+  std::mt19937 rng(43);
+  const int n = model_.n_dof();
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                          qdd = RandomVector(n, 5.0, &rng);
+    Eigen::MatrixXd Y;
+    ComputeJointTorqueRegressor(model_, friction, q, qd, qdd, &d, &Y);
+    Eigen::VectorXd expected = InverseDynamics(model_, q, qd, qdd, &d);
+    AddJointDynamicsTorque(model_, qd, qdd, &expected);
+    EXPECT_LT(testing::RelativeError(Y * pi, expected), 1e-12) << "trial " << trial;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Range(0, testing::kNumTestRobots),
+                         testing::TestRobotName);
 
 }  // namespace
 }  // namespace idbench

@@ -1,1 +1,279 @@
-// (being written)
+#include "idbench/ident/physically_consistent.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "engine/test_util.h"
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
+#include "idbench/excitation/builtin_motions.h"
+#include "idbench/ident/linear_estimator.h"
+
+namespace idbench {
+namespace {
+
+using testing::RandomVector;
+using testing::RelativeError;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// The 10 parameters about Bo of a solid box of mass m and edge lengths
+// `edges` along the axes of a frame C, R_BC its orientation and c = p_BoBcm_B
+// its centroid: I_Bo = R_BC I_C R_BCᵀ + m (cᵀc 𝟙 − c cᵀ).
+InertialParameters BoxParameters(double m, const Eigen::Vector3d& edges, const Eigen::Matrix3d& R_BC,
+                                 const Eigen::Vector3d& c) {
+  const Eigen::Vector3d e2 = edges.cwiseAbs2();
+  const Eigen::Matrix3d I_C = (m / 12.0) * Eigen::Vector3d(e2.y() + e2.z(), e2.x() + e2.z(), e2.x() + e2.y()).asDiagonal();
+  const Eigen::Matrix3d I = R_BC * I_C * R_BC.transpose() + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  InertialParameters pi;
+  pi << m, m * c, I(0, 0), I(0, 1), I(1, 1), I(0, 2), I(1, 2), I(2, 2);
+  return pi;
+}
+
+Eigen::Matrix3d SomeRotation() {
+  return Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+}
+
+TEST(PseudoInertiaTest, BoxPseudoInertiaIsItsSecondMomentAndPositiveDefinite) {
+  const double m = 3.5;
+  const Eigen::Vector3d edges(0.4, 0.1, 0.25), c(0.3, -0.2, 0.15);
+  const Eigen::Matrix3d R_BC = SomeRotation();
+  const InertialParameters pi = BoxParameters(m, edges, R_BC, c);
+  // Independent truth: ∫ r rᵀ dm over the box = m (R_BC diag(e²/12) R_BCᵀ + c cᵀ).
+  Eigen::Matrix4d J_expected;
+  J_expected.topLeftCorner<3, 3>() =
+      m * (R_BC * (edges.cwiseAbs2() / 12.0).asDiagonal() * R_BC.transpose() + c * c.transpose());
+  J_expected.topRightCorner<3, 1>() = m * c;
+  J_expected.bottomLeftCorner<1, 3>() = m * c.transpose();
+  J_expected(3, 3) = m;
+  const Eigen::Matrix4d J = PseudoInertia(pi);
+  EXPECT_LT(RelativeError(J, J_expected), 1e-14);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(J).eigenvalues()[0], 0.0);
+  EXPECT_LT(RelativeError(InertialParametersFromPseudoInertia(J), pi), 1e-15);
+}
+
+TEST(PseudoInertiaTest, ParametersRoundTripForAnyVector) {
+  // The map is linear and invertible on all of ℝ¹⁰, consistent or not.
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd pi = RandomVector(10, 2.0, &rng);
+    EXPECT_LT(RelativeError(InertialParametersFromPseudoInertia(PseudoInertia(pi)), pi), 4 * kEps);
+  }
+}
+
+TEST(PseudoInertiaTest, TriangleViolatingInertiaIsNotPositiveSemidefinite) {
+  // PUMA 560 link 3 as published: principal moments 0.066, 0.086, 0.0125 kg m²
+  // about the centre of mass, 0.066 + 0.0125 < 0.086. J ⪰ 0 ⇔ Σ_cm ⪰ 0, and
+  // Σ_cm = ½ tr(I) 𝟙 − I has the eigenvalue (0.066 + 0.0125 − 0.086)/2 = −0.00375.
+  const double m = 4.8;
+  const Eigen::Vector3d c(-0.0203, -0.0141, 0.070);
+  auto body = [&](double Iyy) {
+    const Eigen::Matrix3d I = Eigen::Vector3d(0.066, Iyy, 0.0125).asDiagonal();
+    const Eigen::Matrix3d I_Bo = I + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    InertialParameters pi;
+    pi << m, m * c, I_Bo(0, 0), I_Bo(0, 1), I_Bo(1, 1), I_Bo(0, 2), I_Bo(1, 2), I_Bo(2, 2);
+    return pi;
+  };
+  const InertialParameters puma3 = body(0.086);
+  EXPECT_LT(MinPseudoInertiaEigenvalues(puma3, 1)[0], -1e-3);
+  EXPECT_THROW(LogCholeskyFromPseudoInertia(PseudoInertia(puma3)), std::invalid_argument);
+  // On the boundary (Iyy = Ixx + Izz) the smallest eigenvalue is zero.
+  EXPECT_NEAR(MinPseudoInertiaEigenvalues(body(0.0785), 1)[0], 0.0, 1e-14);
+  // The model file keeps the published values: its link 3 is inconsistent too.
+  const Eigen::VectorXd pi_puma = StandardParameters(MakePuma560(), FrictionModel{});
+  const Eigen::VectorXd min_eigenvalue = MinPseudoInertiaEigenvalues(pi_puma, 6);
+  EXPECT_LT(min_eigenvalue[2], 0.0);
+  for (int l : {0, 1, 3, 4, 5}) EXPECT_GT(min_eigenvalue[l], 0.0) << "link " << l + 1;
+}
+
+TEST(LogCholeskyTest, CoordinatesRoundTripAndHaveTheirMeaning) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd theta = RandomVector(10, 1.5, &rng);
+    const InertialParameters pi = InertialParametersFromLogCholesky(theta);
+    // m = e^{2α}, c = t.
+    EXPECT_NEAR(pi[0], std::exp(2.0 * theta[0]), 1e-14 * pi[0]);
+    EXPECT_LT(RelativeError(pi.segment<3>(1) / pi[0], theta.tail<3>()), 1e-14);
+    EXPECT_GT(MinPseudoInertiaEigenvalues(pi, 1)[0], 0.0);
+    EXPECT_LT(RelativeError(LogCholeskyFromPseudoInertia(PseudoInertia(pi)), theta), 1e-12);
+  }
+  // From a physical body: π → θ → π.
+  const InertialParameters box = BoxParameters(2.0, Eigen::Vector3d(0.3, 0.05, 0.2), SomeRotation(),
+                                               Eigen::Vector3d(0.1, 0.4, -0.3));
+  const LogCholeskyParameters theta = LogCholeskyFromPseudoInertia(PseudoInertia(box));
+  EXPECT_LT(RelativeError(InertialParametersFromLogCholesky(theta), box), 1e-14);
+}
+
+TEST(LogCholeskyTest, JacobianMatchesCentralDifferences) {
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd theta = RandomVector(10, 1.5, &rng);
+    Eigen::Matrix<double, 10, 10> analytic;
+    InertialParametersFromLogCholesky(theta, &analytic);
+    // h = ε^{1/3}: truncation O(h²) and rounding O(ε/h) errors balance near ε^{2/3}.
+    const double h = std::cbrt(kEps);
+    Eigen::Matrix<double, 10, 10> numeric;
+    for (int k = 0; k < 10; ++k) {
+      Eigen::VectorXd plus = theta, minus = theta;
+      plus[k] += h;
+      minus[k] -= h;
+      numeric.col(k) = (InertialParametersFromLogCholesky(plus) - InertialParametersFromLogCholesky(minus)) / (2 * h);
+    }
+    EXPECT_LT(RelativeError(analytic, numeric), 1e-8);
+  }
+}
+
+// Base regressor and torques of paper6r on the general Fourier motion, sampled
+// analytically; torques from the Newton–Euler inverse dynamics plus friction.
+struct Experiment {
+  RobotModel model = MakePaper6r();
+  FrictionModel friction;
+  BaseParameters base;
+  Eigen::MatrixXd W;       // base regressor (6 n_samples × n_base)
+  Eigen::VectorXd tau;     // [N m] (6 n_samples)
+  Eigen::VectorXd pi_true; // standard parameters, friction included
+  Eigen::VectorXd beta_true;
+};
+
+Experiment MakeExperiment(bool with_friction, int n_samples, double duration = 4.0) {
+  Experiment e;
+  if (with_friction) {
+    e.friction.viscous = e.friction.coulomb = true;
+    std::vector<Link> links = e.model.links();
+    for (int j = 0; j < 6; ++j) {
+      links[static_cast<size_t>(j)].dynamics.viscous = 20.0 + 5.0 * j;
+      links[static_cast<size_t>(j)].dynamics.coulomb = 40.0 - 4.0 * j;
+    }
+    e.model = RobotModel(e.model.name(), links, e.model.gravity_W());
+  }
+  e.base = ComputeBaseParameters(e.model, e.friction);
+  e.pi_true = StandardParameters(e.model, e.friction);
+  e.beta_true = e.base.combination * e.pi_true;
+  const auto motion = MakeGeneralMotion(6, duration);
+  e.W.resize(6 * n_samples, e.base.n_base());
+  e.tau.resize(6 * n_samples);
+  RobotData d(e.model);
+  Eigen::MatrixXd Y;
+  for (int s = 0; s < n_samples; ++s) {
+    const JointState x = motion->At(duration * (s + 0.5) / n_samples);
+    ComputeJointTorqueRegressor(e.model, e.friction, x.q, x.qd, x.qdd, &d, &Y);
+    e.W.middleRows(6 * s, 6) = e.base.Reduce(Y);
+    Eigen::VectorXd tau = InverseDynamics(e.model, x.q, x.qd, x.qdd, &d);
+    AddJointDynamicsTorque(e.model, x.qd, x.qdd, &tau);
+    e.tau.segment(6 * s, 6) = tau;
+  }
+  return e;
+}
+
+// Adds N(0, σ_j²) to joint j's rows.
+Eigen::VectorXd AddNoise(const Eigen::VectorXd& tau, const Eigen::VectorXd& sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd noisy = tau;
+  for (Eigen::Index r = 0; r < tau.size(); ++r) noisy[r] += sigma[r % sigma.size()] * normal(rng);
+  return noisy;
+}
+
+// Every link's J ⪰ 0 up to rounding of its largest entries.
+void ExpectConsistent(const PhysicallyConsistentFit& fit, int n_links) {
+  for (int l = 0; l < n_links; ++l) {
+    const double scale = PseudoInertia(fit.pi.segment<10>(10 * l)).cwiseAbs().maxCoeff();
+    EXPECT_GE(fit.min_pseudo_inertia_eigenvalue[l], -1e-12 * scale) << "link " << l + 1;
+  }
+}
+
+TEST(PhysicallyConsistentObjectiveTest, GradientMatchesCentralDifferences) {
+  const Experiment e = MakeExperiment(true, 50);
+  const Eigen::VectorXd tau = AddNoise(e.tau, Eigen::VectorXd::Constant(6, 20.0), 3);
+  PhysicallyConsistentObjective objective(e.W, tau, e.base, 6);
+  // Objective agrees with the cost on the full rows.
+  std::mt19937 rng(4);
+  Eigen::VectorXd pi = e.pi_true;
+  for (int l = 0; l < 6; ++l) {
+    pi.segment<10>(10 * l) = BoxParameters(100.0 * (l + 1), Eigen::Vector3d(0.3, 0.2, 0.4) + RandomVector(3, 0.1, &rng),
+                                           SomeRotation(), RandomVector(3, 0.5, &rng));
+  }
+  const Eigen::VectorXd x = objective.VariablesAt(pi);
+  EXPECT_LT(RelativeError(objective.StandardParametersAt(x), pi), 1e-12);
+  Eigen::VectorXd gradient;
+  const double f = objective.Evaluate(x, &gradient);
+  EXPECT_NEAR(f, (e.W * e.base.combination * pi - tau).squaredNorm(), 1e-12 * f);
+  // h = ε^{1/3} (scaled by |x_k|): central-difference error O(h²) + O(ε f/h).
+  Eigen::VectorXd numeric(x.size());
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    const double h = std::cbrt(kEps) * std::max(1.0, std::abs(x[k]));
+    Eigen::VectorXd plus = x, minus = x;
+    plus[k] += h;
+    minus[k] -= h;
+    numeric[k] = (objective.Evaluate(plus) - objective.Evaluate(minus)) / (2 * h);
+  }
+  EXPECT_LT(RelativeError(gradient, numeric), 1e-6);
+}
+
+class NoiseFreeTest : public ::testing::TestWithParam<bool> {};
+
+// From no prior at all (π_prior = 0), whose nearest standard parameters are
+// far from consistent, the fit recovers the true base parameters.
+TEST_P(NoiseFreeTest, RecoversTheTrueBaseParameters) {
+  const Experiment e = MakeExperiment(GetParam(), 200);
+  const Eigen::VectorXd beta_ols = SolveOls(e.W, e.tau, 6).beta;
+  const Eigen::VectorXd prior = Eigen::VectorXd::Zero(e.pi_true.size());
+  EXPECT_LT(MinPseudoInertiaEigenvalues(ClosestStandardParameters(e.base, beta_ols, prior), 6).minCoeff(), 0.0);
+  const PhysicallyConsistentFit fit = SolvePhysicallyConsistent(e.W, e.tau, e.base, 6, beta_ols, prior);
+  EXPECT_LT((fit.beta - e.beta_true).norm() / e.beta_true.norm(), 1e-6) << fit.status;
+  ExpectConsistent(fit, 6);
+  RecordProperty("evaluations", fit.evaluations);
+  RecordProperty("status", fit.status);
+}
+
+INSTANTIATE_TEST_SUITE_P(Friction, NoiseFreeTest, ::testing::Bool(),
+                         [](const auto& info) { return info.param ? "FvFc" : "none"; });
+
+TEST(PhysicallyConsistentTest, NoisyDataCostsLittleMoreThanOls) {
+  const Experiment e = MakeExperiment(true, 200);
+  const Eigen::VectorXd sigma = (Eigen::VectorXd(6) << 50, 50, 50, 5, 5, 5).finished();
+  const Eigen::VectorXd tau = AddNoise(e.tau, sigma, 2024);
+  const Eigen::VectorXd beta_ols = SolveOls(e.W, tau, 6).beta;
+  const PhysicallyConsistentFit fit = SolvePhysicallyConsistent(e.W, tau, e.base, 6, beta_ols, e.pi_true);
+  EXPECT_GE(fit.cost, fit.ols_cost * (1 - 1e-12));
+  EXPECT_LE(fit.cost, 1.05 * fit.ols_cost) << fit.status;
+  ExpectConsistent(fit, 6);
+}
+
+TEST(PhysicallyConsistentTest, InconsistentOlsEndsConsistent) {
+  // Few samples and heavy noise: the OLS estimate's nearest standard
+  // parameters to the true ones have a link with J ⋡ 0.
+  const Experiment e = MakeExperiment(false, 40);
+  const Eigen::VectorXd sigma = Eigen::VectorXd::Constant(6, 400.0);
+  const Eigen::VectorXd tau = AddNoise(e.tau, sigma, 99);
+  const Eigen::VectorXd beta_ols = SolveOls(e.W, tau, 6).beta;
+  const Eigen::VectorXd pi_ols = ClosestStandardParameters(e.base, beta_ols, e.pi_true);
+  EXPECT_LT((e.base.combination * pi_ols - beta_ols).norm(), 1e-10 * beta_ols.norm());
+  EXPECT_LT(MinPseudoInertiaEigenvalues(pi_ols, 6).minCoeff(), 0.0);
+  const PhysicallyConsistentFit fit = SolvePhysicallyConsistent(e.W, tau, e.base, 6, beta_ols, e.pi_true);
+  ExpectConsistent(fit, 6);
+  EXPECT_GE(fit.cost, fit.ols_cost);
+  EXPECT_LE(fit.cost, fit.start_cost);
+}
+
+TEST(PhysicallyConsistentTest, RejectsBadInput) {
+  const Experiment e = MakeExperiment(false, 20);
+  const Eigen::VectorXd beta = SolveOls(e.W, e.tau, 6).beta;
+  PhysicallyConsistentOptions options;
+  options.max_evaluations = 0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_THROW(SolvePhysicallyConsistent(e.W, e.tau, e.base, 6, beta, e.pi_true, options), std::invalid_argument);
+  EXPECT_THROW(SolvePhysicallyConsistent(e.W, e.tau.head(6), e.base, 6, beta, e.pi_true), std::invalid_argument);
+  EXPECT_THROW(SolvePhysicallyConsistent(e.W, e.tau, e.base, 7, beta, e.pi_true), std::invalid_argument);
+  EXPECT_THROW(SolvePhysicallyConsistent(e.W, e.tau, e.base, 6, beta, e.pi_true.head(10)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace idbench

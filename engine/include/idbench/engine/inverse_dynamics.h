@@ -16,4 +16,10 @@ const Eigen::VectorXd& InverseDynamics(const RobotModel& model, const Eigen::Vec
                                        const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
                                        RobotData* data);
 
+// Adds the joint-side drive and friction torques of the model's JointDynamics:
+//   τ_j += Fv_j qd_j + Fc_j sign(qd_j) + Ia_j qdd_j   [N m].
+// The rigid-body torque (InverseDynamics) plus these is what a motor supplies.
+void AddJointDynamicsTorque(const RobotModel& model, const Eigen::VectorXd& qd,
+                            const Eigen::VectorXd& qdd, Eigen::VectorXd* tau);
+
 }  // namespace idbench

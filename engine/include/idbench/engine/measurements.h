@@ -29,7 +29,7 @@ struct LogStep {
   Eigen::VectorXd q;     // [rad]
   Eigen::VectorXd qd;    // [rad/s]
   Eigen::VectorXd qdd;   // (qd_{n+1} − qd_n)/dt [rad/s²]
-  Eigen::VectorXd tau;   // applied joint torques [N m]
+  Eigen::VectorXd tau;   // motor torques [N m]: rigid-body torque applied in Bullet + AddJointDynamicsTorque
   std::vector<BodySample> body;    // per link, from kinematics at (q, qd, qdd)
   std::vector<HingeWrench> hinge;  // per link, the joint feedback
 };

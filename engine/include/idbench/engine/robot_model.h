@@ -92,4 +92,8 @@ class RobotModel {
   std::vector<std::vector<int>> children_;  // indexed by parent + 1
 };
 
+// One message per link whose principal moments of inertia violate the
+// triangle inequality (no real body has them, but published models do).
+std::vector<std::string> InertiaWarnings(const RobotModel& model);
+
 }  // namespace idbench

@@ -38,7 +38,8 @@ int NumStandardParameters(const RobotModel& model, const FrictionModel& friction
 // Names in π order: "B1.m", "B1.mcx", …, "B1.Izz", then "Fv1", "Fc1", … (by joint).
 std::vector<std::string> StandardParameterNames(const RobotModel& model, const FrictionModel& friction);
 
-// The standard inertial parameters of the model (friction entries zero).
+// The model's standard parameters: inertial ones, then the enabled friction
+// terms from each link's JointDynamics (offsets are zero).
 Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel& friction);
 
 // Writes Y (n_dof × NumStandardParameters) at (q, qd, qdd); data is workspace.
