@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace idbench {
@@ -47,10 +48,14 @@ std::vector<std::string> InertiaWarnings(const RobotModel& model) {
   for (const Link& link : model.links()) {
     const Eigen::Vector3d d =
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(link.inertia.I_Bcm_B).eigenvalues();  // ascending
-    if (d[0] + d[1] < d[2] * (1.0 - 1e-9)) {
-      warnings.push_back("robot '" + model.name() + "', link '" + link.name +
-                         "': principal inertias violate the triangle inequality (" + std::to_string(d[0]) +
-                         " + " + std::to_string(d[1]) + " < " + std::to_string(d[2]) + " kg m²)");
+    // Principal moments of a real body satisfy a + b ≥ c; sorted ascending,
+    // only the two smallest against the largest can fail.
+    if (d[0] + d[1] < d[2] - 1e-9 * d.sum()) {
+      std::ostringstream message;
+      message << "robot '" << model.name() << "', link '" << link.name << "': principal moments of inertia " << d[0] << ", " << d[1] << ", " << d[2]
+              << " violate the triangle inequality (" << d[0] << " + " << d[1] << " < " << d[2]
+              << "); no rigid body has this inertia";
+      warnings.push_back(message.str());
     }
   }
   return warnings;

@@ -1,5 +1,6 @@
 #include "idbench/engine/urdf.h"
 
+#include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Eigenvalues>
@@ -15,9 +16,6 @@
 
 namespace idbench {
 namespace {
-
-// Relative tolerance of the triangle-inequality check on principal moments.
-constexpr double kTriangleTolerance = 1e-9;
 
 std::string Quote(const std::string& name) { return "'" + name + "'"; }
 
@@ -92,7 +90,9 @@ class Loader {
     }
 
     try {
-      return UrdfLoadResult{RobotModel(urdf_.getName(), std::move(links)), std::move(warnings_)};
+      RobotModel model(urdf_.getName(), std::move(links));
+      for (std::string& w : InertiaWarnings(model)) warnings_.push_back(source_ + ": " + w);
+      return UrdfLoadResult{std::move(model), std::move(warnings_)};
     } catch (const std::invalid_argument& e) {
       Fail(e.what());
     }
@@ -277,15 +277,6 @@ class Loader {
     I = 0.5 * (I + I.transpose()).eval();
     const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
     if (!(moments.minCoeff() > 0.0)) Fail(where + "inertia tensor must be positive definite");
-    // Principal moments of a real body satisfy a + b ≥ c; sorted ascending,
-    // only the two smallest against the largest can fail.
-    if (moments[0] + moments[1] < moments[2] - kTriangleTolerance * moments.sum()) {
-      std::ostringstream message;
-      message << where << "principal moments of inertia " << moments[0] << ", " << moments[1] << ", "
-              << moments[2] << " violate the triangle inequality (" << moments[0] << " + " << moments[1]
-              << " < " << moments[2] << "); no rigid body has this inertia";
-      warnings_.push_back(message.str());
-    }
   }
 
   static std::vector<urdf::VisualSharedPtr> Visuals(const urdf::Link& link) {
@@ -369,14 +360,26 @@ Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R) {
 }
 
 UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name) {
+  // urdfdom reports why a file is invalid through console_bridge: keep the
+  // first error for our one message instead of letting it print.
+  struct FirstError : console_bridge::OutputHandler {
+    std::string text;
+    void log(const std::string& message, console_bridge::LogLevel level, const char*, int) override {
+      if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && text.empty()) text = message;
+    }
+  } first_error;
+  console_bridge::useOutputHandler(&first_error);
   urdf::ModelInterfaceSharedPtr urdf;
   try {
     urdf = urdf::parseURDF(xml);
   } catch (const std::exception& e) {
+    console_bridge::restorePreviousOutputHandler();
     throw std::invalid_argument(source_name + ": not a valid URDF (" + e.what() + ")");
   }
+  console_bridge::restorePreviousOutputHandler();
   if (urdf == nullptr || urdf->getRoot() == nullptr) {
-    throw std::invalid_argument(source_name + ": not a valid URDF (urdfdom's log above says why)");
+    throw std::invalid_argument(source_name + ": not a valid URDF" +
+                                (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
   }
   return Loader(*urdf, source_name).Load();
 }

@@ -43,4 +43,18 @@ struct SimulationLog {
   int StepAt(double t) const;
 };
 
+// A joint-space log, simulated or recorded on a real robot: what joint-torque
+// identification reads. Rows are samples, columns joints.
+struct JointLog {
+  Eigen::VectorXd t;    // sample times [s] (n_samples), strictly increasing
+  Eigen::MatrixXd q;    // joint positions [rad] (n_samples × n_dof)
+  Eigen::MatrixXd qd;   // velocities [rad/s]; empty (0 × 0) when not recorded
+  Eigen::MatrixXd qdd;  // accelerations [rad/s²]; empty when not recorded
+  Eigen::MatrixXd tau;  // motor torques [N m]
+
+  int n_samples() const { return static_cast<int>(t.size()); }
+  int n_dof() const { return static_cast<int>(q.cols()); }
+  bool has_derivatives() const { return qd.size() > 0 && qdd.size() > 0; }
+};
+
 }  // namespace idbench

@@ -1,0 +1,62 @@
+// Joint-torque identification of a serial robot from a joint log (Gautier &
+// Khalil's method, as used on real robots): stack the base regressor over the
+// log's samples, then estimate the base parameters by OLS, WLS, or a
+// physically consistent fit.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "idbench/engine/measurements.h"
+#include "idbench/ident/base_parameters.h"
+#include "idbench/ident/linear_estimator.h"
+#include "idbench/ident/physically_consistent.h"
+
+namespace idbench {
+
+enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent };
+
+// "ols", "wls", "pc".
+const char* ToString(TorqueEstimator estimator);
+std::optional<TorqueEstimator> ParseTorqueEstimator(const std::string& name);
+
+struct JointTorqueOptions {
+  FrictionModel friction{.viscous = true, .coulomb = true};
+  TorqueEstimator estimator = TorqueEstimator::kOls;
+  BaseParameterOptions base;
+  PhysicallyConsistentOptions consistent;
+};
+
+struct JointTorqueIdentification {
+  BaseParameters base;
+  std::vector<std::string> standard_names;
+  Eigen::VectorXd beta_model;   // the robot file's parameters as base parameters (C·π_model)
+  LinearFit linear;             // OLS, or WLS when asked (the physically consistent fit starts from it)
+  std::optional<PhysicallyConsistentFit> consistent;  // when the estimator is kPhysicallyConsistent
+  Eigen::VectorXd beta;         // the chosen estimator's base parameters
+  Eigen::VectorXd joint_rms;    // its fit residual RMS per joint [N m]
+};
+
+// Base regressor stacked over a log (rows interleaved: sample·n_dof + joint).
+// The log must carry qd and qdd. Throws std::invalid_argument on a size mismatch.
+Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel& friction,
+                                   const BaseParameters& base, const JointLog& log);
+
+// Torques stacked the same way.
+Eigen::VectorXd StackTorques(const JointLog& log);
+
+// Identifies the base parameters from the log. Throws std::invalid_argument
+// when the log does not fit the robot, lacks qd/qdd, or has fewer equations
+// than base parameters + 1.
+JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
+                                              const JointTorqueOptions& options);
+
+// How well base parameters β predict another log's torques.
+struct TorquePrediction {
+  Eigen::VectorXd joint_rms;       // RMS of τ̂ − τ per joint [N m]
+  double relative_error = 0.0;     // ‖τ̂ − τ‖ / ‖τ‖ over all joints and samples
+};
+TorquePrediction PredictTorques(const RobotModel& model, const FrictionModel& friction,
+                                const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
+
+}  // namespace idbench
