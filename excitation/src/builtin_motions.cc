@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <stdexcept>
 
 namespace idbench {
 
@@ -28,6 +29,23 @@ std::unique_ptr<Trajectory> MakeGeneralMotion(int n_dof, double duration) {
   const double wf = 2.0 * std::numbers::pi * kF0;
   const Eigen::VectorXd q0 = b.col(0) / wf + b.col(1) / (2.0 * wf);
   return std::make_unique<FourierSeriesTrajectory>(q0, a, b, kF0, duration);
+}
+
+void ReversedTrajectory::Evaluate(double t, JointState* state) const {
+  forward_->Evaluate(duration() - t, state);
+  state->qd = -state->qd;
+}
+
+std::vector<std::string> BuiltinMotionNames() { return {"paper", "general", "general-reversed"}; }
+
+std::unique_ptr<Trajectory> MakeBuiltinMotion(const std::string& name, int n_dof, double duration,
+                                              double paper_qdd) {
+  if (name == "paper") return MakePaperMotion(n_dof, paper_qdd, duration);
+  if (name == "general") return MakeGeneralMotion(n_dof, duration);
+  if (name == "general-reversed") return std::make_unique<ReversedTrajectory>(MakeGeneralMotion(n_dof, duration));
+  std::string names;
+  for (const std::string& n : BuiltinMotionNames()) names += (names.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("trajectory '" + name + "': not a built-in motion (" + names + ")");
 }
 
 }  // namespace idbench

@@ -70,13 +70,11 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
                                                           : SolveOls(W, tau, model.n_dof());
   out.beta = out.linear.beta;
   out.joint_rms = out.linear.joint_rms;
+  out.consistent = SolvePhysicallyConsistent(W, tau, out.base, model.n_links(), out.linear.beta, pi_model,
+                                             options.consistent);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
-    out.consistent = SolvePhysicallyConsistent(W, tau, out.base, model.n_links(), out.linear.beta, pi_model,
-                                               options.consistent);
-    out.beta = out.consistent->beta;
-    const Eigen::VectorXd r = W * out.beta - tau;
-    const Eigen::Map<const Eigen::MatrixXd> R(r.data(), model.n_dof(), log.n_samples());
-    out.joint_rms = (R.rowwise().squaredNorm() / static_cast<double>(log.n_samples())).cwiseSqrt();
+    out.beta = out.consistent.beta;
+    out.joint_rms = JointRms(W * out.beta - tau, model.n_dof());
   }
   return out;
 }
@@ -85,9 +83,8 @@ TorquePrediction PredictTorques(const RobotModel& model, const FrictionModel& fr
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
   const Eigen::VectorXd tau = StackTorques(log);
   const Eigen::VectorXd r = StackBaseRegressor(model, friction, base, log) * beta - tau;
-  const Eigen::Map<const Eigen::MatrixXd> R(r.data(), model.n_dof(), log.n_samples());
   TorquePrediction out;
-  out.joint_rms = (R.rowwise().squaredNorm() / static_cast<double>(log.n_samples())).cwiseSqrt();
+  out.joint_rms = JointRms(r, model.n_dof());
   out.relative_error = r.norm() / tau.norm();
   return out;
 }

@@ -1,6 +1,7 @@
 #include "idbench/ident/joint_torque_regressor.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace idbench {
 namespace {
@@ -21,6 +22,22 @@ Eigen::Matrix<double, 3, 6> InertiaProductMatrix(const Eigen::Vector3d& w) {
 }
 
 }  // namespace
+
+std::optional<FrictionModel> ParseFrictionTerms(const std::vector<std::string>& terms, std::string* why) {
+  FrictionModel f;
+  for (const std::string& term : terms) {
+    if (term == "viscous") f.viscous = true;
+    else if (term == "coulomb") f.coulomb = true;
+    else if (term == "offset") f.offset = true;
+    else if (term == "rotor") f.rotor_inertia = true;
+    else if (term != "none" || terms.size() > 1) {
+      if (why) *why = term == "none" ? "'none' cannot be combined with other terms"
+                                     : "unknown term '" + term + "' (none, viscous, coulomb, offset, rotor)";
+      return std::nullopt;
+    }
+  }
+  return f;
+}
 
 int NumStandardParameters(const RobotModel& model, const FrictionModel& friction) {
   return model.n_links() * kInertialParametersPerLink + model.n_dof() * friction.per_joint();
@@ -61,6 +78,32 @@ Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel&
     if (friction.rotor_inertia) pi[k++] = link.dynamics.rotor_inertia;
   }
   return pi;
+}
+
+RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionModel& friction,
+                                       const Eigen::VectorXd& pi) {
+  if (pi.size() != NumStandardParameters(model, friction)) {
+    throw std::invalid_argument("standard parameters: expected " + std::to_string(NumStandardParameters(model, friction)) +
+                                " values, got " + std::to_string(pi.size()));
+  }
+  std::vector<Link> links = model.links();
+  int k = model.n_links() * kInertialParametersPerLink;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const auto p = pi.segment<kInertialParametersPerLink>(kInertialParametersPerLink * static_cast<Eigen::Index>(i));
+    LinkInertia& in = links[i].inertia;
+    in.mass = p[0];
+    in.p_BoBcm_B = p.segment<3>(1) / p[0];
+    Eigen::Matrix3d I_Bo;
+    I_Bo << p[4], p[5], p[7], p[5], p[6], p[8], p[7], p[8], p[9];
+    const Eigen::Vector3d& c = in.p_BoBcm_B;
+    in.I_Bcm_B = I_Bo - p[0] * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    JointDynamics& dyn = links[i].dynamics;
+    if (friction.viscous) dyn.viscous = pi[k++];
+    if (friction.coulomb) dyn.coulomb = pi[k++];
+    if (friction.offset) ++k;
+    if (friction.rotor_inertia) dyn.rotor_inertia = pi[k++];
+  }
+  return RobotModel(model.name(), std::move(links), model.gravity_W());
 }
 
 void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,

@@ -21,13 +21,6 @@ void CheckSizes(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof)
   }
 }
 
-// Per-joint RMS of r (rows interleaved by joint).
-Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof) {
-  const Eigen::Index n_samples = r.size() / n_dof;
-  const Eigen::Map<const Eigen::MatrixXd> R(r.data(), n_dof, n_samples);
-  return (R.rowwise().squaredNorm() / static_cast<double>(n_samples)).cwiseSqrt();
-}
-
 // OLS on (W, tau) with row weights already applied.
 LinearFit Fit(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
   LinearFit fit;
@@ -50,6 +43,12 @@ LinearFit Fit(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
 }
 
 }  // namespace
+
+Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof) {
+  const Eigen::Index n_samples = r.size() / n_dof;
+  const Eigen::Map<const Eigen::MatrixXd> R(r.data(), n_dof, n_samples);
+  return (R.rowwise().squaredNorm() / static_cast<double>(n_samples)).cwiseSqrt();
+}
 
 LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
   CheckSizes(W, tau, n_dof);

@@ -59,6 +59,13 @@ void CheckSos(const SosMatrix& sos) {
       throw std::invalid_argument("filter: expected finite coefficients, section " + std::to_string(i) +
                                   " is not");
     }
+    // Poles inside the unit circle (the stability triangle of z² + a1 z + a2);
+    // also keeps the steady-state gain Σb/(1 + a1 + a2) finite.
+    if (!(std::abs(sos(i, 5)) < 1.0 && std::abs(sos(i, 4)) < 1.0 + sos(i, 5))) {
+      throw std::invalid_argument("filter: expected a stable section (|a2| < 1, |a1| < 1 + a2), got a1 = " +
+                                  Str(sos(i, 4)) + ", a2 = " + Str(sos(i, 5)) + " in section " +
+                                  std::to_string(i));
+    }
   }
 }
 
@@ -72,12 +79,24 @@ void CheckDerivativeInput(Eigen::Index n, double dt, Eigen::Index min_samples, c
   }
 }
 
-// Applies a per-channel operation to each column.
-template <typename Op>
-Eigen::MatrixXd PerColumn(const Eigen::MatrixXd& x, Eigen::Index out_rows, Op op) {
-  Eigen::MatrixXd y(out_rows, x.cols());
-  for (Eigen::Index j = 0; j < x.cols(); ++j) y.col(j) = op(Eigen::VectorXd(x.col(j)));
-  return y;
+// Zero-phase filtering of one channel (FiltFilt's steps 1–3).
+Eigen::VectorXd FiltFiltChannel(const SosMatrix& sos, const Eigen::VectorXd& x, Eigen::Index pad) {
+  const Eigen::Index n = x.size();
+
+  // Odd extension: the reflection of x through (0, x[0]) and (n−1, x[n−1]).
+  Eigen::VectorXd y(n + 2 * pad);
+  y.segment(pad, n) = x;
+  for (Eigen::Index i = 1; i <= pad; ++i) {
+    y(pad - i) = 2.0 * x(0) - x(i);
+    y(pad + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
+  }
+
+  // Forward pass, then backward pass on the reversed output.
+  FilterSteadyStart(sos, &y);
+  y.reverseInPlace();
+  FilterSteadyStart(sos, &y);
+  y.reverseInPlace();
+  return y.segment(pad, n);
 }
 
 }  // namespace
@@ -142,9 +161,9 @@ int FiltFiltMinSamples(const SosMatrix& sos) {
   return ntaps + 1;
 }
 
-Eigen::VectorXd FiltFilt(const SosMatrix& sos, const Eigen::VectorXd& x) {
+Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x) {
   CheckSos(sos);
-  const Eigen::Index n = x.size();
+  const Eigen::Index n = x.rows();
   const int min_samples = FiltFiltMinSamples(sos);
   if (n < min_samples) {
     throw std::invalid_argument("filtfilt: expected at least " + std::to_string(min_samples) + " samples for " +
@@ -152,57 +171,31 @@ Eigen::VectorXd FiltFilt(const SosMatrix& sos, const Eigen::VectorXd& x) {
   }
   const Eigen::Index ntaps = min_samples - 1;
   const Eigen::Index pad = std::min<Eigen::Index>(3 * ntaps, n - 1);
-
-  // Odd extension: the reflection of x through (0, x[0]) and (n−1, x[n−1]).
-  Eigen::VectorXd y(n + 2 * pad);
-  y.segment(pad, n) = x;
-  for (Eigen::Index i = 1; i <= pad; ++i) {
-    y(pad - i) = 2.0 * x(0) - x(i);
-    y(pad + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
-  }
-
-  // Forward pass, then backward pass on the reversed output.
-  FilterSteadyStart(sos, &y);
-  y.reverseInPlace();
-  FilterSteadyStart(sos, &y);
-  y.reverseInPlace();
-  return y.segment(pad, n);
-}
-
-Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x) {
-  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return FiltFilt(sos, c); });
-}
-
-Eigen::VectorXd FirstDerivative(const Eigen::VectorXd& x, double dt) {
-  const Eigen::Index n = x.size();
-  CheckDerivativeInput(n, dt, 3, "first derivative");
-  Eigen::VectorXd d(n);
-  const double c = 1.0 / (2.0 * dt);
-  d(0) = c * (-3.0 * x(0) + 4.0 * x(1) - x(2));
-  d.segment(1, n - 2) = c * (x.tail(n - 2) - x.head(n - 2));
-  d(n - 1) = c * (3.0 * x(n - 1) - 4.0 * x(n - 2) + x(n - 3));
-  return d;
+  Eigen::MatrixXd y(n, x.cols());
+  for (Eigen::Index j = 0; j < x.cols(); ++j) y.col(j) = FiltFiltChannel(sos, x.col(j), pad);
+  return y;
 }
 
 Eigen::MatrixXd FirstDerivative(const Eigen::MatrixXd& x, double dt) {
-  CheckDerivativeInput(x.rows(), dt, 3, "first derivative");
-  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return FirstDerivative(c, dt); });
-}
-
-Eigen::VectorXd SecondDerivative(const Eigen::VectorXd& x, double dt) {
-  const Eigen::Index n = x.size();
-  CheckDerivativeInput(n, dt, 4, "second derivative");
-  Eigen::VectorXd d(n);
-  const double c = 1.0 / (dt * dt);
-  d(0) = c * (2.0 * x(0) - 5.0 * x(1) + 4.0 * x(2) - x(3));
-  d.segment(1, n - 2) = c * (x.tail(n - 2) - 2.0 * x.segment(1, n - 2) + x.head(n - 2));
-  d(n - 1) = c * (2.0 * x(n - 1) - 5.0 * x(n - 2) + 4.0 * x(n - 3) - x(n - 4));
+  const Eigen::Index n = x.rows();
+  CheckDerivativeInput(n, dt, 3, "first derivative");
+  const double c = 1.0 / (2.0 * dt);
+  Eigen::MatrixXd d(n, x.cols());
+  d.row(0) = c * (-3.0 * x.row(0) + 4.0 * x.row(1) - x.row(2));
+  d.middleRows(1, n - 2) = c * (x.bottomRows(n - 2) - x.topRows(n - 2));
+  d.row(n - 1) = c * (3.0 * x.row(n - 1) - 4.0 * x.row(n - 2) + x.row(n - 3));
   return d;
 }
 
 Eigen::MatrixXd SecondDerivative(const Eigen::MatrixXd& x, double dt) {
-  CheckDerivativeInput(x.rows(), dt, 4, "second derivative");
-  return PerColumn(x, x.rows(), [&](const Eigen::VectorXd& c) { return SecondDerivative(c, dt); });
+  const Eigen::Index n = x.rows();
+  CheckDerivativeInput(n, dt, 4, "second derivative");
+  const double c = 1.0 / (dt * dt);
+  Eigen::MatrixXd d(n, x.cols());
+  d.row(0) = c * (2.0 * x.row(0) - 5.0 * x.row(1) + 4.0 * x.row(2) - x.row(3));
+  d.middleRows(1, n - 2) = c * (x.bottomRows(n - 2) - 2.0 * x.middleRows(1, n - 2) + x.topRows(n - 2));
+  d.row(n - 1) = c * (2.0 * x.row(n - 1) - 5.0 * x.row(n - 2) + 4.0 * x.row(n - 3) - x.row(n - 4));
+  return d;
 }
 
 Eigen::MatrixXd Decimate(const Eigen::MatrixXd& x, int factor) {
@@ -211,10 +204,6 @@ Eigen::MatrixXd Decimate(const Eigen::MatrixXd& x, int factor) {
   Eigen::MatrixXd y(n_out, x.cols());
   for (Eigen::Index i = 0; i < n_out; ++i) y.row(i) = x.row(i * factor);
   return y;
-}
-
-Eigen::VectorXd Decimate(const Eigen::VectorXd& x, int factor) {
-  return Decimate(Eigen::MatrixXd(x), factor).col(0);
 }
 
 Eigen::MatrixXd FilterAndDecimate(const Eigen::MatrixXd& x, int factor, int order) {
@@ -237,10 +226,11 @@ bool LogFilterOptions::IsValid(std::string* why) const {
     return fail("expected cutoff_hz > 0, got " + Str(cutoff_hz));
   }
   if (decimation < 1) return fail("expected decimation >= 1, got " + std::to_string(decimation));
+  if (!std::isfinite(trim_s)) return fail("expected a finite trim_s, got " + Str(trim_s));
   return true;
 }
 
-JointSignals ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
+JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
                              const LogFilterOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("log filter options: " + why);
@@ -285,13 +275,30 @@ JointSignals ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q,
 
   // Filter, differentiate the filtered positions, filter the torques alike.
   const Eigen::MatrixXd q_f = FiltFilt(sos, q);
-  JointSignals out;
+  JointLog out;
   out.qd = Decimate(FirstDerivative(q_f, dt), options.decimation);
   out.qdd = Decimate(SecondDerivative(q_f, dt), options.decimation);
   out.q = Decimate(q_f, options.decimation);
   out.tau = Decimate(FiltFilt(sos, tau), options.decimation);
   out.t = Decimate(t, options.decimation);
+  // Drop the ends, where the filter's transients bias the derivatives.
+  const double trim = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;
+  if (trim > 0.0) {
+    const Eigen::Index kept_first = (out.t.array() < out.t[0] + trim).count();
+    const Eigen::Index kept_end = (out.t.array() <= out.t[out.t.size() - 1] - trim).count();
+    if (kept_end <= kept_first) {
+      throw std::invalid_argument("joint log: " + Str(t(n - 1) - t(0)) + " s is too short to trim " + Str(trim) +
+                                  " s of filter transients at both ends");
+    }
+    const Eigen::Index m = kept_end - kept_first;
+    out.t = out.t.segment(kept_first, m).eval();
+    for (Eigen::MatrixXd* x : {&out.q, &out.qd, &out.qdd, &out.tau}) *x = x->middleRows(kept_first, m).eval();
+  }
   return out;
+}
+
+JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options) {
+  return ProcessJointLog(log.t, log.q, log.tau, options);
 }
 
 }  // namespace idbench

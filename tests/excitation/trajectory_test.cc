@@ -49,6 +49,19 @@ TEST(TrajectoryTest, BuiltinMotions) {
   EXPECT_GT(general->At(1.0).qd.cwiseAbs().minCoeff(), 0.0);  // every joint moves
 }
 
+TEST(TrajectoryTest, ReversedMotionRetracesTheForwardOne) {
+  const auto forward = MakeBuiltinMotion("general", 6, 4.0, 0.0);
+  const auto reversed = MakeBuiltinMotion("general-reversed", 6, 4.0, 0.0);
+  ExpectConsistentDerivatives(*reversed);
+  for (double t : {0.0, 0.7, 2.5, 4.0}) {
+    const JointState f = forward->At(4.0 - t), r = reversed->At(t);
+    EXPECT_LT((r.q - f.q).norm(), 1e-15);
+    EXPECT_LT((r.qd + f.qd).norm(), 1e-15);
+    EXPECT_LT((r.qdd - f.qdd).norm(), 1e-15);
+  }
+  EXPECT_THROW(MakeBuiltinMotion("sideways", 6, 4.0, 0.0), std::invalid_argument);
+}
+
 TEST(TrajectoryTest, RejectsInconsistentInput) {
   EXPECT_THROW(FourierSeriesTrajectory(Eigen::Vector2d(0, 0), Eigen::MatrixXd(3, 2), Eigen::MatrixXd(3, 2), 0.1, 1),
                std::invalid_argument);

@@ -77,6 +77,17 @@ TEST_P(JointTorqueRegressorTest, StandardParametersCarryTheModelsJointDynamics) 
   }
 }
 
+// π → model → π is the identity.
+TEST_P(JointTorqueRegressorTest, ModelFromStandardParametersRoundTrip) {
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.rotor_inertia = true;
+  Eigen::VectorXd pi = StandardParameters(model_, friction);
+  pi.tail(3 * model_.n_dof()).setLinSpaced(0.1, 0.7);  // friction differs from the model's
+  const RobotModel rebuilt = ModelWithStandardParameters(model_, friction, pi);
+  EXPECT_LT(testing::RelativeError(StandardParameters(rebuilt, friction), pi), 1e-14);
+  EXPECT_THROW(ModelWithStandardParameters(model_, friction, pi.head(5)), std::invalid_argument);
+}
+
 INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Range(0, testing::kNumTestRobots),
                          testing::TestRobotName);
 

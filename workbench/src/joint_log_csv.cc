@@ -68,7 +68,8 @@ std::string FormatJointLogCsv(const JointLog& log) {
   return out;
 }
 
-JointLog ParseJointLogCsv(const std::string& text, int n_dof, const std::string& source) {
+JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source) {
+  const int n_dof = model.n_dof();
   auto fail = [&](int line, const std::string& what) -> void {
     throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);
   };
@@ -146,6 +147,13 @@ JointLog ParseJointLogCsv(const std::string& text, int n_dof, const std::string&
       const std::string where = "column " + std::to_string(c + 1) + " ('" + names[c] + "')";
       if (f.empty() || ec != std::errc() || ptr != f.data() + f.size()) fail(line_number, where + ": '" + f + "' is not a number");
       if (!std::isfinite(values[c])) fail(line_number, where + ": " + f + " is not finite");
+      if (targets[c].kind == 1) {
+        const JointLimits& limits = model.link(targets[c].joint).limits;
+        if (values[c] < limits.q_min || values[c] > limits.q_max) {
+          fail(line_number, where + ": " + f + " rad is outside joint " + std::to_string(targets[c].joint + 1) +
+                                "'s limits [" + std::to_string(limits.q_min) + ", " + std::to_string(limits.q_max) + "]");
+        }
+      }
     }
     const double t = values[static_cast<size_t>(column_of["t"])];
     if (!rows.empty() && !(t > rows.back()[static_cast<size_t>(column_of["t"])])) {
@@ -180,12 +188,12 @@ JointLog ParseJointLogCsv(const std::string& text, int n_dof, const std::string&
   return log;
 }
 
-JointLog ReadJointLogCsv(const std::string& path, int n_dof) {
+JointLog ReadJointLogCsv(const std::string& path, const RobotModel& model) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw std::invalid_argument(path + ": cannot read the file");
   std::ostringstream text;
   text << file.rdbuf();
-  return ParseJointLogCsv(text.str(), n_dof, path);
+  return ParseJointLogCsv(text.str(), model, path);
 }
 
 }  // namespace idbench

@@ -8,19 +8,20 @@
 #include <string>
 
 #include "idbench/engine/measurements.h"
+#include "idbench/engine/robot_model.h"
 
 namespace idbench {
 
 std::string FormatJointLogCsv(const JointLog& log);
 
-// Parses a joint log for a robot with n_dof joints. `source` names the file in
-// messages. Throws std::invalid_argument with "source:line: column c ('name'):
-// what" for: a missing, unknown or repeated column, a joint count that is not
-// n_dof, a line with the wrong number of fields, a field that is not a finite
-// number, time not strictly increasing, or no data lines.
-JointLog ParseJointLogCsv(const std::string& text, int n_dof, const std::string& source);
+// Parses a joint log of `model`. `source` names the file in messages. Throws
+// std::invalid_argument with "source:line: column c ('name'): what" for: a
+// missing, unknown or repeated column, a joint the robot does not have, a line
+// with the wrong number of fields, a field that is not a finite number, time
+// not strictly increasing, a position outside the joint's limits, or no data.
+JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source);
 
 // Reads and parses a file; an unreadable file throws naming the path.
-JointLog ReadJointLogCsv(const std::string& path, int n_dof);
+JointLog ReadJointLogCsv(const std::string& path, const RobotModel& model);
 
 }  // namespace idbench

@@ -1,7 +1,9 @@
-// Built-in reference motions of `idbench run`.
+// Built-in reference motions, by name for the commands' --trajectory.
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "idbench/engine/trajectory.h"
 
@@ -14,5 +16,27 @@ std::unique_ptr<Trajectory> MakePaperMotion(int n_dof, double qdd, double durati
 // All joints moving: a two-harmonic Fourier series per joint with distinct
 // amplitudes and phases, starting at q = 0 (f0 = 0.5 Hz).
 std::unique_ptr<Trajectory> MakeGeneralMotion(int n_dof, double duration);
+
+// A motion played backwards: q(t) = q_f(T − t), qd(t) = −qd_f(T − t),
+// qdd(t) = qdd_f(T − t). Every velocity changes sign, which makes it a good
+// held-out motion for models with friction.
+class ReversedTrajectory final : public Trajectory {
+ public:
+  explicit ReversedTrajectory(std::unique_ptr<Trajectory> forward) : forward_(std::move(forward)) {}
+  int n_dof() const override { return forward_->n_dof(); }
+  double duration() const override { return forward_->duration(); }
+  void Evaluate(double t, JointState* state) const override;
+
+ private:
+  std::unique_ptr<Trajectory> forward_;
+};
+
+// "paper", "general", "general-reversed".
+std::vector<std::string> BuiltinMotionNames();
+
+// A built-in motion by name; paper_qdd is the paper motion's acceleration
+// [rad/s²]. Throws std::invalid_argument naming the unknown motion.
+std::unique_ptr<Trajectory> MakeBuiltinMotion(const std::string& name, int n_dof, double duration,
+                                              double paper_qdd);
 
 }  // namespace idbench

@@ -32,7 +32,8 @@ struct JointTorqueIdentification {
   std::vector<std::string> standard_names;
   Eigen::VectorXd beta_model;   // the robot file's parameters as base parameters (C·π_model)
   LinearFit linear;             // OLS, or WLS when asked (the physically consistent fit starts from it)
-  std::optional<PhysicallyConsistentFit> consistent;  // when the estimator is kPhysicallyConsistent
+  // Always computed: standard parameters need it (a URDF holds physical links).
+  PhysicallyConsistentFit consistent;
   Eigen::VectorXd beta;         // the chosen estimator's base parameters
   Eigen::VectorXd joint_rms;    // its fit residual RMS per joint [N m]
 };
@@ -45,7 +46,9 @@ Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel&
 // Torques stacked the same way.
 Eigen::VectorXd StackTorques(const JointLog& log);
 
-// Identifies the base parameters from the log. Throws std::invalid_argument
+// Identifies the base parameters from the log; also fits the physically
+// consistent standard parameters (from the linear estimate, with the model's
+// parameters as the prior for the unidentifiable directions). Throws std::invalid_argument
 // when the log does not fit the robot, lacks qd/qdd, or has fewer equations
 // than base parameters + 1.
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct FrictionModel {
   int per_joint() const { return int(viscous) + int(coulomb) + int(offset) + int(rotor_inertia); }
 };
 
+// Friction terms by name: any of "viscous", "coulomb", "offset", "rotor", or
+// just "none". Returns nullopt and names the bad term in *why.
+std::optional<FrictionModel> ParseFrictionTerms(const std::vector<std::string>& terms, std::string* why);
+
 // Number of standard parameters: 10 per link plus the friction terms.
 int NumStandardParameters(const RobotModel& model, const FrictionModel& friction);
 
@@ -41,6 +46,13 @@ std::vector<std::string> StandardParameterNames(const RobotModel& model, const F
 // The model's standard parameters: inertial ones, then the enabled friction
 // terms from each link's JointDynamics (offsets are zero).
 Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel& friction);
+
+// The model with its links' inertias and joint dynamics replaced by standard
+// parameters π (layout as above; absent friction terms keep the model's
+// values, offsets are dropped). Throws std::invalid_argument (from
+// RobotModel) naming a link whose parameters are not a physical body.
+RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionModel& friction,
+                                       const Eigen::VectorXd& pi);
 
 // Writes Y (n_dof × NumStandardParameters) at (q, qd, qdd); data is workspace.
 void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,

@@ -20,6 +20,9 @@ struct LinearFit {
   double cond = 0.0;               // cond(W) (weighted for WLS)
 };
 
+// RMS per joint of stacked residuals r (rows interleaved by joint) (n_dof).
+Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof);
+
 // Throws std::invalid_argument on size mismatch or fewer rows than p + 1.
 LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
 LinearFit SolveWls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);

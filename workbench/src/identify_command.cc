@@ -1,0 +1,184 @@
+#include "identify_command.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "idbench/engine/urdf.h"
+#include "joint_log_csv.h"
+
+namespace idbench {
+namespace {
+
+std::string Num(double v) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof(buffer), v).ptr);
+}
+
+std::vector<double> ToStd(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+// Reads a log and brings it to what the regressor needs: qd and qdd.
+JointLog ReadForIdentification(const std::string& path, const RobotModel& model, const LogFilterOptions& filter,
+                               bool* filtered) {
+  JointLog log = ReadJointLogCsv(path, model);
+  *filtered = !log.has_derivatives();
+  if (*filtered) {
+    try {
+      log = ProcessJointLog(log, filter);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(path + ": " + e.what());
+    }
+  }
+  return log;
+}
+
+}  // namespace
+
+FrictionModel IdentifyOptions::friction_model() const {
+  FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
+  f.coulomb_smoothing = coulomb_smoothing;
+  return f;
+}
+
+bool IdentifyOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (data.empty()) return fail("--data: a joint-log CSV is required");
+  if (model == "per-body") {
+    return fail("--model per-body: needs the wrench through every hinge, which a joint log does not carry; "
+                "`idbench run` identifies per body from Bullet's joint feedback");
+  }
+  if (model != "torque") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
+  if (!ParseTorqueEstimator(estimator)) return fail("--estimator: expected ols, wls or pc, got '" + estimator + "'");
+  std::string friction_why;
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
+    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Num(coulomb_smoothing));
+  std::string filter_why;
+  if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
+  if (out_dir.empty()) return fail("--out: empty path");
+  std::error_code ec;
+  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  return true;
+}
+
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
+  IdentifyReport report;
+  report.log = ReadForIdentification(options.data, model, options.filter, &report.filtered);
+  JointTorqueOptions id_options;
+  id_options.friction = options.friction_model();
+  id_options.estimator = *ParseTorqueEstimator(options.estimator);
+  try {
+    report.identification = IdentifyJointTorque(model, report.log, id_options);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(options.data + ": " + e.what());
+  }
+  const JointTorqueIdentification& id = report.identification;
+  report.fit = PredictTorques(model, id_options.friction, id.base, id.beta, report.log);
+  if (!options.validate.empty()) {
+    bool filtered = false;
+    const JointLog held_out = ReadForIdentification(options.validate, model, options.filter, &filtered);
+    report.validation = PredictTorques(model, id_options.friction, id.base, id.beta, held_out);
+  }
+  return report;
+}
+
+std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  const JointTorqueIdentification& id = report.identification;
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
+                "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), report.log.n_samples(),
+                report.filtered ? " (qd, qdd from the filtered q)" : "", id.base.n_base(), options.estimator.c_str(),
+                id.linear.cond);
+  out += line;
+  std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %s\n", "#", "robot file", "identified", "sigma", "%sigma",
+                "base parameter");
+  out += line;
+  for (int k = 0; k < id.base.n_base(); ++k) {
+    std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %s\n", k + 1, id.beta_model[k], id.beta[k],
+                  id.linear.sigma[k], id.linear.rel_sigma_percent[k], id.base.names[static_cast<size_t>(k)].c_str());
+    out += line;
+  }
+  auto joint_row = [&](const char* label, const Eigen::VectorXd& v) {
+    out += label;
+    for (int j = 0; j < v.size(); ++j) {
+      std::snprintf(line, sizeof(line), "  %10.4g", v[j]);
+      out += line;
+    }
+    out += '\n';
+  };
+  out += "\nTorque RMS per joint [N m]\n";
+  joint_row("  fit       ", report.fit.joint_rms);
+  if (report.validation) joint_row("  validation", report.validation->joint_rms);
+  std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.fit.relative_error,
+                report.validation ? (", validation " + Num(report.validation->relative_error)).c_str() : "");
+  out += line;
+  const PhysicallyConsistentFit& pc = id.consistent;
+  std::snprintf(line, sizeof(line), "Physically consistent fit: cost %.6g vs OLS %.6g (+%.3g %%), min pseudo-inertia "
+                "eigenvalue %.3g, %s\n", pc.cost, pc.ols_cost, 100.0 * (pc.cost - pc.ols_cost) / pc.ols_cost,
+                pc.min_pseudo_inertia_eigenvalue.minCoeff(), pc.status.c_str());
+  out += line;
+  return out;
+}
+
+std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  using nlohmann::json;
+  const JointTorqueIdentification& id = report.identification;
+  json base = json::array();
+  for (int k = 0; k < id.base.n_base(); ++k) {
+    base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
+                    {"value", id.beta[k]},
+                    {"sigma", id.linear.sigma[k]},
+                    {"rel_sigma_percent", id.linear.rel_sigma_percent[k]},
+                    {"robot_file_value", id.beta_model[k]}});
+  }
+  json standard = json::array();
+  for (size_t c = 0; c < id.standard_names.size(); ++c) {
+    standard.push_back({{"name", id.standard_names[c]}, {"value", id.consistent.pi[static_cast<Eigen::Index>(c)]}});
+  }
+  json unexcited = json::array();
+  for (int c : id.base.unexcited) unexcited.push_back(id.standard_names[static_cast<size_t>(c)]);
+  json result = {
+      {"command", options.command_line},
+      {"robot", model.name()},
+      {"data", options.data},
+      {"n_samples", report.log.n_samples()},
+      {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences" : "from the log"},
+      {"model", options.model},
+      {"estimator", options.estimator},
+      {"friction", options.friction},
+      {"cond", id.linear.cond},
+      {"base_parameters", base},
+      {"unexcited_standard_parameters", unexcited},
+      {"fit", {{"joint_rms", ToStd(report.fit.joint_rms)}, {"relative_error", report.fit.relative_error}}},
+      {"physically_consistent",
+       {{"cost", id.consistent.cost},
+        {"ols_cost", id.consistent.ols_cost},
+        {"min_pseudo_inertia_eigenvalue", ToStd(id.consistent.min_pseudo_inertia_eigenvalue)},
+        {"status", id.consistent.status},
+        {"evaluations", id.consistent.evaluations},
+        {"standard_parameters", standard}}},
+  };
+  if (report.validation) {
+    result["validation"] = {{"data", options.validate},
+                            {"joint_rms", ToStd(report.validation->joint_rms)},
+                            {"relative_error", report.validation->relative_error}};
+  }
+  return result.dump(2) + "\n";
+}
+
+std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  return WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
+}
+
+}  // namespace idbench

@@ -1,0 +1,53 @@
+// `idbench identify`: joint-torque identification of a robot from a joint log
+// (simulated or recorded), with an optional held-out log for validation.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/measurements.h"
+#include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/signal_filter.h"
+
+namespace idbench {
+
+struct IdentifyOptions {
+  std::string robot = "puma560";   // built-in name or URDF path
+  std::string data;                // joint-log CSV (required)
+  std::string model = "torque";    // "torque"; "per-body" needs hinge wrenches (idbench run)
+  std::string estimator = "ols";   // ols | wls | pc
+  std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
+  double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
+  LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
+  std::string validate;            // held-out joint log (optional)
+  std::string out_dir = "out/identify";
+  std::string command_line;        // recorded in identified.json
+
+  FrictionModel friction_model() const;
+  // Checks the options alone; *why names the bad one.
+  bool IsValid(std::string* why) const;
+};
+
+struct IdentifyReport {
+  JointLog log;                      // as identified (after filtering, if any)
+  bool filtered = false;             // qd/qdd were estimated from q
+  JointTorqueIdentification identification;
+  TorquePrediction fit;              // the chosen estimate on the identification log
+  std::optional<TorquePrediction> validation;  // on the held-out log
+};
+
+// Reads the logs and identifies. Throws std::invalid_argument naming the file,
+// line and column of bad data, or the option that does not fit the data.
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options);
+
+std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+// identified.json (README.md).
+std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+// identified.urdf: the robot with the physically consistent standard parameters.
+std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+
+}  // namespace idbench

@@ -1,0 +1,30 @@
+// `idbench simulate`: a simulated experiment written as a joint log. Bullet
+// tracks a motion with computed torques; the sensor model samples it.
+#pragma once
+
+#include <string>
+
+#include "idbench/engine/sensor_model.h"
+#include "idbench/engine/simulation.h"
+
+namespace idbench {
+
+struct SimulateOptions {
+  std::string robot = "puma560";        // built-in name or URDF path
+  std::string trajectory = "general";   // built-in motion (builtin_motions.h)
+  double paper_accel_deg_s2 = 30.0;     // acceleration of the "paper" motion [deg/s²]
+  double duration = 10.0;               // [s]
+  double dt = 1e-3;                     // simulation step [s]
+  SensorOptions sensors;
+  std::string out = "out/log.csv";
+
+  SimulationOptions simulation() const;
+  // Checks what does not need the robot; *why names the bad option.
+  bool IsValid(std::string* why) const;
+};
+
+// Simulates and measures. Throws std::invalid_argument on a robot/motion/sensor
+// mismatch (naming it) and std::runtime_error if the simulation diverges.
+JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
+
+}  // namespace idbench
