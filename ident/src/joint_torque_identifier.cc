@@ -1,5 +1,6 @@
 #include "idbench/ident/joint_torque_identifier.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace idbench {
@@ -52,6 +53,43 @@ Eigen::VectorXd StackTorques(const JointLog& log) {
   return Eigen::Map<const Eigen::VectorXd>(tau.data(), tau.size());
 }
 
+void StackEquations(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                    const JointLog& log, const std::optional<ParallelFilter>& filter, Eigen::MatrixXd* W,
+                    Eigen::VectorXd* tau) {
+  *W = StackBaseRegressor(model, friction, base, log);
+  *tau = StackTorques(log);
+  if (!filter) return;
+  const int n = model.n_dof();
+  const Eigen::Index n_samples = log.n_samples();
+  const LogFilterOptions& f = filter->filter;
+  const SosMatrix sos = DesignButterworthLowPass(f.order, f.cutoff_hz, filter->sample_rate_hz);
+  // Per joint: the samples of that joint's rows, every column and τ alike.
+  using Strided = Eigen::Map<Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  for (int j = 0; j < n; ++j) {
+    Strided Wj(W->data() + j, n_samples, W->cols(), Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(W->rows(), n));
+    Strided tj(tau->data() + j, n_samples, 1, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(tau->size(), n));
+    Wj = FiltFilt(sos, Wj);
+    tj = FiltFilt(sos, tj);
+  }
+  // Drop the transients at both ends, then keep every k-th sample.
+  const double trim_s = f.trim_s < 0.0 ? 5.0 / f.cutoff_hz : f.trim_s;
+  const Eigen::Index trim = static_cast<Eigen::Index>(std::ceil(trim_s * filter->sample_rate_hz - 1e-9));
+  if (n_samples - 2 * trim < 1) {
+    throw std::invalid_argument("joint log: " + std::to_string(n_samples) + " samples are too few to drop " +
+                                std::to_string(trim) + " filter-transient samples at both ends");
+  }
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index s = trim; s < n_samples - trim; s += f.decimation) kept.push_back(s);
+  Eigen::MatrixXd W_kept(static_cast<Eigen::Index>(kept.size()) * n, W->cols());
+  Eigen::VectorXd tau_kept(W_kept.rows());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    W_kept.middleRows(static_cast<Eigen::Index>(k) * n, n) = W->middleRows(kept[k] * n, n);
+    tau_kept.segment(static_cast<Eigen::Index>(k) * n, n) = tau->segment(kept[k] * n, n);
+  }
+  *W = std::move(W_kept);
+  *tau = std::move(tau_kept);
+}
+
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
   JointTorqueIdentification out;
@@ -59,10 +97,11 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   out.standard_names = StandardParameterNames(model, options.friction);
   const Eigen::VectorXd pi_model = StandardParameters(model, options.friction);
   out.beta_model = out.base.combination * pi_model;
-  const Eigen::MatrixXd W = StackBaseRegressor(model, options.friction, out.base, log);
-  const Eigen::VectorXd tau = StackTorques(log);
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  StackEquations(model, options.friction, out.base, log, options.parallel_filter, &W, &tau);
   if (W.rows() <= W.cols()) {
-    throw std::invalid_argument("joint log has " + std::to_string(log.n_samples()) + " samples (" +
+    throw std::invalid_argument("joint log has " + std::to_string(W.rows() / model.n_dof()) + " usable samples (" +
                                 std::to_string(W.rows()) + " equations) for " + std::to_string(W.cols()) +
                                 " base parameters; record more samples");
   }
@@ -70,8 +109,16 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
                                                           : SolveOls(W, tau, model.n_dof());
   out.beta = out.linear.beta;
   out.joint_rms = out.linear.joint_rms;
+  // Friction and rotor inertia are physical only when >= 0 (offsets are signed).
+  PhysicallyConsistentOptions consistent = options.consistent;
+  for (size_t c = 0; c < out.standard_names.size(); ++c) {
+    const std::string& name = out.standard_names[c];
+    if (name.rfind("Fv", 0) == 0 || name.rfind("Fc", 0) == 0 || name.rfind("Ia", 0) == 0) {
+      consistent.nonnegative.push_back(static_cast<int>(c));
+    }
+  }
   out.consistent = SolvePhysicallyConsistent(W, tau, out.base, model.n_links(), out.linear.beta, pi_model,
-                                             options.consistent);
+                                             consistent);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
     out.beta = out.consistent.beta;
     out.joint_rms = JointRms(W * out.beta - tau, model.n_dof());
@@ -79,10 +126,12 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   return out;
 }
 
-TorquePrediction PredictTorques(const RobotModel& model, const FrictionModel& friction,
+TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
-  const Eigen::VectorXd tau = StackTorques(log);
-  const Eigen::VectorXd r = StackBaseRegressor(model, friction, base, log) * beta - tau;
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
+  const Eigen::VectorXd r = W * beta - tau;
   TorquePrediction out;
   out.joint_rms = JointRms(r, model.n_dof());
   out.relative_error = r.norm() / tau.norm();

@@ -1,5 +1,6 @@
 #include "idbench/ident/least_squares.h"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
@@ -8,6 +9,12 @@
 namespace idbench {
 double ConditionNumber(const Eigen::MatrixXd& A) {
   if (A.cols() == 0) return 0.0;
+  // A tall matrix has the singular values of its (blocked) QR's R factor.
+  if (A.rows() > 2 * A.cols()) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
+    const Eigen::MatrixXd R = qr.matrixQR().topRows(A.cols()).triangularView<Eigen::Upper>();
+    return ConditionNumber(R);
+  }
   const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
   return s[s.size() - 1] > 0.0 ? s[0] / s[s.size() - 1] : std::numeric_limits<double>::infinity();
 }

@@ -21,24 +21,24 @@ void CheckSizes(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof)
   }
 }
 
-// OLS on (W, tau) with row weights already applied.
+// OLS on (W, tau) with row weights already applied. W has full column rank
+// (base parameters), so an unpivoted, blocked Householder QR serves; its R
+// gives the covariance and cond(W) (= cond(R)) without another factorisation.
 LinearFit Fit(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
   LinearFit fit;
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(W);
-  fit.beta = qr.solve(tau);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
+  const Eigen::Index p = W.cols();
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
+  fit.beta = R.triangularView<Eigen::Upper>().solve((qr.householderQ().transpose() * tau).head(p));
   const Eigen::VectorXd r = W * fit.beta - tau;
   const double dof = static_cast<double>(W.rows() - W.cols());
   const double s2 = r.squaredNorm() / dof;
-  // (WᵀW)⁻¹ = P R⁻¹ R⁻ᵀ Pᵀ.
-  const Eigen::Index p = W.cols();
-  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  // (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ.
   const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
-  const Eigen::MatrixXd cov_perm = Rinv * Rinv.transpose();
-  const auto& P = qr.colsPermutation();
-  fit.covariance = P * cov_perm * P.transpose() * s2;
+  fit.covariance = Rinv * Rinv.transpose() * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
-  fit.cond = ConditionNumber(W);
+  fit.cond = ConditionNumber(R);
   return fit;
 }
 

@@ -279,7 +279,7 @@ JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, con
   out.qd = Decimate(FirstDerivative(q_f, dt), options.decimation);
   out.qdd = Decimate(SecondDerivative(q_f, dt), options.decimation);
   out.q = Decimate(q_f, options.decimation);
-  out.tau = Decimate(FiltFilt(sos, tau), options.decimation);
+  out.tau = Decimate(options.filter_tau ? FiltFilt(sos, tau) : tau, options.decimation);
   out.t = Decimate(t, options.decimation);
   // Drop the ends, where the filter's transients bias the derivatives.
   const double trim = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;

@@ -6,14 +6,14 @@
 
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/builtin_motions.h"
 
 namespace idbench {
 namespace {
 
-void BM_InverseDynamicsPaper6r(benchmark::State& state) {
-  const RobotModel model = MakePaper6r();
+void BenchmarkInverseDynamics(benchmark::State& state, const RobotModel& model) {
   RobotData data(model);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-2.0, 2.0);
@@ -23,7 +23,10 @@ void BM_InverseDynamicsPaper6r(benchmark::State& state) {
     benchmark::DoNotOptimize(InverseDynamics(model, q, qd, qdd, &data).data());
   }
 }
+void BM_InverseDynamicsPaper6r(benchmark::State& state) { BenchmarkInverseDynamics(state, MakePaper6r()); }
 BENCHMARK(BM_InverseDynamicsPaper6r);
+void BM_InverseDynamicsPuma560(benchmark::State& state) { BenchmarkInverseDynamics(state, MakePuma560()); }
+BENCHMARK(BM_InverseDynamicsPuma560);
 
 // One simulated step = computed torque (RNEA) + Bullet step with corrected
 // feedback + recording (kinematics, quaternion rates, feedback copy).

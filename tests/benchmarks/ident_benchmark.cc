@@ -1,16 +1,18 @@
-// Identification speed: the joint-torque regressor per sample.
+// Identification speed: the joint-torque regressor per sample, and stacking
+// plus OLS over a long log.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
+#include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/joint_torque_regressor.h"
 
 namespace idbench {
 namespace {
 
-void BM_JointTorqueRegressorPaper6r(benchmark::State& state) {
-  const RobotModel model = MakePaper6r();
+void BenchmarkRegressor(benchmark::State& state, const RobotModel& model) {
   RobotData data(model);
   FrictionModel friction;
   friction.viscous = friction.coulomb = true;
@@ -24,7 +26,35 @@ void BM_JointTorqueRegressorPaper6r(benchmark::State& state) {
     benchmark::DoNotOptimize(Y.data());
   }
 }
+
+void BM_JointTorqueRegressorPaper6r(benchmark::State& state) { BenchmarkRegressor(state, MakePaper6r()); }
 BENCHMARK(BM_JointTorqueRegressorPaper6r);
+void BM_JointTorqueRegressorPuma560(benchmark::State& state) { BenchmarkRegressor(state, MakePuma560()); }
+BENCHMARK(BM_JointTorqueRegressorPuma560);
+
+// Stack the base regressor of puma560 (Fv, Fc) over N random samples and
+// solve OLS with σ: the whole identification after the log is read.
+void BM_StackAndOlsPuma560(benchmark::State& state) {
+  const RobotModel model = MakePuma560();
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = true;
+  const BaseParameters base = ComputeBaseParameters(model, friction);
+  const int n_samples = static_cast<int>(state.range(0));
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  JointLog log;
+  log.t = Eigen::VectorXd::LinSpaced(n_samples, 0.0, 1e-3 * (n_samples - 1));
+  log.q = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  log.qd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  log.qdd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  log.tau = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  for (auto _ : state) {
+    const Eigen::MatrixXd W = StackBaseRegressor(model, friction, base, log);
+    const LinearFit fit = SolveOls(W, StackTorques(log), 6);
+    benchmark::DoNotOptimize(fit.beta.data());
+  }
+}
+BENCHMARK(BM_StackAndOlsPuma560)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench

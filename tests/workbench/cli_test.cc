@@ -1,6 +1,7 @@
 // Runs the `idbench` executable as a user would (path in $IDBENCH).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+
+#include "workbench/cli_fixture.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,8 @@
 namespace {
 
 namespace fs = std::filesystem;
+using idbench::testing::Result;
+using idbench::testing::Slurp;
 
 // Paper Table 1 (printed to 4 decimals): m, J11, J22 = J33 of B1..B6, the
 // independent truth the identified values are checked against.
@@ -26,37 +29,8 @@ double Table1(int body, const std::string& name) {
   return kTable1[body][0];  // m, m_e1, m_e2, m_e3
 }
 
-struct Result {
-  int exit_code;
-  std::string out, err;
-};
-
-std::string Slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class CliTest : public ::testing::Test {
+class CliTest : public idbench::testing::CliFixture {
  protected:
-  void SetUp() override {
-    const char* exe = std::getenv("IDBENCH");
-    ASSERT_NE(exe, nullptr) << "set IDBENCH to the idbench executable";
-    exe_ = exe;
-    dir_ = fs::temp_directory_path() /
-           ("idbench_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result Run(const std::string& args) {
-    const std::string cmd = exe_ + " " + args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    return {WEXITSTATUS(status), Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
-  }
-
   // Checks results.json: every identifiable parameter within tol, B1's
   // m_e1, m_e2, J22, J33 flagged with null values, all others identified.
   void ExpectPaperTables(const fs::path& results, double tol) {
@@ -87,8 +61,6 @@ class CliTest : public ::testing::Test {
     EXPECT_LT(j["max_rel_error"].get<double>(), tol);
   }
 
-  std::string exe_;
-  fs::path dir_;
 };
 
 TEST_F(CliTest, DefaultRunReproducesThePaperFarMoreAccurately) {

@@ -20,18 +20,24 @@ std::string Num(double v) {
 
 std::vector<double> ToStd(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
-// Reads a log and brings it to what the regressor needs: qd and qdd.
+// Reads a log and brings it to what the regressor needs: qd and qdd. A log
+// without them gets them from the zero-phase filtered q; its regressor and
+// torques are then filtered in parallel (*parallel is set).
 JointLog ReadForIdentification(const std::string& path, const RobotModel& model, const LogFilterOptions& filter,
-                               bool* filtered) {
+                               std::optional<ParallelFilter>* parallel) {
   JointLog log = ReadJointLogCsv(path, model);
-  *filtered = !log.has_derivatives();
-  if (*filtered) {
-    try {
-      log = ProcessJointLog(log, filter);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(path + ": " + e.what());
-    }
+  parallel->reset();
+  if (log.has_derivatives()) return log;
+  try {
+    LogFilterOptions derivatives = filter;
+    derivatives.decimation = 1;
+    derivatives.trim_s = 0.0;
+    derivatives.filter_tau = false;
+    log = ProcessJointLog(log, derivatives);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(path + ": " + e.what());
   }
+  *parallel = ParallelFilter{filter, (log.n_samples() - 1) / (log.t[log.n_samples() - 1] - log.t[0])};
   return log;
 }
 
@@ -70,21 +76,30 @@ bool IdentifyOptions::IsValid(std::string* why) const {
 
 IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
   IdentifyReport report;
-  report.log = ReadForIdentification(options.data, model, options.filter, &report.filtered);
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
   id_options.estimator = *ParseTorqueEstimator(options.estimator);
+  report.log = ReadForIdentification(options.data, model, options.filter, &id_options.parallel_filter);
+  report.filtered = id_options.parallel_filter.has_value();
   try {
     report.identification = IdentifyJointTorque(model, report.log, id_options);
+    report.fit = PredictTorques(model, id_options, report.identification.base, report.identification.beta,
+                                report.log);
+    report.robot_file_fit = PredictTorques(model, id_options, report.identification.base,
+                                           report.identification.beta_model, report.log);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(options.data + ": " + e.what());
   }
-  const JointTorqueIdentification& id = report.identification;
-  report.fit = PredictTorques(model, id_options.friction, id.base, id.beta, report.log);
   if (!options.validate.empty()) {
-    bool filtered = false;
-    const JointLog held_out = ReadForIdentification(options.validate, model, options.filter, &filtered);
-    report.validation = PredictTorques(model, id_options.friction, id.base, id.beta, held_out);
+    JointTorqueOptions held_options = id_options;
+    const JointLog held_out = ReadForIdentification(options.validate, model, options.filter,
+                                                    &held_options.parallel_filter);
+    try {
+      report.validation = PredictTorques(model, held_options, report.identification.base,
+                                         report.identification.beta, held_out);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(options.validate + ": " + e.what());
+    }
   }
   return report;
 }
@@ -160,6 +175,8 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"base_parameters", base},
       {"unexcited_standard_parameters", unexcited},
       {"fit", {{"joint_rms", ToStd(report.fit.joint_rms)}, {"relative_error", report.fit.relative_error}}},
+      {"robot_file_fit",
+       {{"joint_rms", ToStd(report.robot_file_fit.joint_rms)}, {"relative_error", report.robot_file_fit.relative_error}}},
       {"physically_consistent",
        {{"cost", id.consistent.cost},
         {"ols_cost", id.consistent.ols_cost},

@@ -34,6 +34,7 @@ struct IdentifyReport {
   bool filtered = false;             // qd/qdd were estimated from q
   JointTorqueIdentification identification;
   TorquePrediction fit;              // the chosen estimate on the identification log
+  TorquePrediction robot_file_fit;   // the robot file's parameters on the same log
   std::optional<TorquePrediction> validation;  // on the held-out log
 };
 

@@ -11,6 +11,7 @@
 #include "idbench/ident/base_parameters.h"
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/physically_consistent.h"
+#include "idbench/ident/signal_filter.h"
 
 namespace idbench {
 
@@ -20,8 +21,18 @@ enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent };
 const char* ToString(TorqueEstimator estimator);
 std::optional<TorqueEstimator> ParseTorqueEstimator(const std::string& name);
 
+// Parallel filtering (Gautier 1997): the stacked regressor's columns and the
+// torques pass through the same zero-phase low-pass, per joint; then the end
+// transients are dropped and the rows decimated. For logs whose qd, qdd were
+// estimated from q with that filter and whose torques were left unfiltered.
+struct ParallelFilter {
+  LogFilterOptions filter;   // order, cutoff, decimation and trim (< 0: 5/cutoff)
+  double sample_rate_hz = 0; // of the log
+};
+
 struct JointTorqueOptions {
   FrictionModel friction{.viscous = true, .coulomb = true};
+  std::optional<ParallelFilter> parallel_filter;
   TorqueEstimator estimator = TorqueEstimator::kOls;
   BaseParameterOptions base;
   PhysicallyConsistentOptions consistent;
@@ -46,6 +57,12 @@ Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel&
 // Torques stacked the same way.
 Eigen::VectorXd StackTorques(const JointLog& log);
 
+// W and τ of a log, parallel-filtered when `filter` is given. The rows kept
+// are whole samples, still interleaved by joint.
+void StackEquations(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                    const JointLog& log, const std::optional<ParallelFilter>& filter, Eigen::MatrixXd* W,
+                    Eigen::VectorXd* tau);
+
 // Identifies the base parameters from the log; also fits the physically
 // consistent standard parameters (from the linear estimate, with the model's
 // parameters as the prior for the unidentifiable directions). Throws std::invalid_argument
@@ -59,7 +76,7 @@ struct TorquePrediction {
   Eigen::VectorXd joint_rms;       // RMS of τ̂ − τ per joint [N m]
   double relative_error = 0.0;     // ‖τ̂ − τ‖ / ‖τ‖ over all joints and samples
 };
-TorquePrediction PredictTorques(const RobotModel& model, const FrictionModel& friction,
+TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
 
 }  // namespace idbench

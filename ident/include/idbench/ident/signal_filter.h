@@ -103,6 +103,10 @@ struct LogFilterOptions {
   // Time dropped at both ends after filtering, where the end transients bias
   // qdd (see ProcessJointLog); < 0 means the recommended 5/cutoff_hz.
   double trim_s = 0.0;      // [s]
+  // Filter tau as well. Off when the identification filters the regressor
+  // and the torques together instead (parallel filtering, Gautier 1997),
+  // which keeps the two consistent across Coulomb-friction steps.
+  bool filter_tau = true;
 
   static constexpr int kMaxOrder = 8;
 

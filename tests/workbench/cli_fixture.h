@@ -1,0 +1,52 @@
+// Runs the `idbench` executable as a user would (path in $IDBENCH), each test
+// in its own temporary directory.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace idbench::testing {
+
+struct Result {
+  int exit_code;
+  std::string out, err;
+};
+
+inline std::string Slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CliFixture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const char* exe = std::getenv("IDBENCH");
+    ASSERT_NE(exe, nullptr) << "set IDBENCH to the idbench executable";
+    exe_ = exe;
+    dir_ = std::filesystem::temp_directory_path() /
+           ("idbench_cli_" + std::string(Info()->test_suite_name()) + "_" + Info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  static const ::testing::TestInfo* Info() { return ::testing::UnitTest::GetInstance()->current_test_info(); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  Result Run(const std::string& args) {
+    const std::string cmd = exe_ + " " + args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(cmd.c_str());
+    return {WEXITSTATUS(status), Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
+  }
+
+  std::string exe_;
+  std::filesystem::path dir_;
+};
+
+}  // namespace idbench::testing
