@@ -5,6 +5,19 @@
 
 namespace idbench {
 
+namespace {
+
+TorquePrediction Predict(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, const Eigen::VectorXd& beta,
+                         int n_dof) {
+  const Eigen::VectorXd r = W * beta - tau;
+  TorquePrediction out;
+  out.joint_rms = JointRms(r, n_dof);
+  out.relative_error = r.norm() / tau.norm();
+  return out;
+}
+
+}  // namespace
+
 const char* ToString(TorqueEstimator estimator) {
   switch (estimator) {
     case TorqueEstimator::kOls: return "ols";
@@ -108,7 +121,6 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(W, tau, model.n_dof())
                                                           : SolveOls(W, tau, model.n_dof());
   out.beta = out.linear.beta;
-  out.joint_rms = out.linear.joint_rms;
   // Friction and rotor inertia are physical only when >= 0 (offsets are signed).
   PhysicallyConsistentOptions consistent = options.consistent;
   for (size_t c = 0; c < out.standard_names.size(); ++c) {
@@ -119,10 +131,9 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   }
   out.consistent = SolvePhysicallyConsistent(W, tau, out.base, model.n_links(), out.linear.beta, pi_model,
                                              consistent);
-  if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
-    out.beta = out.consistent.beta;
-    out.joint_rms = JointRms(W * out.beta - tau, model.n_dof());
-  }
+  if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
+  out.fit = Predict(W, tau, out.beta, model.n_dof());
+  out.model_fit = Predict(W, tau, out.beta_model, model.n_dof());
   return out;
 }
 
@@ -131,11 +142,7 @@ TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOption
   Eigen::MatrixXd W;
   Eigen::VectorXd tau;
   StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
-  const Eigen::VectorXd r = W * beta - tau;
-  TorquePrediction out;
-  out.joint_rms = JointRms(r, model.n_dof());
-  out.relative_error = r.norm() / tau.norm();
-  return out;
+  return Predict(W, tau, beta, model.n_dof());
 }
 
 }  // namespace idbench

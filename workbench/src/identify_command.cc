@@ -1,6 +1,5 @@
 #include "identify_command.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,16 +8,10 @@
 
 #include "idbench/engine/urdf.h"
 #include "joint_log_csv.h"
+#include "number_format.h"
 
 namespace idbench {
 namespace {
-
-std::string Num(double v) {
-  char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof(buffer), v).ptr);
-}
-
-std::vector<double> ToStd(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 // Reads a log and brings it to what the regressor needs: qd and qdd. A log
 // without them gets them from the zero-phase filtered q; its regressor and
@@ -64,7 +57,7 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Num(coulomb_smoothing));
+    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
   if (out_dir.empty()) return fail("--out: empty path");
@@ -83,10 +76,6 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   report.filtered = id_options.parallel_filter.has_value();
   try {
     report.identification = IdentifyJointTorque(model, report.log, id_options);
-    report.fit = PredictTorques(model, id_options, report.identification.base, report.identification.beta,
-                                report.log);
-    report.robot_file_fit = PredictTorques(model, id_options, report.identification.base,
-                                           report.identification.beta_model, report.log);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(options.data + ": " + e.what());
   }
@@ -131,10 +120,10 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
     out += '\n';
   };
   out += "\nTorque RMS per joint [N m]\n";
-  joint_row("  fit       ", report.fit.joint_rms);
+  joint_row("  fit       ", report.identification.fit.joint_rms);
   if (report.validation) joint_row("  validation", report.validation->joint_rms);
-  std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.fit.relative_error,
-                report.validation ? (", validation " + Num(report.validation->relative_error)).c_str() : "");
+  std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.identification.fit.relative_error,
+                report.validation ? (", validation " + Shortest(report.validation->relative_error)).c_str() : "");
   out += line;
   const PhysicallyConsistentFit& pc = id.consistent;
   std::snprintf(line, sizeof(line), "Physically consistent fit: cost %.6g vs OLS %.6g (+%.3g %%), min pseudo-inertia "
@@ -174,20 +163,20 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"cond", id.linear.cond},
       {"base_parameters", base},
       {"unexcited_standard_parameters", unexcited},
-      {"fit", {{"joint_rms", ToStd(report.fit.joint_rms)}, {"relative_error", report.fit.relative_error}}},
+      {"fit", {{"joint_rms", ToStdVector(report.identification.fit.joint_rms)}, {"relative_error", report.identification.fit.relative_error}}},
       {"robot_file_fit",
-       {{"joint_rms", ToStd(report.robot_file_fit.joint_rms)}, {"relative_error", report.robot_file_fit.relative_error}}},
+       {{"joint_rms", ToStdVector(report.identification.model_fit.joint_rms)}, {"relative_error", report.identification.model_fit.relative_error}}},
       {"physically_consistent",
        {{"cost", id.consistent.cost},
         {"ols_cost", id.consistent.ols_cost},
-        {"min_pseudo_inertia_eigenvalue", ToStd(id.consistent.min_pseudo_inertia_eigenvalue)},
+        {"min_pseudo_inertia_eigenvalue", ToStdVector(id.consistent.min_pseudo_inertia_eigenvalue)},
         {"status", id.consistent.status},
         {"evaluations", id.consistent.evaluations},
         {"standard_parameters", standard}}},
   };
   if (report.validation) {
     result["validation"] = {{"data", options.validate},
-                            {"joint_rms", ToStd(report.validation->joint_rms)},
+                            {"joint_rms", ToStdVector(report.validation->joint_rms)},
                             {"relative_error", report.validation->relative_error}};
   }
   return result.dump(2) + "\n";

@@ -33,8 +33,6 @@ struct IdentifyReport {
   JointLog log;                      // as identified (after filtering, if any)
   bool filtered = false;             // qd/qdd were estimated from q
   JointTorqueIdentification identification;
-  TorquePrediction fit;              // the chosen estimate on the identification log
-  TorquePrediction robot_file_fit;   // the robot file's parameters on the same log
   std::optional<TorquePrediction> validation;  // on the held-out log
 };
 

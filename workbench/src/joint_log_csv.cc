@@ -1,5 +1,7 @@
 #include "joint_log_csv.h"
 
+#include "number_format.h"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -10,11 +12,6 @@
 
 namespace idbench {
 namespace {
-
-void AppendNumber(std::string* out, double value) {
-  char buffer[32];
-  out->append(buffer, std::to_chars(buffer, buffer + sizeof(buffer), value).ptr);
-}
 
 // Splits one CSV line on commas (no quoting: every field is a name or a number).
 std::vector<std::string> SplitFields(const std::string& line) {
@@ -50,11 +47,11 @@ std::string FormatJointLogCsv(const JointLog& log) {
   out += '\n';
   out.reserve(out.size() + static_cast<size_t>(log.n_samples()) * static_cast<size_t>(4 * n + 1) * 24);
   for (int s = 0; s < log.n_samples(); ++s) {
-    AppendNumber(&out, log.t[s]);
+    AppendShortest(&out, log.t[s]);
     auto row = [&](const Eigen::MatrixXd& m) {
       for (int j = 0; j < n; ++j) {
         out.push_back(',');
-        AppendNumber(&out, m(s, j));
+        AppendShortest(&out, m(s, j));
       }
     };
     row(log.q);

@@ -1,14 +1,12 @@
 #include "log_csv.h"
 
-#include <charconv>
+#include "number_format.h"
 
 namespace idbench {
 namespace {
 
 void Append(std::string* out, double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out->append(buffer, result.ptr);
+  AppendShortest(out, value);
   out->push_back(',');
 }
 

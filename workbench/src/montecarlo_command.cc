@@ -8,6 +8,7 @@
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/builtin_motions.h"
+#include "number_format.h"
 
 namespace idbench {
 namespace {
@@ -21,8 +22,6 @@ JointLog SimulateNoiseFree(const RobotModel& model, const MonteCarloOptions& opt
   sensors.rate_hz = options.samples / options.duration;
   return Measure(Simulate(model, *MakeBuiltinMotion(motion, model.n_dof(), options.duration, 0.5), sim), sensors);
 }
-
-std::vector<double> ToStd(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
 }  // namespace
 
@@ -45,16 +44,11 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
 
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options) {
   const int n = model.n_dof();
-  SensorOptions noise;
-  noise.tau_noise = options.tau_noise;
+  SensorOptions sensors;
+  sensors.rate_hz = options.samples / options.duration;
+  sensors.tau_noise = options.tau_noise;
   std::string why;
-  if (!noise.IsValid(n, options.dt, &why)) throw std::invalid_argument("--tau-noise: " + why);
-  const double k = 1.0 / (options.samples / options.duration * options.dt);
-  if (std::abs(k - std::round(k)) > 1e-9 * k || k < 1.0) {
-    throw std::invalid_argument("--samples: " + std::to_string(options.samples) + " samples in " +
-                                std::to_string(options.duration) + " s is not a whole number of " +
-                                std::to_string(options.dt) + " s steps per sample");
-  }
+  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--samples/--tau-noise: " + why);
   // 1. One noise-free experiment and one held-out, and the fixed regressors.
   const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
   const JointLog log = SimulateNoiseFree(model, options, options.trajectory);
@@ -146,9 +140,9 @@ std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCa
       {"seed", options.seed},
       {"tau_noise", options.tau_noise},
       {"base_parameter_names", report.base.names},
-      {"beta_true", ToStd(report.beta_true)},
-      {"predicted_sigma", ToStd(report.predicted_sigma)},
-      {"empirical_sigma", ToStd(report.empirical_sigma)},
+      {"beta_true", ToStdVector(report.beta_true)},
+      {"predicted_sigma", ToStdVector(report.predicted_sigma)},
+      {"empirical_sigma", ToStdVector(report.empirical_sigma)},
       {"mean_relative_error", report.mean_relative_error},
       {"predicted_relative_error", report.predicted_relative_error},
       {"worst_sigma_ratio_deviation", report.worst_sigma_ratio},

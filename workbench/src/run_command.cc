@@ -9,17 +9,12 @@
 #include <set>
 
 #include "idbench/excitation/builtin_motions.h"
+#include "number_format.h"
 
 namespace idbench {
 namespace {
 
 constexpr double kPaperMaxRelError = 3.1e-4;  // the paper's Table 3: 0.031 %
-
-// Shortest decimal that reads back as v.
-std::string Num(double v) {
-  char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof(buffer), v).ptr);
-}
 
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
@@ -41,13 +36,13 @@ bool RunOptions::IsValid(std::string* why) const {
   if (motion != "paper" && motion != "general")
     return fail("--motion: expected 'paper' or 'general', got '" + motion + "'");
   if (!std::isfinite(accel_deg_s2) || accel_deg_s2 <= 0.0 || accel_deg_s2 > kMaxAccelDegS2)
-    return fail("--accel: must be in (0, " + Num(kMaxAccelDegS2) + "] deg/s^2, got " + Num(accel_deg_s2));
-  if (!std::isfinite(dt) || dt <= 0.0) return fail("--dt: must be > 0 s, got " + Num(dt));
-  if (!std::isfinite(duration) || duration <= 0.0) return fail("--duration: must be > 0 s, got " + Num(duration));
+    return fail("--accel: must be in (0, " + Shortest(kMaxAccelDegS2) + "] deg/s^2, got " + Shortest(accel_deg_s2));
+  if (!std::isfinite(dt) || dt <= 0.0) return fail("--dt: must be > 0 s, got " + Shortest(dt));
+  if (!std::isfinite(duration) || duration <= 0.0) return fail("--duration: must be > 0 s, got " + Shortest(duration));
   // A whole number of steps, so that the run is exactly as long as asked.
   const double steps = duration / dt;
   if (std::abs(steps - std::round(steps)) > 1e-6 * steps)
-    return fail("--duration: " + Num(duration) + " s is not a whole number of --dt " + Num(dt) + " s steps");
+    return fail("--duration: " + Shortest(duration) + " s is not a whole number of --dt " + Shortest(dt) + " s steps");
   std::string sim_why;
   if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
   if (out_dir.empty()) return fail("--out: empty path");
@@ -62,12 +57,12 @@ bool RunOptions::IsValid(std::string* why) const {
   for (double t : sample_times) {
     const double n = t / dt;
     if (!std::isfinite(t) || std::llround(n) < 0 || std::llround(n) > n_steps - 1) {
-      return fail("--samples: time " + Num(t) + " s is outside the run [0, " + Num((n_steps - 1) * dt) + "] s");
+      return fail("--samples: time " + Shortest(t) + " s is outside the run [0, " + Shortest((n_steps - 1) * dt) + "] s");
     }
     if (std::abs(n - std::round(n)) > 1e-6) {
-      return fail("--samples: time " + Num(t) + " s is not on the step grid of --dt " + Num(dt) + " s");
+      return fail("--samples: time " + Shortest(t) + " s is not on the step grid of --dt " + Shortest(dt) + " s");
     }
-    if (!used.insert(std::llround(n)).second) return fail("--samples: time " + Num(t) + " s is given twice");
+    if (!used.insert(std::llround(n)).second) return fail("--samples: time " + Shortest(t) + " s is given twice");
   }
   if (static_cast<int>(sample_times.size()) < kMinSamples) {
     return fail("--samples: " + std::to_string(sample_times.size()) + " sample time(s) given, need at least " +

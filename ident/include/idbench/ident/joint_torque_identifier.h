@@ -38,6 +38,11 @@ struct JointTorqueOptions {
   PhysicallyConsistentOptions consistent;
 };
 
+// How well base parameters predict a log's torques.
+struct TorquePrediction {
+  Eigen::VectorXd joint_rms;       // RMS of τ̂ − τ per joint [N m]
+  double relative_error = 0.0;     // ‖τ̂ − τ‖ / ‖τ‖ over all joints and samples
+};
 struct JointTorqueIdentification {
   BaseParameters base;
   std::vector<std::string> standard_names;
@@ -46,7 +51,8 @@ struct JointTorqueIdentification {
   // Always computed: standard parameters need it (a URDF holds physical links).
   PhysicallyConsistentFit consistent;
   Eigen::VectorXd beta;         // the chosen estimator's base parameters
-  Eigen::VectorXd joint_rms;    // its fit residual RMS per joint [N m]
+  TorquePrediction fit;         // β on the identification log
+  TorquePrediction model_fit;   // β_model (the robot file) on the same log
 };
 
 // Base regressor stacked over a log (rows interleaved: sample·n_dof + joint).
@@ -71,11 +77,7 @@ void StackEquations(const RobotModel& model, const FrictionModel& friction, cons
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options);
 
-// How well base parameters β predict another log's torques.
-struct TorquePrediction {
-  Eigen::VectorXd joint_rms;       // RMS of τ̂ − τ per joint [N m]
-  double relative_error = 0.0;     // ‖τ̂ − τ‖ / ‖τ‖ over all joints and samples
-};
+// How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
 
