@@ -3,21 +3,26 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "idbench/engine/dual.h"
+
 namespace idbench {
 namespace {
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+template <typename Scalar>
+Eigen::Matrix<Scalar, 3, 3> Skew(const Eigen::Matrix<Scalar, 3, 1>& v) {
+  Eigen::Matrix<Scalar, 3, 3> S;
+  S << Scalar(0.0), -v.z(), v.y(), v.z(), Scalar(0.0), -v.x(), -v.y(), v.x(), Scalar(0.0);
   return S;
 }
 
 // I·w = Lin(w)·[Ixx, Ixy, Iyy, Ixz, Iyz, Izz].
-Eigen::Matrix<double, 3, 6> InertiaProductMatrix(const Eigen::Vector3d& w) {
-  Eigen::Matrix<double, 3, 6> L;
-  L << w.x(), w.y(), 0, w.z(), 0, 0,  //
-      0, w.x(), w.y(), 0, w.z(), 0,   //
-      0, 0, 0, w.x(), w.y(), w.z();
+template <typename Scalar>
+Eigen::Matrix<Scalar, 3, 6> InertiaProductMatrix(const Eigen::Matrix<Scalar, 3, 1>& w) {
+  const Scalar z(0.0);
+  Eigen::Matrix<Scalar, 3, 6> L;
+  L << w.x(), w.y(), z, w.z(), z, z,  //
+      z, w.x(), w.y(), z, w.z(), z,   //
+      z, z, z, w.x(), w.y(), w.z();
   return L;
 }
 
@@ -106,37 +111,44 @@ RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionMo
   return RobotModel(model.name(), std::move(links), model.gravity_W());
 }
 
-void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,
-                                 const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                                 const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y) {
-  ComputeKinematics(model, q, qd, qdd, data);
-  const RobotData& d = *data;
+template <typename Scalar>
+void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd,
+                                  KinematicsData<Scalar>* data,
+                                  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>* Y) {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Block = Eigen::Matrix<Scalar, 3, kInertialParametersPerLink>;
+  ComputeKinematicsT<Scalar>(model, q, qd, qdd, data);
+  const KinematicsData<Scalar>& d = *data;
   const int n = model.n_dof();
   Y->setZero(n, NumStandardParameters(model, friction));
-  const Eigen::Vector3d& g_W = model.gravity_W();
+  const Vector3 g_W = model.gravity_W().template cast<Scalar>();
   for (int i = 0; i < model.n_links(); ++i) {
     const size_t b = static_cast<size_t>(i);
-    const Eigen::Matrix3d& R = d.R_WB[b];
+    const auto& R = d.R_WB[b];
     // Link i's own wrench about Bo, body axes, linear in its 10 parameters:
     //   f = m a + (ω̇× + ω×ω×) mc,   n = I ω̇ + ω × I ω − a × mc,  a = a_Bo − g.
-    const Eigen::Vector3d w = R.transpose() * d.w_WB_W[b];
-    const Eigen::Vector3d wd = R.transpose() * d.wd_WB_W[b];
-    const Eigen::Vector3d a = R.transpose() * (d.a_WBo_W[b] - g_W);
-    Eigen::Matrix<double, 3, 10> A_f = Eigen::Matrix<double, 3, 10>::Zero();
-    Eigen::Matrix<double, 3, 10> A_n = Eigen::Matrix<double, 3, 10>::Zero();
+    const Vector3 w = R.transpose() * d.w_WB_W[b];
+    const Vector3 wd = R.transpose() * d.wd_WB_W[b];
+    const Vector3 a = R.transpose() * (d.a_WBo_W[b] - g_W);
+    Block A_f = Block::Zero();
+    Block A_n = Block::Zero();
     A_f.col(0) = a;
-    A_f.block<3, 3>(0, 1) = Skew(wd) + Skew(w) * Skew(w);
-    A_n.block<3, 3>(0, 1) = -Skew(a);
-    A_n.block<3, 6>(0, 4) = InertiaProductMatrix(wd) + Skew(w) * InertiaProductMatrix(w);
-    const Eigen::Matrix<double, 3, 10> F_W = R * A_f;
-    const Eigen::Matrix<double, 3, 10> N_W = R * A_n;
+    A_f.template block<3, 3>(0, 1) = Skew(wd) + Skew(w) * Skew(w);
+    A_n.template block<3, 3>(0, 1) = -Skew(a);
+    A_n.template block<3, 6>(0, 4) = InertiaProductMatrix(wd) + Skew(w) * InertiaProductMatrix(w);
+    const Block F_W = R * A_f;
+    const Block N_W = R * A_n;
     // Every joint j on the path from link i to the root carries that wrench:
     // τ_j += s_jᵀ (n + (p_Bo_i − p_Jo_j) × f).
     for (int j = i; j >= 0; j = model.link(j).parent) {
       const size_t jj = static_cast<size_t>(j);
-      const Eigen::RowVector3d s = d.axis_W[jj].transpose();
-      const Eigen::Vector3d r = d.p_WBo_W[b] - d.p_WBo_W[jj];
-      Y->block<1, 10>(j, kInertialParametersPerLink * i) += s * N_W + (s * Skew(r)) * F_W;
+      const Eigen::Matrix<Scalar, 1, 3> s = d.axis_W[jj].transpose();
+      const Vector3 r = d.p_WBo_W[b] - d.p_WBo_W[jj];
+      Y->template block<1, kInertialParametersPerLink>(j, kInertialParametersPerLink * i) +=
+          s * N_W + (s * Skew(r)) * F_W;
     }
   }
   // Friction and drive terms, per joint.
@@ -147,12 +159,25 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
     int c = base + k * j;
     if (friction.viscous) (*Y)(j, c++) = qd[j];
     if (friction.coulomb) {
-      (*Y)(j, c++) = friction.coulomb_smoothing > 0.0 ? std::tanh(qd[j] / friction.coulomb_smoothing)
-                                                      : (qd[j] > 0.0) - (qd[j] < 0.0);
+      using std::tanh;
+      (*Y)(j, c++) = friction.coulomb_smoothing > 0.0
+                         ? Scalar(tanh(qd[j] / friction.coulomb_smoothing))
+                         : Scalar(double((ValueOf(qd[j]) > 0.0) - (ValueOf(qd[j]) < 0.0)));
     }
     if (friction.offset) (*Y)(j, c++) = 1.0;
     if (friction.rotor_inertia) (*Y)(j, c++) = qdd[j];
   }
 }
+
+void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,
+                                 const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                 const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y) {
+  ComputeJointTorqueRegressorT<double>(model, friction, q, qd, qdd, data, Y);
+}
+
+template void ComputeJointTorqueRegressorT<DualState>(
+    const RobotModel&, const FrictionModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
+    const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
+    KinematicsData<DualState>*, Eigen::Matrix<DualState, Eigen::Dynamic, Eigen::Dynamic>*);
 
 }  // namespace idbench

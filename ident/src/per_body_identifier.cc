@@ -20,13 +20,7 @@ struct BodySystem {
 };
 
 void CheckInputs(const RobotModel& model, const SimulationLog& log, const std::vector<int>& steps) {
-  for (const Link& link : model.links()) {
-    const Eigen::Matrix3d& I = link.inertia.I_Bcm_B;
-    if ((I - Eigen::Matrix3d(I.diagonal().asDiagonal())).norm() > 1e-12 * I.norm()) {
-      throw std::invalid_argument("per-body identification: link '" + link.name +
-                                  "' axes are not principal axes (off-diagonal inertia)");
-    }
-  }
+  CheckPrincipalAxes(model, "per-body identification");
   if (steps.empty()) throw std::invalid_argument("per-body identification: no samples");
   for (int s : steps) {
     if (s < 0 || s >= static_cast<int>(log.steps.size())) {

@@ -1,14 +1,8 @@
 #include "idbench/ident/per_body_regressor.h"
 
-namespace idbench {
+#include <stdexcept>
 
-Eigen::Matrix3d EulerRegressorOmega(const Eigen::Vector3d& w_B, const Eigen::Vector3d& wd_B) {
-  Eigen::Matrix3d w_cross;
-  w_cross << 0, -w_B.z(), w_B.y(),  //
-      w_B.z(), 0, -w_B.x(),         //
-      -w_B.y(), w_B.x(), 0;
-  return Eigen::Matrix3d(wd_B.asDiagonal()) + w_cross * w_B.asDiagonal();
-}
+namespace idbench {
 
 Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates) {
   const Eigen::Matrix<double, 3, 4> L = QuaternionL(rates.lambda);
@@ -17,6 +11,16 @@ Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates) {
   const Eigen::Vector3d L_lambda_d = L * rates.lambda_d;
   return 2.0 * Eigen::Matrix3d(L_lambda_dd.asDiagonal()) +
          4.0 * (L * L_d.transpose()) * L_lambda_d.asDiagonal();
+}
+
+void CheckPrincipalAxes(const RobotModel& model, const std::string& what) {
+  for (const Link& link : model.links()) {
+    const Eigen::Matrix3d& I = link.inertia.I_Bcm_B;
+    if ((I - Eigen::Matrix3d(I.diagonal().asDiagonal())).norm() > 1e-12 * I.norm()) {
+      throw std::invalid_argument(what + ": link '" + link.name +
+                                  "' axes are not principal axes (off-diagonal inertia)");
+    }
+  }
 }
 
 PerBodyRows ComputePerBodyRows(const RobotModel& model, int body, const LogStep& step) {

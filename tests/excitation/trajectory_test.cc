@@ -3,20 +3,12 @@
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
+#include "excitation/trajectory_test_util.h"
 
 namespace idbench {
 namespace {
 
-// Analytic qd, qdd against central differences of q and qd (h = 1e-5:
-// truncation O(h²) ≈ 1e-10, rounding O(ε/h) ≈ 1e-11).
-void ExpectConsistentDerivatives(const Trajectory& traj) {
-  const double h = 1e-5;
-  for (double t = 0.1; t < traj.duration() - 0.1; t += 0.37) {
-    const JointState s = traj.At(t), sp = traj.At(t + h), sm = traj.At(t - h);
-    EXPECT_LT(((sp.q - sm.q) / (2 * h) - s.qd).cwiseAbs().maxCoeff(), 1e-8) << "t = " << t;
-    EXPECT_LT(((sp.qd - sm.qd) / (2 * h) - s.qdd).cwiseAbs().maxCoeff(), 1e-8) << "t = " << t;
-  }
-}
+using testing::ExpectConsistentDerivatives;
 
 TEST(TrajectoryTest, FourierSeriesDerivativesAndPeriod) {
   Eigen::MatrixXd a(2, 3), b(2, 3);

@@ -144,7 +144,7 @@ TEST_F(CliTest, ExistingOutputDirectoryIsNeverWiped) {
   // No temporary files are left behind.
   int entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
-  EXPECT_EQ(entries, 3);
+  EXPECT_EQ(entries, 4);  // notes.txt, results.json, log.csv, figure.png
 }
 
 TEST_F(CliTest, OutputPathThatIsAFileIsRejectedWithoutTouchingIt) {

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -39,9 +40,11 @@ struct ColumnTarget {
 std::string FormatJointLogCsv(const JointLog& log) {
   const int n = log.n_dof();
   const bool derivatives = log.has_derivatives();
+  const bool torques = log.tau.size() > 0;
   std::string out = "t";
   for (const char* prefix : {"q", "qd", "qdd", "tau"}) {
     if (!derivatives && prefix[1] == 'd') continue;
+    if (!torques && prefix[0] == 't') continue;
     for (int j = 1; j <= n; ++j) out += "," + std::string(prefix) + std::to_string(j);
   }
   out += '\n';
@@ -59,13 +62,14 @@ std::string FormatJointLogCsv(const JointLog& log) {
       row(log.qd);
       row(log.qdd);
     }
-    row(log.tau);
+    if (torques) row(log.tau);
     out.push_back('\n');
   }
   return out;
 }
 
-JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source) {
+JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source,
+                          TorqueColumns torques) {
   const int n_dof = model.n_dof();
   auto fail = [&](int line, const std::string& what) -> void {
     throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);
@@ -108,12 +112,17 @@ JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, cons
     }
     targets.push_back(target);
   }
-  // Required columns, and qd/qdd as complete sets or not at all.
+  // Required columns, and qd/qdd (and optional tau) as complete sets or not at all.
   auto has = [&](const std::string& name) { return column_of.count(name) > 0; };
   if (!has("t")) fail(line_number, "missing column 't'");
+  const bool has_tau = torques == TorqueColumns::kRequired || has("tau1");
   for (const char* prefix : {"q", "tau"}) {
     for (int j = 1; j <= n_dof; ++j) {
       const std::string name = prefix + std::to_string(j);
+      if (prefix[0] == 't' && !has_tau) {
+        if (has(name)) fail(line_number, "column '" + name + "' without tau1: give all of tau1..tau" + std::to_string(n_dof) + " or none");
+        continue;
+      }
       if (!has(name)) fail(line_number, "missing column '" + name + "' (robot has " + std::to_string(n_dof) + " joints)");
     }
   }
@@ -166,7 +175,7 @@ JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, cons
   JointLog log;
   log.t.resize(n_samples);
   log.q.resize(n_samples, n_dof);
-  log.tau.resize(n_samples, n_dof);
+  if (has_tau) log.tau.resize(n_samples, n_dof);
   if (derivatives) {
     log.qd.resize(n_samples, n_dof);
     log.qdd.resize(n_samples, n_dof);
@@ -186,11 +195,16 @@ JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, cons
 }
 
 JointLog ReadJointLogCsv(const std::string& path, const RobotModel& model) {
+  return ParseJointLogCsv(ReadTextFile(path), model, path);
+}
+
+std::string ReadTextFile(const std::string& path) {
+  std::error_code ec;
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw std::invalid_argument(path + ": cannot read the file");
+  if (!file || std::filesystem::is_directory(path, ec)) throw std::invalid_argument(path + ": cannot read the file");
   std::ostringstream text;
   text << file.rdbuf();
-  return ParseJointLogCsv(text.str(), model, path);
+  return text.str();
 }
 
 }  // namespace idbench

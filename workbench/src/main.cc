@@ -1,20 +1,26 @@
 // idbench: design robot identification experiments, simulate them in Bullet,
 // identify dynamic parameters. Exit codes: 0 ok, 2 bad usage, 1 failure.
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <string>
 
 #include "atomic_file.h"
+#include "design_command.h"
 #include "identify_command.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/robot_library.h"
 #include "joint_log_csv.h"
 #include "log_csv.h"
 #include "montecarlo_command.h"
+#include "render_command.h"
+#include "report_command.h"
 #include "run_command.h"
 #include "simulate_command.h"
+#include "trajectory_file.h"
 
 namespace {
 
@@ -34,9 +40,20 @@ int RunCommand(const idbench::RunOptions& options) {
   std::fputs(idbench::FormatRunTables(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
-  idbench::WriteFilesAtomically({{dir / "log.csv", idbench::FormatLogCsv(model, report.log)},
-                                 {dir / "results.json", idbench::FormatRunResultsJson(options, report)}});
-  std::printf("wrote %s and %s\n", (dir / "results.json").c_str(), (dir / "log.csv").c_str());
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "log.csv", idbench::FormatLogCsv(model, report.log)},
+      {dir / "results.json", idbench::FormatRunResultsJson(options, report)}};
+  if (options.report) {
+    const idbench::ReportContent content =
+        idbench::MakeRunReportContent(model, options, report, idbench::RenderRunFigurePng(model, options));
+    for (auto& file : idbench::FormatReportFiles(content, dir)) files.push_back(std::move(file));
+  } else if (options.figure) {
+    files.emplace_back(dir / "figure.png", idbench::RenderRunFigurePng(model, options));
+  }
+  idbench::WriteFilesAtomically(files);
+  std::printf("wrote %s and %s%s%s\n", (dir / "results.json").c_str(), (dir / "log.csv").c_str(),
+              options.figure || options.report ? (" and " + (dir / "figure.png").string()).c_str() : "",
+              options.report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
   return 0;
 }
 
@@ -57,12 +74,12 @@ int SimulateCommand(const idbench::SimulateOptions& options) {
   if (path.has_parent_path()) idbench::EnsureOutputDirectory(path.parent_path());
   idbench::WriteFileAtomically(path, idbench::FormatJointLogCsv(log));
   std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz; wrote %s\n", model.name().c_str(),
-              options.trajectory.c_str(), options.duration, log.n_samples(), options.sensors.rate_hz,
+              options.trajectory.c_str(), log.n_samples() / options.sensors.rate_hz, log.n_samples(), options.sensors.rate_hz,
               path.c_str());
   return 0;
 }
 
-int IdentifyCommand(const idbench::IdentifyOptions& options) {
+int IdentifyCommand(const idbench::IdentifyOptions& options, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
@@ -70,9 +87,16 @@ int IdentifyCommand(const idbench::IdentifyOptions& options) {
   std::fputs(idbench::FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
-  idbench::WriteFilesAtomically({{dir / "identified.json", idbench::FormatIdentifiedJson(model, options, report)},
-                                 {dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report)}});
-  std::printf("wrote %s and %s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str());
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "identified.json", idbench::FormatIdentifiedJson(model, options, report)},
+      {dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report)}};
+  if (with_report) {
+    for (auto& file : idbench::FormatReportFiles(idbench::MakeIdentifyReportContent(model, options, report), dir))
+      files.push_back(std::move(file));
+  }
+  idbench::WriteFilesAtomically(files);
+  std::printf("wrote %s and %s%s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str(),
+              with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
   return 0;
 }
 
@@ -88,6 +112,67 @@ int MonteCarloCommand(const idbench::MonteCarloOptions& options) {
     idbench::WriteFileAtomically(dir / "montecarlo.json", idbench::FormatMonteCarloJson(options, report));
     std::printf("wrote %s\n", (dir / "montecarlo.json").c_str());
   }
+  return 0;
+}
+
+int RenderCommand(const idbench::RenderOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) return UsageError(why);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const std::unique_ptr<idbench::Trajectory> trajectory = idbench::MakeRenderTrajectory(model, options);
+  const idbench::PoseFigureOptions figure = options.figure();
+  if (!figure.IsValid(trajectory->duration(), &why)) return UsageError(why);
+  const std::string png = idbench::RenderPoseFigurePng(model, *trajectory, figure);
+  const std::filesystem::path path(options.out);
+  if (path.has_parent_path()) idbench::EnsureOutputDirectory(path.parent_path());
+  idbench::WriteFileAtomically(path, png);
+  std::printf("rendered %s along '%s' at %zu instants (%dx%d px); wrote %s\n", model.name().c_str(),
+              options.trajectory.c_str(), figure.times.size(), figure.columns() * figure.panel_width,
+              figure.rows() * figure.panel_height, path.c_str());
+  return 0;
+}
+
+// Ctrl-C during a design: stop and keep the best feasible design so far.
+std::atomic<bool> g_stop_requested{false};
+extern "C" void RequestStop(int) { g_stop_requested = true; }
+
+int DesignCommand(idbench::DesignCommandOptions options) {
+  std::string why;
+  if (!options.IsValid(&why)) return UsageError(why);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  std::signal(SIGINT, RequestStop);
+  const idbench::DesignCommandReport report = idbench::RunDesign(model, options, &g_stop_requested);
+  std::signal(SIGINT, SIG_DFL);
+  std::fputs(idbench::FormatDesignSummary(options, report).c_str(), stdout);
+  const std::filesystem::path dir(options.out_dir);
+  idbench::EnsureOutputDirectory(dir);
+  idbench::WriteFilesAtomically(
+      {{dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},
+       {dir / "trajectory.csv", idbench::FormatTrajectoryCsv(report.result.trajectory, options.csv_rate_hz)},
+       {dir / "design.json", idbench::FormatDesignJson(model, options, report)}});
+  std::printf("wrote %s, trajectory.csv and design.json\n", (dir / "trajectory.json").c_str());
+  return report.result.check.feasible() ? 0 : kExitFailure;
+}
+
+// `idbench report --out DIR`: the report of the run whose results.json is in DIR.
+int ReportCommand(const std::string& out_dir) {
+  if (out_dir.empty()) return UsageError("--out: empty path");
+  const std::filesystem::path dir(out_dir);
+  const std::filesystem::path results = dir / "results.json";
+  if (!std::filesystem::is_regular_file(results)) {
+    throw std::runtime_error(results.string() + ": no such file; `idbench report` reads the results.json of " +
+                             "`idbench run --out " + out_dir + "` (for identify, use `idbench identify --report`)");
+  }
+  idbench::RunOptions options = idbench::RunOptionsFromResultsJson(idbench::ReadTextFile(results), results.string());
+  options.out_dir = out_dir;
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(results.string() + ": " + why);
+  const idbench::RobotModel model = idbench::MakePaper6r();
+  const idbench::RunReport report = idbench::RunExperiment(model, options);
+  const idbench::ReportContent content =
+      idbench::MakeRunReportContent(model, options, report, idbench::RenderRunFigurePng(model, options));
+  idbench::WriteFilesAtomically(idbench::FormatReportFiles(content, dir));
+  std::printf("wrote %s and %s\n", (dir / "report.html").c_str(), (dir / "report.pdf").c_str());
   return 0;
 }
 
@@ -114,6 +199,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--all-samples", run.all_samples, "Identify from every simulation step")->excludes(samples);
   run_cmd->add_option("--out", run.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
+  bool run_no_figure = false;
+  run_cmd->add_flag("--no-figure", run_no_figure, "Do not render figure.png (the poses at the paper's instants)");
+  run_cmd->add_flag("--report", run.report, "Also write report.html, report.pdf and the plots");
 
 
   idbench::SimulateOptions simulate;
@@ -121,11 +209,13 @@ int main(int argc, char** argv) {
       app.add_subcommand("simulate", "Simulate an experiment in Bullet and write the joint log (CSV)");
   simulate_cmd->add_option("--robot", simulate.robot, "Built-in robot (paper6r, puma560) or URDF file")
       ->capture_default_str();
-  simulate_cmd->add_option("--trajectory", simulate.trajectory, "Built-in motion: paper, general, general-reversed")
+  simulate_cmd->add_option("--trajectory", simulate.trajectory,
+                           "Built-in motion (paper, general, general-reversed) or trajectory file (.json, .csv)")
       ->capture_default_str();
   simulate_cmd->add_option("--accel", simulate.paper_accel_deg_s2, "Acceleration of the paper motion [deg/s^2]")
       ->capture_default_str();
-  simulate_cmd->add_option("--duration", simulate.duration, "Simulated time [s]")->capture_default_str();
+  simulate_cmd->add_option("--duration", simulate.duration, "Simulated time of a built-in motion [s]")
+      ->capture_default_str();
   simulate_cmd->add_option("--dt", simulate.dt, "Simulation step [s]")->capture_default_str();
   simulate_cmd->add_option("--rate", simulate.sensors.rate_hz, "Sample rate of the log [Hz]")->capture_default_str();
   simulate_cmd->add_option("--tau-noise", simulate.sensors.tau_noise,
@@ -161,14 +251,18 @@ int main(int argc, char** argv) {
   identify_cmd->add_option("--validate", identify.validate, "Held-out joint log to validate on");
   identify_cmd->add_option("--out", identify.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
+  bool identify_report = false;
+  identify_cmd->add_flag("--report", identify_report, "Also write report.html, report.pdf and the plots");
 
   idbench::MonteCarloOptions montecarlo;
   montecarlo.command_line = command_line;
   CLI::App* montecarlo_cmd = app.add_subcommand(
       "montecarlo", "Identification error under torque noise: seeded trials against the predicted covariance");
   montecarlo_cmd->add_option("--robot", montecarlo.robot, "Built-in robot or URDF file")->capture_default_str();
-  montecarlo_cmd->add_option("--trajectory", montecarlo.trajectory, "Identification motion")->capture_default_str();
-  montecarlo_cmd->add_option("--held-out", montecarlo.held_out, "Validation motion")->capture_default_str();
+  montecarlo_cmd->add_option("--trajectory", montecarlo.trajectory, "Identification motion: built-in or .json/.csv file")
+      ->capture_default_str();
+  montecarlo_cmd->add_option("--held-out", montecarlo.held_out, "Validation motion: built-in or .json/.csv file")
+      ->capture_default_str();
   montecarlo_cmd->add_option("--duration", montecarlo.duration, "Experiment length [s]")->capture_default_str();
   montecarlo_cmd->add_option("--samples", montecarlo.samples, "Samples over the duration")->capture_default_str();
   montecarlo_cmd->add_option("--tau-noise", montecarlo.tau_noise, "Torque noise sigma per joint [N m]")
@@ -178,6 +272,66 @@ int main(int argc, char** argv) {
   montecarlo_cmd->add_option("--seed", montecarlo.seed, "Noise seed")->capture_default_str();
   montecarlo_cmd->add_option("--out", montecarlo.out_dir, "Directory for montecarlo.json (optional)");
 
+  idbench::RenderOptions render;
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "Render the robot at chosen instants of a motion as one labelled PNG (headless)");
+  render_cmd->add_option("--robot", render.robot, "Built-in robot (paper6r, puma560) or URDF file")
+      ->capture_default_str();
+  render_cmd->add_option("--trajectory", render.trajectory,
+                         "Built-in motion (paper, general, general-reversed) or trajectory file (.json, .csv)")
+      ->capture_default_str();
+  render_cmd->add_option("--accel", render.paper_accel_deg_s2, "Acceleration of the paper motion [deg/s^2]")
+      ->capture_default_str();
+  render_cmd->add_option("--duration", render.duration, "Length of the built-in motion [s]")->capture_default_str();
+  render_cmd->add_option("--times", render.times, "Instants t1,t2,... [s], one panel each")->delimiter(',')
+      ->capture_default_str();
+  render_cmd->add_option("--layout", render.layout, "grid (rows of 4) or strip (one row)")->capture_default_str();
+  render_cmd->add_option("--size", render.size, "One panel, WxH [px]")->capture_default_str();
+  render_cmd->add_option("--out", render.out, "PNG file to write")->capture_default_str();
+
+  idbench::DesignCommandOptions design;
+  design.command_line = command_line;
+  CLI::App* design_cmd = app.add_subcommand(
+      "design", "Optimise an excitation trajectory (Fourier series) for identification, within the joint limits");
+  design_cmd->add_option("--robot", design.robot, "Built-in robot (paper6r, puma560) or URDF file")
+      ->capture_default_str();
+  design_cmd->add_option("--model", design.model, "Identification model: torque (base parameters) or per-body")
+      ->capture_default_str();
+  design_cmd->add_option("--friction", design.friction, "Friction terms of the torque model")
+      ->delimiter(',')->capture_default_str();
+  design_cmd->add_option("--criterion", design.criterion,
+                         "cond, cond-normalised, logdet or hybrid (default: cond; per-body: cond-normalised)");
+  design_cmd->add_option("--algorithm", design.algorithm, "slsqp, mma (gradient), cobyla, sbplx (derivative-free)")
+      ->capture_default_str();
+  design_cmd->add_option("--harmonics", design.design.harmonics, "Harmonics H per joint")->capture_default_str();
+  design_cmd->add_option("--f0", design.design.f0, "Base frequency [Hz]")->capture_default_str();
+  design_cmd->add_option("--duration", design.design.duration, "Duration [s]; 0 = one period 1/f0")
+      ->capture_default_str();
+  design_cmd->add_flag("--rest-to-rest", design.design.rest_to_rest, "Start and end at rest (adds a quintic)");
+  design_cmd->add_option("--samples", design.design.samples, "Samples per duration in the criterion and limits")
+      ->capture_default_str();
+  design_cmd->add_option("--starts", design.design.starts, "Random starts")->capture_default_str();
+  design_cmd->add_option("--seed", design.design.seed, "Seed of the first start (start k uses seed + k)")
+      ->capture_default_str();
+  design_cmd->add_option("--threads", design.design.threads, "Threads running starts")->capture_default_str();
+  design_cmd->add_option("--max-evaluations", design.design.max_evaluations, "Criterion evaluations per start")
+      ->capture_default_str();
+  design_cmd->add_option("--max-time", design.design.max_seconds, "Wall-time limit [s]; 0 = none")
+      ->capture_default_str();
+  design_cmd->add_option("--margin", design.design.margin, "Limits tightened by this fraction during the search")
+      ->capture_default_str();
+  design_cmd->add_option("--limits", design.limits, "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
+  design_cmd->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
+  design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
+  design_cmd->add_option("--out", design.out_dir, "Output directory (created if missing, never wiped)")
+      ->capture_default_str();
+
+  std::string report_dir;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report", "Write report.html and report.pdf (figure, tables, plots) for the results of `idbench run` in DIR");
+  report_cmd->add_option("--out", report_dir, "Directory holding results.json; the report is written there")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -186,16 +340,22 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run_cmd->parsed()) return RunCommand(run);
+    if (run_cmd->parsed()) {
+      run.figure = !run_no_figure;
+      return RunCommand(run);
+    }
     if (simulate_cmd->parsed()) {
       simulate.sensors.record_derivatives = !no_derivatives;
       return SimulateCommand(simulate);
     }
-    if (identify_cmd->parsed()) return IdentifyCommand(identify);
+    if (identify_cmd->parsed()) return IdentifyCommand(identify, identify_report);
     if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo);
+    if (render_cmd->parsed()) return RenderCommand(render);
+    if (report_cmd->parsed()) return ReportCommand(report_dir);
+    if (design_cmd->parsed()) return DesignCommand(design);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;
   }
-  return UsageError("a subcommand is required (run, simulate, identify, montecarlo); see idbench --help");
+  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, render, report); see idbench --help");
 }

@@ -7,20 +7,20 @@
 
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
-#include "idbench/excitation/builtin_motions.h"
 #include "number_format.h"
+#include "trajectory_file.h"
 
 namespace idbench {
 namespace {
 
-// Noise-free joint log of a built-in motion at `samples` samples.
-JointLog SimulateNoiseFree(const RobotModel& model, const MonteCarloOptions& options, const std::string& motion) {
+// Noise-free joint log of a motion over its duration, sampled at rate_hz.
+JointLog SimulateNoiseFree(const RobotModel& model, const Trajectory& motion, double dt, double rate_hz) {
   SimulationOptions sim;
-  sim.dt = options.dt;
-  sim.duration = options.duration;
+  sim.dt = dt;
+  sim.duration = motion.duration();
   SensorOptions sensors;
-  sensors.rate_hz = options.samples / options.duration;
-  return Measure(Simulate(model, *MakeBuiltinMotion(motion, model.n_dof(), options.duration, 0.5), sim), sensors);
+  sensors.rate_hz = rate_hz;
+  return Measure(Simulate(model, motion, sim), sensors);
 }
 
 }  // namespace
@@ -44,15 +44,18 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
 
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options) {
   const int n = model.n_dof();
+  const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
+  const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
+  const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);
   SensorOptions sensors;
-  sensors.rate_hz = options.samples / options.duration;
+  sensors.rate_hz = options.samples / motion->duration();
   sensors.tau_noise = options.tau_noise;
   std::string why;
   if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--samples/--tau-noise: " + why);
   // 1. One noise-free experiment and one held-out, and the fixed regressors.
   const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
-  const JointLog log = SimulateNoiseFree(model, options, options.trajectory);
-  const JointLog held = SimulateNoiseFree(model, options, options.held_out);
+  const JointLog log = SimulateNoiseFree(model, *motion, options.dt, sensors.rate_hz);
+  const JointLog held = SimulateNoiseFree(model, *held_motion, options.dt, sensors.rate_hz);
   MonteCarloReport report;
   report.base = ComputeBaseParameters(model, friction);
   report.beta_true = report.base.combination * StandardParameters(model, friction);

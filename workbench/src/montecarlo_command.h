@@ -13,11 +13,11 @@ namespace idbench {
 
 struct MonteCarloOptions {
   std::string robot = "puma560";
-  std::string trajectory = "general";          // identification motion
-  std::string held_out = "general-reversed";   // validation motion
-  double duration = 10.0;                      // [s]
+  std::string trajectory = "general";          // identification motion: built-in or .json/.csv file
+  std::string held_out = "general-reversed";   // validation motion: built-in or file
+  double duration = 10.0;                      // [s] of built-in motions; a file brings its own
   double dt = 1e-3;                            // simulation step [s]
-  int samples = 1000;                          // samples over the duration
+  int samples = 1000;                          // samples over the identification motion's duration
   std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // σ per joint (or one for all) [N m]
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   int trials = 100;

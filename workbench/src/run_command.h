@@ -21,6 +21,8 @@ struct RunOptions {
   bool all_samples = false;      // use every step instead of sample_times
   std::string out_dir = "out/run";
   std::string command_line;      // recorded in results.json
+  bool figure = true;            // write figure.png, the poses at the paper's instants (--no-figure: off)
+  bool report = false;           // write report.html, report.pdf and the plots (--report)
 
   // Minimum number of samples: the unknowns of one body (m, J11, J22, J33).
   static constexpr int kMinSamples = 4;

@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "idbench/excitation/builtin_motions.h"
+#include "trajectory_file.h"
 
 namespace idbench {
 
@@ -34,10 +34,12 @@ bool SimulateOptions::IsValid(std::string* why) const {
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options) {
   std::string why;
   if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) throw std::invalid_argument("sensors: " + why);
-  const std::unique_ptr<Trajectory> motion =
-      MakeBuiltinMotion(options.trajectory, model.n_dof(), options.duration,
-                        options.paper_accel_deg_s2 * std::numbers::pi / 180.0);
-  return Measure(Simulate(model, *motion, options.simulation()), options.sensors);
+  const BuiltinMotionOptions builtin{.duration = options.duration,
+                                     .paper_qdd = options.paper_accel_deg_s2 * std::numbers::pi / 180.0};
+  const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
+  SimulationOptions simulation = options.simulation();
+  simulation.duration = motion->duration();  // a file's own
+  return Measure(Simulate(model, *motion, simulation), options.sensors);
 }
 
 }  // namespace idbench

@@ -11,9 +11,9 @@ namespace idbench {
 
 struct SimulateOptions {
   std::string robot = "puma560";        // built-in name or URDF path
-  std::string trajectory = "general";   // built-in motion (builtin_motions.h)
+  std::string trajectory = "general";   // built-in motion or .json/.csv file (trajectory_file.h)
   double paper_accel_deg_s2 = 30.0;     // acceleration of the "paper" motion [deg/s²]
-  double duration = 10.0;               // [s]
+  double duration = 10.0;               // [s] of a built-in motion; a file brings its own
   double dt = 1e-3;                     // simulation step [s]
   SensorOptions sensors;
   std::string out = "out/log.csv";
@@ -23,8 +23,9 @@ struct SimulateOptions {
   bool IsValid(std::string* why) const;
 };
 
-// Simulates and measures. Throws std::invalid_argument on a robot/motion/sensor
-// mismatch (naming it) and std::runtime_error if the simulation diverges.
+// Simulates and measures over the motion's duration. Throws
+// std::invalid_argument on a robot/motion/sensor mismatch or a bad trajectory
+// file (naming it) and std::runtime_error if the simulation diverges.
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
 
 }  // namespace idbench

@@ -9,27 +9,42 @@
 
 namespace idbench {
 
-// Workspace for kinematics and dynamics; sized once from the model, then
-// reused without allocation. Vectors are indexed by link.
-struct RobotData {
-  explicit RobotData(const RobotModel& model);
+// Poses, velocities and accelerations of every link, on a scalar type: double,
+// or Dual<N> (dual.h) for exact derivatives with respect to the joint state.
+// Vectors are indexed by link.
+template <typename Scalar>
+struct KinematicsData {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+  explicit KinematicsData(const RobotModel& model);
 
-  // Written by ComputeKinematics.
-  std::vector<Eigen::Matrix3d> R_WB;     // link orientation
-  std::vector<Eigen::Vector3d> p_WBo_W;  // link origin = inboard hinge point [m]
-  std::vector<Eigen::Vector3d> p_WBcm_W; // centre of mass [m]
-  std::vector<Eigen::Vector3d> axis_W;   // hinge axis (unit)
-  std::vector<Eigen::Vector3d> w_WB_W;   // angular velocity [rad/s]
-  std::vector<Eigen::Vector3d> wd_WB_W;  // angular acceleration [rad/s²]
-  std::vector<Eigen::Vector3d> v_WBo_W;  // velocity of the hinge point [m/s]
-  std::vector<Eigen::Vector3d> a_WBo_W;  // acceleration of the hinge point [m/s²]
-  std::vector<Eigen::Vector3d> a_WBcm_W; // centre-of-mass acceleration [m/s²]
+  std::vector<Matrix3> R_WB;     // link orientation
+  std::vector<Vector3> p_WBo_W;  // link origin = inboard hinge point [m]
+  std::vector<Vector3> p_WBcm_W; // centre of mass [m]
+  std::vector<Vector3> axis_W;   // hinge axis (unit)
+  std::vector<Vector3> w_WB_W;   // angular velocity [rad/s]
+  std::vector<Vector3> wd_WB_W;  // angular acceleration [rad/s²]
+  std::vector<Vector3> v_WBo_W;  // velocity of the hinge point [m/s]
+  std::vector<Vector3> a_WBo_W;  // acceleration of the hinge point [m/s²]
+  std::vector<Vector3> a_WBcm_W; // centre-of-mass acceleration [m/s²]
+};
+
+// Workspace for kinematics and dynamics; sized once from the model, then
+// reused without allocation.
+struct RobotData : KinematicsData<double> {
+  explicit RobotData(const RobotModel& model);
 
   // Written by InverseDynamics (inverse_dynamics.h).
   std::vector<Eigen::Vector3d> f_PB_W;     // force the hinge transmits from parent P onto B [N]
   std::vector<Eigen::Vector3d> m_PB_Bo_W;  // moment it transmits, about the hinge point Bo [N m]
   Eigen::VectorXd tau;                     // joint torques [N m] (n_dof)
 };
+
+// The same on any scalar (instantiated for double and DualState).
+template <typename Scalar>
+void ComputeKinematicsT(const RobotModel& model, const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
+                        const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                        const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd, KinematicsData<Scalar>* data);
 
 // Poses, velocities and accelerations of all links at (q, qd, qdd).
 // Throws std::invalid_argument if a vector does not have n_dof entries.

@@ -34,9 +34,19 @@ class ReversedTrajectory final : public Trajectory {
 // "paper", "general", "general-reversed".
 std::vector<std::string> BuiltinMotionNames();
 
+// What a built-in motion needs besides its name and the robot's n_dof.
+struct BuiltinMotionOptions {
+  double duration = 10.0;  // [s]
+  double paper_qdd = 0.5;  // acceleration of the "paper" motion [rad/s²]
+};
+
 // A built-in motion by name; paper_qdd is the paper motion's acceleration
 // [rad/s²]. Throws std::invalid_argument naming the unknown motion.
 std::unique_ptr<Trajectory> MakeBuiltinMotion(const std::string& name, int n_dof, double duration,
                                               double paper_qdd);
+inline std::unique_ptr<Trajectory> MakeBuiltinMotion(const std::string& name, int n_dof,
+                                                     const BuiltinMotionOptions& options) {
+  return MakeBuiltinMotion(name, n_dof, options.duration, options.paper_qdd);
+}
 
 }  // namespace idbench

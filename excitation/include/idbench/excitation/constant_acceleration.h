@@ -15,6 +15,9 @@ class ConstantAccelerationTrajectory final : public Trajectory {
   int n_dof() const override { return static_cast<int>(q0_.size()); }
   double duration() const override { return duration_; }
   void Evaluate(double t, JointState* state) const override;
+  const Eigen::VectorXd& q0() const { return q0_; }    // start pose [rad] (n_dof)
+  const Eigen::VectorXd& qd0() const { return qd0_; }  // start velocity [rad/s] (n_dof)
+  const Eigen::VectorXd& qdd() const { return qdd_; }  // acceleration [rad/s²] (n_dof)
 
  private:
   Eigen::VectorXd q0_, qd0_, qdd_;

@@ -59,4 +59,14 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                  const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y);
 
+// The same on any scalar (instantiated for double and DualState, whose
+// derivatives give ∂Y/∂(q, qd, qdd) exactly; Coulomb's sign has derivative 0).
+template <typename Scalar>
+void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd,
+                                  KinematicsData<Scalar>* data,
+                                  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>* Y);
+
 }  // namespace idbench

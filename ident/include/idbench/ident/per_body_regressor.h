@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 
 #include "idbench/engine/quaternion.h"
 #include "idbench/engine/robot_model.h"
@@ -20,7 +21,17 @@ namespace idbench {
 //   S = 2 diag(L Λ'') + 4 L L'ᵀ diag(L Λ').
 Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates);
 // The same from body-frame ω, ω̇ (eq. 5): S = diag(ω̇) + [ω]× diag(ω).
-Eigen::Matrix3d EulerRegressorOmega(const Eigen::Vector3d& w_B, const Eigen::Vector3d& wd_B);
+// Any scalar (double, or Dual for derivatives).
+template <typename Scalar>
+Eigen::Matrix<Scalar, 3, 3> EulerRegressorOmega(const Eigen::Matrix<Scalar, 3, 1>& w_B,
+                                                const Eigen::Matrix<Scalar, 3, 1>& wd_B) {
+  const Scalar z(0.0);
+  Eigen::Matrix<Scalar, 3, 3> w_cross;
+  w_cross << z, -w_B.z(), w_B.y(),  //
+      w_B.z(), z, -w_B.x(),         //
+      -w_B.y(), w_B.x(), z;
+  return Eigen::Matrix<Scalar, 3, 3>(wd_B.asDiagonal()) + w_cross * w_B.asDiagonal();
+}
 
 // Rows of one body at one log step.
 struct PerBodyRows {
@@ -29,6 +40,10 @@ struct PerBodyRows {
   Eigen::Matrix3d euler_regressor;   // S [1/s²]: multiplies (J11, J22, J33)
   Eigen::Vector3d euler_moment;      // N, body axes, about Bcm [N m]
 };
+
+// Throws std::invalid_argument "<what>: link 'X' axes are not principal axes"
+// for a link with off-diagonal inertia.
+void CheckPrincipalAxes(const RobotModel& model, const std::string& what);
 
 PerBodyRows ComputePerBodyRows(const RobotModel& model, int body, const LogStep& step);
 

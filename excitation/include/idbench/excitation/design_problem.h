@@ -1,0 +1,98 @@
+// The excitation design as a finite-dimensional problem in the unknowns θ,
+// per joint j the block [q0_j, a_j1..a_jH, b_j1..b_jH] of a Fourier series
+// (fourier_series.h): the criterion with its exact gradient, the kinematic
+// limits on the sample grid as linear rows (q, qd and qdd are linear in θ),
+// torque limits, start points and box bounds. The optimizer
+// (excitation_design.h) drives it; tests and benchmarks use it directly.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "idbench/engine/robot_model.h"
+#include "idbench/excitation/design_criterion.h"
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/excitation/fourier_series.h"
+
+namespace idbench {
+
+struct DesignOptions;
+
+// One linear constraint on one joint's block: coefficients · block ≤ rhs,
+// normalised so that 1 is the whole limit (velocity limit, joint range, …).
+struct LinearRow {
+  int joint = 0;
+  Eigen::VectorXd coefficients;  // 2H + 1
+  double rhs = 0.0;
+  int group = 0;                 // 4 joint + (0 q_max, 1 qd, 2 qdd, 3 q_min): rows of one limit
+};
+
+class DesignProblem {
+ public:
+  // Per-thread evaluation state.
+  struct Workspace {
+    explicit Workspace(const DesignProblem& problem);
+    DesignRegressor::Workspace regressor;
+    Eigen::MatrixXd W, G, torque_rows;
+    Eigen::VectorXd gx;
+    std::vector<JointState> x;
+  };
+
+  // Keeps references to regressor; options must be valid (DesignOptions::IsValid).
+  DesignProblem(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+                const DesignOptions& options);
+
+  int n_dof() const { return n_; }
+  int harmonics() const { return H_; }
+  int block() const { return block_; }  // unknowns per joint, 2H + 1
+  int n_unknowns() const { return n_ * block_; }
+  int n_groups() const { return 4 * n_; }
+  int n_torque_constraints() const;
+  bool has_torque_limits() const { return n_torque_constraints() > 0; }
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<LinearRow>& rows() const { return rows_; }
+  const DesignRegressor& regressor() const { return regressor_; }
+
+  FourierSeriesTrajectory Trajectory(const Eigen::VectorXd& theta) const;
+
+  // The criterion at θ and, if grad (n_unknowns), its exact gradient. A
+  // rank-deficient W gives kRankDeficientValue and a zero gradient.
+  static constexpr double kRankDeficientValue = 1e3;
+  double Criterion(const double* theta, double* grad, Workspace* ws) const;
+
+  // A linear row's value at θ (≤ 0 is feasible) and the worst of all rows.
+  double LinearValue(const LinearRow& row, const double* theta) const;
+  double MaxLinearViolation(const double* theta) const;
+
+  // Torque constraints, one per joint with a torque limit: max over the grid
+  // of |τ_j|/τ_max − (1 − margin); if grad (n_torque_constraints × n_unknowns,
+  // row-major), its gradient at the worst sample.
+  void TorqueConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
+
+  // A seeded random start around the middle of the joint ranges, scaled to
+  // 90 % of the tightest kinematic limit (so it is feasible on the grid).
+  Eigen::VectorXd StartPoint(unsigned seed) const;
+  // Box bounds: q0 inside the joint range, coefficients within twice the
+  // velocity limit (a harmonic's velocity amplitude is √(a² + b²)).
+  void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const;
+
+ private:
+  void States(const double* theta, Workspace* ws) const;
+  // ∂(state derivative gx of sample k) → ∂θ, accumulated into g.
+  void ChainToUnknowns(size_t k, const Eigen::VectorXd& gx, double* g) const;
+  void BuildLinearRows();
+
+  const DesignRegressor& regressor_;
+  std::vector<JointLimits> limits_;
+  DesignCriterion criterion_;
+  double f0_, duration_, margin_;
+  bool rest_to_rest_;
+  std::vector<double> times_;
+  std::vector<FourierBasis> bases_;
+  std::vector<LinearRow> rows_;
+  int n_ = 0, H_ = 0, block_ = 0;
+  std::optional<DesignRegressor> torque_regressor_;  // model with all joint dynamics, when τ is limited
+};
+
+}  // namespace idbench

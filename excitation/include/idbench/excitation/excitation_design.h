@@ -1,0 +1,126 @@
+// Excitation design: the Fourier-series motion (fourier_series.h) whose
+// identification regressor W (design_regressor.h) minimises a criterion
+// (design_criterion.h) within the joints' position, velocity, acceleration
+// and torque limits.
+//
+// Unknowns, per joint j: [q0_j, a_j1..a_jH, b_j1..b_jH]. q, qd and qdd are
+// linear in them, so the kinematic limits on the sample grid are linear
+// constraints A θ ≤ b; torque limits are nonlinear (inverse dynamics). The
+// limits are tightened by `margin` during the search and the result is
+// re-checked on a fine grid (check_rate_hz) against the untightened limits.
+//
+// Several starts (seeded; start k uses seed + k) run on `threads` threads;
+// each start is deterministic, so for a given seed the design does not
+// depend on the thread count or timing (unless max_seconds cuts it short).
+// The best feasible point any start visited is the result.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/robot_model.h"
+#include "idbench/excitation/design_criterion.h"
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/excitation/fourier_series.h"
+
+namespace idbench {
+
+enum class DesignAlgorithm { kSlsqp, kMma, kCobyla, kSbplx };
+std::vector<std::string> DesignAlgorithmNames();  // "slsqp", "mma", "cobyla", "sbplx"
+std::string DesignAlgorithmName(DesignAlgorithm algorithm);
+std::optional<DesignAlgorithm> ParseDesignAlgorithm(const std::string& name);
+
+struct DesignOptions {
+  int harmonics = 5;               // H
+  double f0 = 0.1;                 // base frequency [Hz]
+  double duration = 0.0;           // [s]; 0 means one period, 1/f0
+  bool rest_to_rest = false;       // add the quintic that starts and ends at rest
+  int samples = 250;               // sample times of the criterion and the constraint grid
+  DesignCriterion criterion = DesignCriterion::kLogCond;
+  DesignAlgorithm algorithm = DesignAlgorithm::kSlsqp;
+  int starts = 2;
+  unsigned seed = 1;
+  int threads = 2;
+  int max_evaluations = 300;       // per start
+  double max_seconds = 0.0;        // whole design; 0 = no limit
+  double margin = 0.02;            // limits tightened by this fraction during the search
+  double check_rate_hz = 1000.0;   // re-check of the result
+
+  double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
+  // Checks ranges; names the bad option in *why.
+  bool IsValid(std::string* why) const;
+};
+
+// One checked constraint: the worst instant of one joint's limit.
+struct ConstraintMargin {
+  std::string quantity;  // "q_min", "q_max", "qd", "qdd", "tau"
+  int joint = 0;         // 0-based
+  double time = 0.0;     // [s] of the worst sample
+  double value = 0.0;    // q, |qd|, |qdd| or |τ| there
+  double limit = 0.0;
+  double margin = 0.0;   // limit − value (for q_min: value − limit); < 0 is a violation
+};
+
+struct FeasibilityCheck {
+  double rate_hz = 0.0;
+  std::vector<ConstraintMargin> margins;  // every joint × quantity with a finite limit
+  bool feasible() const;
+  // One line per violated constraint: "joint 2 qd: |qd| = 1.62 rad/s at t = 3.41 s
+  // exceeds the limit 1.5 rad/s by 0.12 rad/s"; "" if feasible.
+  std::string Explain() const;
+};
+
+// Checks a trajectory's q, qd, qdd and joint torque (inverse dynamics plus
+// the model's joint dynamics) against the limits at rate_hz.
+FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                       const Trajectory& trajectory, double rate_hz);
+
+// The limits of every joint must bound the motion: a finite velocity and
+// acceleration limit > 0, q_min < q_max. Throws std::invalid_argument naming
+// the joint and the limit otherwise.
+void CheckDesignLimits(const RobotModel& model, const std::vector<JointLimits>& limits);
+
+struct DesignProgress {
+  int start = 0;             // 0-based
+  int evaluations = 0;       // of this start
+  double best_value = 0.0;   // best feasible criterion of this start (inf: none yet)
+  bool feasible = false;
+};
+
+struct DesignControl {
+  const std::atomic<bool>* stop = nullptr;                       // set (e.g. on Ctrl-C) to stop early
+  std::function<void(const DesignProgress&)> progress;           // called from worker threads
+};
+
+struct DesignStartSummary {
+  double initial_value = 0.0;  // criterion at the start point (feasible by construction)
+  double best_value = 0.0;     // best feasible value visited
+  int evaluations = 0;
+  std::string status;          // NLopt's result or "stopped"
+};
+
+struct DesignResult {
+  explicit DesignResult(FourierSeriesTrajectory t) : trajectory(std::move(t)) {}
+  FourierSeriesTrajectory trajectory;
+  double initial_value = 0.0;        // criterion of the best start's initial point
+  double value = 0.0;                // criterion of the result
+  Identifiability initial, final;    // of W on the design grid
+  FeasibilityCheck check;            // at check_rate_hz
+  std::vector<DesignStartSummary> starts;
+  int evaluations = 0;               // all starts
+  double wall_seconds = 0.0;
+  bool stopped = false;              // stopped early by the control flag
+};
+
+// The sample times of the criterion and the constraint grid.
+std::vector<double> DesignSampleTimes(const DesignOptions& options);
+
+// Runs the design. Throws std::invalid_argument for invalid options or
+// limits (see above), std::runtime_error if no start found a feasible point.
+DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+                              const DesignOptions& options, const DesignControl& control = {});
+
+}  // namespace idbench

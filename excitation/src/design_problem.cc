@@ -1,0 +1,209 @@
+#include "idbench/excitation/design_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+DesignProblem::Workspace::Workspace(const DesignProblem& p)
+    : regressor(p.regressor_.model()),
+      W(p.regressor_.rows_per_sample() * static_cast<Eigen::Index>(p.times_.size()), p.regressor_.n_parameters()),
+      gx(3 * p.n_),
+      x(p.times_.size(), JointState(p.n_)) {}
+
+DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+                             const DesignOptions& options)
+    : regressor_(regressor),
+      limits_(limits),
+      criterion_(options.criterion),
+      f0_(options.f0),
+      duration_(options.period_duration()),
+      margin_(options.margin),
+      rest_to_rest_(options.rest_to_rest),
+      times_(DesignSampleTimes(options)) {
+  n_ = regressor.model().n_dof();
+  H_ = options.harmonics;
+  block_ = 2 * H_ + 1;
+  for (double t : times_) bases_.push_back(FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_));
+  BuildLinearRows();
+  if (has_torque_limits()) {
+    FrictionModel full;
+    full.viscous = full.coulomb = full.rotor_inertia = true;
+    torque_regressor_.emplace(DesignRegressor::JointTorque(regressor.model(), full));
+  }
+}
+
+int DesignProblem::n_torque_constraints() const {
+  return static_cast<int>(
+      std::count_if(limits_.begin(), limits_.end(), [](const JointLimits& l) { return std::isfinite(l.tau_max); }));
+}
+
+FourierSeriesTrajectory DesignProblem::Trajectory(const Eigen::VectorXd& theta) const {
+  Eigen::VectorXd q0(n_);
+  Eigen::MatrixXd a(n_, H_), b(n_, H_);
+  for (int j = 0; j < n_; ++j) {
+    q0[j] = theta[j * block_];
+    a.row(j) = theta.segment(j * block_ + 1, H_).transpose();
+    b.row(j) = theta.segment(j * block_ + 1 + H_, H_).transpose();
+  }
+  return FourierSeriesTrajectory(q0, a, b, f0_, duration_, rest_to_rest_);
+}
+
+double DesignProblem::LinearValue(const LinearRow& row, const double* theta) const {
+  return row.coefficients.dot(Eigen::Map<const Eigen::VectorXd>(theta + row.joint * block_, block_)) - row.rhs;
+}
+
+double DesignProblem::MaxLinearViolation(const double* theta) const {
+  double worst = -kInf;
+  for (const LinearRow& row : rows_) worst = std::max(worst, LinearValue(row, theta));
+  return worst;
+}
+
+void DesignProblem::States(const double* theta, Workspace* ws) const {
+  for (size_t k = 0; k < times_.size(); ++k) {
+    JointState& x = ws->x[k];
+    for (int j = 0; j < n_; ++j) {
+      const Eigen::Map<const Eigen::VectorXd> c(theta + j * block_ + 1, 2 * H_);
+      x.q[j] = theta[j * block_] + bases_[k].q.dot(c);
+      x.qd[j] = bases_[k].qd.dot(c);
+      x.qdd[j] = bases_[k].qdd.dot(c);
+    }
+  }
+}
+
+void DesignProblem::ChainToUnknowns(size_t k, const Eigen::VectorXd& gx, double* g) const {
+  for (int j = 0; j < n_; ++j) {
+    g[j * block_] += gx[j];
+    Eigen::Map<Eigen::VectorXd>(g + j * block_ + 1, 2 * H_) +=
+        gx[j] * bases_[k].q + gx[n_ + j] * bases_[k].qd + gx[2 * n_ + j] * bases_[k].qdd;
+  }
+}
+
+double DesignProblem::Criterion(const double* theta, double* grad, Workspace* ws) const {
+  States(theta, ws);
+  const int r = regressor_.rows_per_sample();
+  for (size_t k = 0; k < times_.size(); ++k) {
+    regressor_.Rows(ws->x[k], &ws->regressor, ws->W.middleRows(r * static_cast<Eigen::Index>(k), r));
+  }
+  const double c = EvaluateDesignCriterion(criterion_, ws->W, grad ? &ws->G : nullptr);
+  if (grad) std::fill(grad, grad + n_unknowns(), 0.0);
+  if (!std::isfinite(c)) return kRankDeficientValue;
+  if (!grad) return c;
+  for (size_t k = 0; k < times_.size(); ++k) {
+    regressor_.StateGradient(ws->x[k], ws->G.middleRows(r * static_cast<Eigen::Index>(k), r), &ws->regressor,
+                             ws->gx);
+    ChainToUnknowns(k, ws->gx, grad);
+  }
+  return c;
+}
+
+void DesignProblem::TorqueConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
+  States(theta, ws);
+  const DesignRegressor& tr = *torque_regressor_;
+  Eigen::MatrixXd& rows = ws->torque_rows;
+  rows.resize(n_, tr.n_parameters());
+  Eigen::VectorXd worst = Eigen::VectorXd::Constant(n_, -kInf), sign = Eigen::VectorXd::Ones(n_);
+  std::vector<size_t> at(static_cast<size_t>(n_), 0);
+  for (size_t k = 0; k < times_.size(); ++k) {
+    tr.Rows(ws->x[k], &ws->regressor, rows);
+    const Eigen::VectorXd tau = rows * tr.true_parameters();
+    for (int j = 0; j < n_; ++j) {
+      if (std::abs(tau[j]) > worst[j]) {
+        worst[j] = std::abs(tau[j]);
+        sign[j] = tau[j] >= 0.0 ? 1.0 : -1.0;
+        at[static_cast<size_t>(j)] = k;
+      }
+    }
+  }
+  int m = 0;
+  for (int j = 0; j < n_; ++j) {
+    const double tau_max = limits_[static_cast<size_t>(j)].tau_max;
+    if (!std::isfinite(tau_max)) continue;
+    result[m] = worst[j] / tau_max - (1.0 - margin_);
+    if (grad) {
+      // ∂|τ_j|/∂x at the worst sample: ⟨G, Rows⟩ with G = sign e_j βᵀ / τ_max.
+      const size_t k = at[static_cast<size_t>(j)];
+      Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n_, tr.n_parameters());
+      G.row(j) = sign[j] / tau_max * tr.true_parameters().transpose();
+      tr.StateGradient(ws->x[k], G, &ws->regressor, ws->gx);
+      double* g = grad + static_cast<size_t>(m) * static_cast<size_t>(n_unknowns());
+      std::fill(g, g + n_unknowns(), 0.0);
+      ChainToUnknowns(k, ws->gx, g);
+    }
+    ++m;
+  }
+}
+
+Eigen::VectorXd DesignProblem::StartPoint(unsigned seed) const {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(n_unknowns());
+  for (int j = 0; j < n_; ++j) {
+    const JointLimits& l = limits_[static_cast<size_t>(j)];
+    theta[j * block_] = std::isfinite(l.q_min) && std::isfinite(l.q_max) ? 0.5 * (l.q_min + l.q_max) : 0.0;
+    for (int h = 0; h < H_; ++h) {
+      theta[j * block_ + 1 + h] = normal(rng) / (h + 1);
+      theta[j * block_ + 1 + H_ + h] = normal(rng) / (h + 1);
+    }
+  }
+  // Each row is affine in the scale s of the coefficients: s (c·coef) + c₀ q0 ≤ rhs.
+  double scale = kInf;
+  for (const LinearRow& row : rows_) {
+    const Eigen::VectorXd block = theta.segment(row.joint * block_, block_);
+    const double offset = row.coefficients[0] * block[0];
+    const double slope = row.coefficients.tail(2 * H_).dot(block.tail(2 * H_));
+    if (slope > 0.0) scale = std::min(scale, (row.rhs - offset) / slope);
+  }
+  for (int j = 0; j < n_; ++j) theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * scale;
+  return theta;
+}
+
+void DesignProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {
+  *lower = Eigen::VectorXd(n_unknowns());
+  *upper = Eigen::VectorXd(n_unknowns());
+  for (int j = 0; j < n_; ++j) {
+    const JointLimits& l = limits_[static_cast<size_t>(j)];
+    (*lower)[j * block_] = std::isfinite(l.q_min) ? l.q_min : -1e3;
+    (*upper)[j * block_] = std::isfinite(l.q_max) ? l.q_max : 1e3;
+    lower->segment(j * block_ + 1, 2 * H_).setConstant(-2.0 * l.qd_max);
+    upper->segment(j * block_ + 1, 2 * H_).setConstant(2.0 * l.qd_max);
+  }
+}
+
+void DesignProblem::BuildLinearRows() {
+  const double m = margin_;
+  for (int j = 0; j < n_; ++j) {
+    const JointLimits& l = limits_[static_cast<size_t>(j)];
+    const double range = l.q_max - l.q_min;
+    for (const FourierBasis& w : bases_) {
+      auto add = [&](int quantity, double sign, double offset_coefficient, const Eigen::VectorXd& weights,
+                     double limit, double scale) {
+        LinearRow row;
+        row.joint = j;
+        row.group = 4 * j + quantity;
+        row.coefficients.resize(block_);
+        row.coefficients[0] = sign * offset_coefficient / scale;
+        row.coefficients.tail(2 * H_) = sign * weights / scale;
+        row.rhs = limit / scale;
+        rows_.push_back(std::move(row));
+      };
+      if (std::isfinite(range)) {
+        add(0, 1.0, 1.0, w.q, l.q_max - m * range, range);
+        add(3, -1.0, 1.0, w.q, -(l.q_min + m * range), range);
+      }
+      add(1, 1.0, 0.0, w.qd, (1 - m) * l.qd_max, l.qd_max);
+      add(1, -1.0, 0.0, w.qd, (1 - m) * l.qd_max, l.qd_max);
+      add(2, 1.0, 0.0, w.qdd, (1 - m) * l.qdd_max, l.qdd_max);
+      add(2, -1.0, 0.0, w.qdd, (1 - m) * l.qdd_max, l.qdd_max);
+    }
+  }
+}
+
+}  // namespace idbench

@@ -1,0 +1,370 @@
+#include "idbench/excitation/excitation_design.h"
+
+#include <nlopt.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <random>
+#include <stdexcept>
+#include <thread>
+
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/excitation/design_problem.h"
+
+namespace idbench {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kFeasibilityTolerance = 1e-9;  // of a normalised constraint
+
+std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  return buf;
+}
+
+// One start of the optimizer: NLopt callbacks and the best feasible point.
+struct StartRun {
+  const DesignProblem* problem = nullptr;
+  const DesignOptions* options = nullptr;
+  const DesignControl* control = nullptr;
+  int index = 0;
+  std::optional<DesignProblem::Workspace> ws;
+  nlopt_opt opt = nullptr;
+  int evaluations = 0;
+  double best_value = kInf;
+  Eigen::VectorXd best_theta;
+  std::vector<double> torque_values;
+
+  bool Feasible(const double* theta) {
+    if (problem->MaxLinearViolation(theta) > kFeasibilityTolerance) return false;
+    if (!problem->has_torque_limits()) return true;
+    torque_values.resize(static_cast<size_t>(problem->n_torque_constraints()));
+    problem->TorqueConstraints(theta, torque_values.data(), nullptr, &*ws);
+    return *std::max_element(torque_values.begin(), torque_values.end()) <= kFeasibilityTolerance;
+  }
+
+  // Penalty for the unconstrained (SBPLX) form: squared normalised violations.
+  double Penalty(const double* theta) {
+    double p = 0.0;
+    for (const LinearRow& row : problem->rows()) {
+      const double v = problem->LinearValue(row, theta);
+      if (v > 0.0) p += v * v;
+    }
+    if (problem->has_torque_limits()) {
+      torque_values.resize(static_cast<size_t>(problem->n_torque_constraints()));
+      problem->TorqueConstraints(theta, torque_values.data(), nullptr, &*ws);
+      for (double v : torque_values) p += v > 0.0 ? v * v : 0.0;
+    }
+    return 1e4 * p;
+  }
+
+  double Objective(const double* theta, double* grad) {
+    ++evaluations;
+    if (control->stop && control->stop->load()) nlopt_force_stop(opt);
+    const double c = problem->Criterion(theta, grad, &*ws);
+    const bool feasible = Feasible(theta);
+    if (feasible && c < best_value) {
+      best_value = c;
+      best_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
+    }
+    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, feasible});
+    if (options->algorithm == DesignAlgorithm::kSbplx) return c + Penalty(theta);
+    return c;
+  }
+
+  static double NloptObjective(unsigned, const double* x, double* grad, void* data) {
+    return static_cast<StartRun*>(data)->Objective(x, grad);
+  }
+
+  // All grid rows (gradient-based methods).
+  static void NloptLinear(unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
+    const auto* self = static_cast<StartRun*>(data);
+    const DesignProblem& p = *self->problem;
+    if (grad) std::fill(grad, grad + static_cast<size_t>(m) * n, 0.0);
+    for (unsigned i = 0; i < m; ++i) {
+      const LinearRow& row = p.rows()[i];
+      result[i] = p.LinearValue(row, x);
+      if (grad) {
+        std::copy(row.coefficients.data(), row.coefficients.data() + p.block(),
+                  grad + static_cast<size_t>(i) * n + static_cast<size_t>(row.joint * p.block()));
+      }
+    }
+  }
+
+  // One constraint per joint × quantity: the worst grid row (COBYLA, MMA),
+  // with that row's gradient.
+  static void NloptGrouped(unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
+    const auto* self = static_cast<StartRun*>(data);
+    const DesignProblem& p = *self->problem;
+    std::fill(result, result + m, -kInf);
+    std::vector<const LinearRow*> worst(m, nullptr);
+    for (const LinearRow& row : p.rows()) {
+      const double v = p.LinearValue(row, x);
+      if (v > result[row.group]) result[row.group] = v, worst[static_cast<size_t>(row.group)] = &row;
+    }
+    if (!grad) return;
+    std::fill(grad, grad + static_cast<size_t>(m) * n, 0.0);
+    for (unsigned i = 0; i < m; ++i) {
+      if (const LinearRow* row = worst[i]) {
+        std::copy(row->coefficients.data(), row->coefficients.data() + p.block(),
+                  grad + static_cast<size_t>(i) * n + static_cast<size_t>(row->joint * p.block()));
+      } else {
+        result[i] = -1.0;  // a joint without position limits
+      }
+    }
+  }
+
+  static void NloptTorque(unsigned, double* result, unsigned, const double* x, double* grad, void* data) {
+    auto* self = static_cast<StartRun*>(data);
+    self->problem->TorqueConstraints(x, result, grad, &*self->ws);
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> DesignAlgorithmNames() { return {"slsqp", "mma", "cobyla", "sbplx"}; }
+std::string DesignAlgorithmName(DesignAlgorithm algorithm) {
+  return DesignAlgorithmNames()[static_cast<size_t>(algorithm)];
+}
+std::optional<DesignAlgorithm> ParseDesignAlgorithm(const std::string& name) {
+  const std::vector<std::string> names = DesignAlgorithmNames();
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<DesignAlgorithm>(i);
+  }
+  return std::nullopt;
+}
+
+bool DesignOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (harmonics < 1 || harmonics > 50) return fail("--harmonics must be in 1..50, got " + std::to_string(harmonics));
+  if (!(f0 > 0.0) || !(f0 <= 100.0)) return fail(Format("--f0 must be in (0, 100] Hz, got %g", f0));
+  if (!(duration >= 0.0) || !std::isfinite(duration)) return fail(Format("--duration must be >= 0 s, got %g", duration));
+  const double top = f0 * harmonics * period_duration();  // periods of the top harmonic
+  if (samples < 8 * top) {
+    return fail(Format("--samples must be at least %g (8 per period of the highest harmonic, %g Hz), got %g",
+                       std::ceil(8 * top), f0 * harmonics, samples));
+  }
+  if (starts < 1) return fail("--starts must be >= 1, got " + std::to_string(starts));
+  if (threads < 1) return fail("--threads must be >= 1, got " + std::to_string(threads));
+  if (max_evaluations < 1) return fail("--max-evaluations must be >= 1");
+  if (!(max_seconds >= 0.0)) return fail("--max-time must be >= 0");
+  if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
+  if (!(check_rate_hz > 0.0)) return fail("the check rate must be > 0 Hz");
+  return true;
+}
+
+std::vector<double> DesignSampleTimes(const DesignOptions& options) {
+  const double T = options.period_duration();
+  const int N = options.samples;
+  std::vector<double> times(static_cast<size_t>(N));
+  // A periodic motion is sampled on [0, T) (T repeats 0); rest-to-rest on [0, T].
+  const double dt = options.rest_to_rest ? T / (N - 1) : T / N;
+  for (int k = 0; k < N; ++k) times[static_cast<size_t>(k)] = k * dt;
+  return times;
+}
+
+void CheckDesignLimits(const RobotModel& model, const std::vector<JointLimits>& limits) {
+  if (static_cast<int>(limits.size()) != model.n_dof()) {
+    throw std::invalid_argument("limits: expected " + std::to_string(model.n_dof()) + " joints, got " +
+                                std::to_string(limits.size()));
+  }
+  for (int j = 0; j < model.n_dof(); ++j) {
+    const JointLimits& l = limits[static_cast<size_t>(j)];
+    const std::string who = "joint " + std::to_string(j + 1) + " ('" + model.link(j).joint_name + "')";
+    if (!(l.qd_max > 0.0) || !std::isfinite(l.qd_max)) {
+      throw std::invalid_argument(who + ": the velocity limit qd_max must be finite and > 0, got " +
+                                  Format("%g", l.qd_max) + " (give it in --limits)");
+    }
+    if (!(l.qdd_max > 0.0) || !std::isfinite(l.qdd_max)) {
+      throw std::invalid_argument(who + ": the acceleration limit qdd_max must be finite and > 0, got " +
+                                  Format("%g", l.qdd_max) + " (give it in --limits)");
+    }
+    if (!(l.q_min < l.q_max)) {
+      throw std::invalid_argument(who + Format(": q_min = %g must be below q_max = %g rad", l.q_min, l.q_max));
+    }
+    if (!(l.tau_max > 0.0)) throw std::invalid_argument(who + Format(": tau_max must be > 0, got %g", l.tau_max));
+  }
+}
+
+bool FeasibilityCheck::feasible() const {
+  return std::all_of(margins.begin(), margins.end(), [](const ConstraintMargin& m) { return m.margin >= 0.0; });
+}
+
+std::string FeasibilityCheck::Explain() const {
+  std::string out;
+  for (const ConstraintMargin& m : margins) {
+    if (m.margin >= 0.0) continue;
+    const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
+    const bool lower = m.quantity == "q_min";
+    out += "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
+           (m.quantity == "q_min" || m.quantity == "q_max" ? "q" : "|" + m.quantity + "|") +
+           Format(" = %.6g", m.value) + " " + unit + Format(" at t = %.4g s ", m.time) +
+           (lower ? "is below" : "exceeds") + Format(" the limit %.6g ", m.limit) + unit +
+           Format(" by %.3g ", -m.margin) + unit + "\n";
+  }
+  return out;
+}
+
+FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                       const Trajectory& trajectory, double rate_hz) {
+  const int n = model.n_dof();
+  FeasibilityCheck check;
+  check.rate_hz = rate_hz;
+  const char* names[5] = {"q_min", "q_max", "qd", "qdd", "tau"};
+  auto limit_of = [&](int j, int i) {
+    const JointLimits& l = limits[static_cast<size_t>(j)];
+    const double values[5] = {l.q_min, l.q_max, l.qd_max, l.qdd_max, l.tau_max};
+    return values[i];
+  };
+  std::vector<ConstraintMargin> worst;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < 5; ++i) {
+      ConstraintMargin m;
+      m.quantity = names[i];
+      m.joint = j;
+      m.limit = limit_of(j, i);
+      m.margin = kInf;
+      worst.push_back(m);
+    }
+  }
+  RobotData data(model);
+  JointState x(n);
+  const long steps = static_cast<long>(std::floor(trajectory.duration() * rate_hz + 1e-9));
+  for (long k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / rate_hz;
+    trajectory.Evaluate(t, &x);
+    Eigen::VectorXd tau = InverseDynamics(model, x.q, x.qd, x.qdd, &data);
+    AddJointDynamicsTorque(model, x.qd, x.qdd, &tau);
+    for (int j = 0; j < n; ++j) {
+      const double values[5] = {x.q[j], x.q[j], std::abs(x.qd[j]), std::abs(x.qdd[j]), std::abs(tau[j])};
+      for (int i = 0; i < 5; ++i) {
+        ConstraintMargin& w = worst[static_cast<size_t>(5 * j + i)];
+        const double margin = i == 0 ? values[i] - w.limit : w.limit - values[i];
+        if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
+      }
+    }
+  }
+  for (const ConstraintMargin& m : worst) {
+    if (std::isfinite(m.limit)) check.margins.push_back(m);
+  }
+  return check;
+}
+
+DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+                              const DesignOptions& options, const DesignControl& control) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  CheckDesignLimits(regressor.model(), limits);
+  const auto t_begin = std::chrono::steady_clock::now();
+  const DesignProblem problem(regressor, limits, options);
+  const int n_theta = problem.n_unknowns();
+  Eigen::VectorXd lower, upper;
+  problem.Bounds(&lower, &upper);
+
+  std::vector<StartRun> runs(static_cast<size_t>(options.starts));
+  std::vector<DesignStartSummary> summaries(runs.size());
+  std::atomic<int> next{0};
+  auto worker = [&]() {
+    for (int s = next++; s < options.starts; s = next++) {
+      StartRun& run = runs[static_cast<size_t>(s)];
+      run.problem = &problem;
+      run.options = &options;
+      run.control = &control;
+      run.index = s;
+      run.ws.emplace(problem);
+      Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s));
+      DesignStartSummary& summary = summaries[static_cast<size_t>(s)];
+      summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
+      run.best_value = kInf;
+      if (run.Feasible(theta.data())) run.best_value = summary.initial_value, run.best_theta = theta;
+
+      const nlopt_algorithm algorithm = options.algorithm == DesignAlgorithm::kSlsqp  ? NLOPT_LD_SLSQP
+                                        : options.algorithm == DesignAlgorithm::kMma  ? NLOPT_LD_MMA
+                                        : options.algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
+                                                                                       : NLOPT_LN_SBPLX;
+      run.opt = nlopt_create(algorithm, static_cast<unsigned>(n_theta));
+      nlopt_set_min_objective(run.opt, &StartRun::NloptObjective, &run);
+      nlopt_set_lower_bounds(run.opt, lower.data());
+      nlopt_set_upper_bounds(run.opt, upper.data());
+      const bool gradient_based = algorithm == NLOPT_LD_SLSQP || algorithm == NLOPT_LD_MMA;
+      // SLSQP takes every grid row (measured: with one max-row per limit it
+      // stalls at cond 170 where all rows reach 42 for puma560); MMA's dual
+      // is too slow with thousands of rows, so it and COBYLA take the max.
+      if (algorithm == NLOPT_LD_SLSQP) {
+        const std::vector<double> tol(problem.rows().size(), 1e-10);
+        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptLinear, &run,
+                                         tol.data());
+      } else if (algorithm != NLOPT_LN_SBPLX) {
+        const std::vector<double> tol(static_cast<size_t>(problem.n_groups()), 1e-10);
+        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptGrouped, &run,
+                                         tol.data());
+      }
+      if (problem.has_torque_limits() && algorithm != NLOPT_LN_SBPLX) {
+        const std::vector<double> tol(static_cast<size_t>(problem.n_torque_constraints()), 1e-10);
+        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptTorque, &run,
+                                         tol.data());
+      }
+      if (!gradient_based) {
+        // A first step of 10 % of each unknown's box (COBYLA's and SBPLX's scale).
+        const Eigen::VectorXd step = 0.1 * (upper - lower).cwiseMin(2.0 * theta.cwiseAbs().cwiseMax(1e-2));
+        nlopt_set_initial_step(run.opt, step.data());
+      }
+      nlopt_set_maxeval(run.opt, options.max_evaluations);
+      nlopt_set_ftol_rel(run.opt, 1e-10);
+      nlopt_set_xtol_rel(run.opt, 1e-10);
+      if (options.max_seconds > 0.0) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+        nlopt_set_maxtime(run.opt, std::max(1e-3, options.max_seconds - elapsed));
+      }
+      double value = 0.0;
+      const nlopt_result result = nlopt_optimize(run.opt, theta.data(), &value);
+      nlopt_destroy(run.opt);
+      summary.best_value = run.best_value;
+      summary.evaluations = run.evaluations;
+      summary.status = result == NLOPT_FORCED_STOP ? "stopped" : nlopt_result_to_string(result);
+    }
+  };
+  std::vector<std::thread> pool;
+  const int n_threads = std::min(options.threads, options.starts);
+  for (int i = 1; i < n_threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+
+  // The best feasible start; ties go to the lower index (deterministic).
+  int best = -1;
+  for (int s = 0; s < options.starts; ++s) {
+    const StartRun& run = runs[static_cast<size_t>(s)];
+    if (run.best_theta.size() > 0 && (best < 0 || run.best_value < runs[static_cast<size_t>(best)].best_value)) {
+      best = s;
+    }
+  }
+  if (best < 0) {
+    throw std::runtime_error("no feasible design: no start satisfied the limits (tightened by the margin " +
+                             Format("%g", options.margin) + ") on the sample grid");
+  }
+  const StartRun& winner = runs[static_cast<size_t>(best)];
+  DesignResult result(problem.Trajectory(winner.best_theta));
+  result.starts = summaries;
+  for (const DesignStartSummary& s : summaries) result.evaluations += s.evaluations;
+  result.initial_value = summaries[static_cast<size_t>(best)].initial_value;
+  result.value = winner.best_value;
+  const std::vector<double> times = DesignSampleTimes(options);
+  result.initial = ComputeIdentifiability(
+      regressor.Stack(problem.Trajectory(problem.StartPoint(options.seed + static_cast<unsigned>(best))), times));
+  result.final = ComputeIdentifiability(regressor.Stack(result.trajectory, times));
+  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.trajectory, options.check_rate_hz);
+  result.stopped = control.stop && control.stop->load();
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  return result;
+}
+
+}  // namespace idbench

@@ -1,0 +1,40 @@
+// What the renderer draws: coloured primitives posed in the world frame W,
+// built from a robot model at one joint configuration. Plain data, no GL.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "idbench/engine/kinematics.h"
+#include "idbench/engine/robot_model.h"
+
+namespace idbench {
+
+struct ScenePrimitive {
+  Shape::Kind kind = Shape::Kind::kCylinder;
+  // As Shape::size: cylinder (r, r, length) along z of G; box edges; sphere (r, r, r) [m].
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();  // primitive frame G in W
+  Eigen::Vector3f color = Eigen::Vector3f::Ones();         // linear RGB in [0, 1]
+};
+
+struct Scene {
+  std::vector<ScenePrimitive> primitives;
+
+  // Corners of every primitive's bounding box in W (8 per primitive) [m]:
+  // what a camera must keep in view.
+  std::vector<Eigen::Vector3d> BoundingPoints() const;
+};
+
+// Link colours: saturated, distinct for neighbours, cycling.
+Eigen::Vector3f LinkColor(int link);
+
+// The robot at the pose in `data` (ComputeKinematics done): every link's
+// shapes in its colour, and a dark marker at every hinge: a pin along the
+// axis sticking out of both links, or a collar when the axis runs along the
+// link (so it would hide inside a pin); a grey pedestal under a base joint
+// that sits above the ground z = 0.
+Scene BuildRobotScene(const RobotModel& model, const RobotData& data);
+
+}  // namespace idbench

@@ -1,0 +1,65 @@
+// Excitation design speed: one criterion evaluation (and with its gradient)
+// for puma560's base regressor, 250 samples × 6 joints × 48 parameters, and
+// the whole design of issue 3's acceptance case.
+#include <benchmark/benchmark.h>
+
+#include "idbench/engine/puma560.h"
+#include "idbench/excitation/design_problem.h"
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+namespace {
+
+// puma560, Fv + Fc, H = 5, f0 = 0.1 Hz, 250 samples, the issue's limits.
+struct PumaDesignCase {
+  RobotModel model = MakePuma560();
+  DesignRegressor regressor = DesignRegressor::JointTorque(model, Friction());
+  std::vector<JointLimits> limits = Limits(model);
+  DesignOptions options;
+
+  static FrictionModel Friction() {
+    FrictionModel f;
+    f.viscous = f.coulomb = true;
+    return f;
+  }
+  static std::vector<JointLimits> Limits(const RobotModel& model) {
+    const double qd[6] = {1.5, 1.5, 1.5, 3, 3, 3}, qdd[6] = {4, 4, 4, 8, 8, 8};
+    std::vector<JointLimits> limits;
+    for (int j = 0; j < 6; ++j) {
+      limits.push_back(model.link(j).limits);
+      limits.back().qd_max = qd[j];
+      limits.back().qdd_max = qdd[j];
+    }
+    return limits;
+  }
+};
+
+void BenchmarkCriterion(benchmark::State& state, bool gradient) {
+  const PumaDesignCase c;
+  const DesignProblem problem(c.regressor, c.limits, c.options);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(1);
+  Eigen::VectorXd grad(problem.n_unknowns());
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(problem.Criterion(theta.data(), gradient ? grad.data() : nullptr, &ws));
+  }
+  state.counters["parameters"] = c.regressor.n_parameters();
+}
+void BM_DesignCriterionPuma560(benchmark::State& state) { BenchmarkCriterion(state, false); }
+BENCHMARK(BM_DesignCriterionPuma560)->Unit(benchmark::kMillisecond);
+void BM_DesignCriterionGradientPuma560(benchmark::State& state) { BenchmarkCriterion(state, true); }
+BENCHMARK(BM_DesignCriterionGradientPuma560)->Unit(benchmark::kMillisecond);
+
+// The whole design with the default options (as `idbench design` runs it).
+void BM_DesignPuma560(benchmark::State& state) {
+  const PumaDesignCase c;
+  double cond = 0.0;
+  for (auto _ : state) cond = DesignExcitation(c.regressor, c.limits, c.options).final.cond;
+  state.counters["cond"] = cond;
+}
+BENCHMARK(BM_DesignPuma560)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+}  // namespace
+}  // namespace idbench
+
+BENCHMARK_MAIN();

@@ -1,0 +1,133 @@
+#include "idbench/excitation/design_problem.h"
+
+#include <gtest/gtest.h>
+
+#include "excitation/design_test_util.h"
+
+#include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+namespace {
+
+DesignOptions SmallOptions(bool rest_to_rest) {
+  DesignOptions o;
+  o.harmonics = 2;
+  o.f0 = 0.25;
+  o.samples = 40;
+  o.rest_to_rest = rest_to_rest;
+  return o;
+}
+
+// The criterion's exact gradient in θ (dσ_i = u_iᵀ dW v_i, dual-number state
+// derivatives, Fourier chain rule) against central differences.
+void ExpectGradientMatchesFiniteDifferences(const DesignProblem& problem, unsigned seed) {
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(seed);
+  Eigen::VectorXd grad(problem.n_unknowns()), fd(problem.n_unknowns());
+  const double c = problem.Criterion(theta.data(), grad.data(), &ws);
+  ASSERT_LT(c, DesignProblem::kRankDeficientValue);
+  for (int i = 0; i < problem.n_unknowns(); ++i) {
+    const double h = 1e-6 * std::max(1.0, std::abs(theta[i]));
+    Eigen::VectorXd tp = theta, tm = theta;
+    tp[i] += h;
+    tm[i] -= h;
+    fd[i] = (problem.Criterion(tp.data(), nullptr, &ws) - problem.Criterion(tm.data(), nullptr, &ws)) / (2 * h);
+  }
+  EXPECT_LT((grad - fd).norm(), 1e-5 * fd.norm()) << "analytic " << grad.transpose() << "\nfd " << fd.transpose();
+}
+
+TEST(DesignProblemTest, JointTorqueGradientMatchesFiniteDifferences) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  for (DesignCriterion c : {DesignCriterion::kLogCond, DesignCriterion::kLogCondNormalised,
+                            DesignCriterion::kLogDet, DesignCriterion::kHybrid}) {
+    DesignOptions o = SmallOptions(false);
+    o.criterion = c;
+    SCOPED_TRACE(DesignCriterionName(c));
+    ExpectGradientMatchesFiniteDifferences(DesignProblem(r, testing::DesignLimits(model, 1.5, 4.0), o), 3);
+  }
+}
+
+TEST(DesignProblemTest, PerBodyRestToRestGradientMatchesFiniteDifferences) {
+  const RobotModel model = MakePaper6r();
+  const DesignRegressor r = DesignRegressor::PerBody(model);
+  DesignOptions o = SmallOptions(true);
+  o.criterion = DesignCriterion::kLogCondNormalised;
+  ExpectGradientMatchesFiniteDifferences(DesignProblem(r, testing::DesignLimits(model, 1.0, 3.0), o), 4);
+}
+
+// The linear rows are the trajectory's own q, qd, qdd at the grid times (an
+// independent evaluation through FourierSeriesTrajectory), normalised.
+TEST(DesignProblemTest, LinearRowsAreTheMotionAgainstItsLimits) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  DesignOptions o = SmallOptions(true);
+  const std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  const DesignProblem problem(r, limits, o);
+  const Eigen::VectorXd theta = problem.StartPoint(7);
+  const FourierSeriesTrajectory trajectory = problem.Trajectory(theta);
+  const std::vector<double>& times = problem.times();
+  ASSERT_EQ(problem.rows().size(), times.size() * 6 * 6);
+  double worst = -1e9;
+  size_t i = 0;
+  for (int j = 0; j < 6; ++j) {
+    const JointLimits& l = limits[static_cast<size_t>(j)];
+    const double range = l.q_max - l.q_min;
+    for (double t : times) {
+      const JointState x = trajectory.At(t);
+      const double expected[6] = {(x.q[j] - (l.q_max - o.margin * range)) / range,
+                                  (-x.q[j] + (l.q_min + o.margin * range)) / range,
+                                  x.qd[j] / l.qd_max - (1 - o.margin),
+                                  -x.qd[j] / l.qd_max - (1 - o.margin),
+                                  x.qdd[j] / l.qdd_max - (1 - o.margin),
+                                  -x.qdd[j] / l.qdd_max - (1 - o.margin)};
+      for (double e : expected) {
+        EXPECT_NEAR(problem.LinearValue(problem.rows()[i++], theta.data()), e, 1e-12);
+        worst = std::max(worst, e);
+      }
+    }
+  }
+  // The start point is feasible with its tightest limit at 90 %.
+  EXPECT_LE(problem.MaxLinearViolation(theta.data()), 1e-12);
+  EXPECT_GT(worst, -0.2);
+}
+
+// Torque constraints: value against the inverse dynamics at the grid, gradient
+// against central differences.
+TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  limits[1].tau_max = 80.0;
+  limits[2].tau_max = 40.0;
+  const DesignProblem problem(r, limits, SmallOptions(false));
+  ASSERT_EQ(problem.n_torque_constraints(), 2);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(5);
+  double value[2], grad[2 * 200];
+  ASSERT_LE(problem.n_unknowns(), 200);
+  problem.TorqueConstraints(theta.data(), value, grad, &ws);
+  for (int m = 0; m < 2; ++m) {
+    for (int i = 0; i < problem.n_unknowns(); ++i) {
+      const double h = 1e-6;
+      Eigen::VectorXd tp = theta, tm = theta;
+      tp[i] += h;
+      tm[i] -= h;
+      double vp[2], vm[2];
+      problem.TorqueConstraints(tp.data(), vp, nullptr, &ws);
+      problem.TorqueConstraints(tm.data(), vm, nullptr, &ws);
+      EXPECT_NEAR(grad[m * problem.n_unknowns() + i], (vp[m] - vm[m]) / (2 * h), 1e-6) << m << " " << i;
+    }
+  }
+  const FeasibilityCheck check = CheckTrajectoryLimits(model, limits, problem.Trajectory(theta), 1.0 / 0.1);
+  for (const ConstraintMargin& c : check.margins) {
+    if (c.quantity == "tau" && c.joint == 1) {
+      EXPECT_NEAR(1.0 - c.value / 80.0 - 0.02, -value[0], 1e-9);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace idbench

@@ -1,0 +1,58 @@
+// `idbench design`: an excitation trajectory for a robot and identification
+// model, optimised within its limits (excitation_design.h). Writes
+// trajectory.json (coefficients), trajectory.csv (samples at the controller
+// rate) and design.json (criterion before and after, identifiability,
+// 1 kHz constraint margins, starts, evaluations, wall time).
+#pragma once
+
+#include <atomic>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+
+struct DesignCommandOptions {
+  std::string robot = "puma560";                     // built-in name or URDF path
+  std::string model = "torque";                      // torque | per-body
+  std::vector<std::string> friction{"viscous", "coulomb"};  // joint-torque model's friction terms
+  std::string criterion;                             // "" = cond (torque), cond-normalised (per-body)
+  std::string algorithm = "slsqp";
+  std::string limits;                                // limits JSON (optional)
+  DesignOptions design;
+  double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate
+  bool quiet = false;                                // no progress on stderr
+  std::string out_dir = "out/design";
+  std::string command_line;                          // recorded in design.json
+
+  // Checks the options alone (not the robot); *why names the bad one.
+  bool IsValid(std::string* why) const;
+  // The regressor of the chosen identification model.
+  DesignRegressor MakeRegressor(const RobotModel& model) const;
+  // design with criterion and algorithm parsed.
+  DesignOptions Resolved() const;
+};
+
+struct DesignCommandReport {
+  std::vector<JointLimits> limits;   // as used
+  DesignResult result;
+  std::vector<std::string> parameter_names;
+};
+
+// Runs the design; progress lines on stderr unless quiet; `stop` ends it
+// early with the best feasible design so far. Throws std::invalid_argument for
+// bad limits or files, std::runtime_error when nothing feasible was found.
+DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
+                              const std::atomic<bool>* stop);
+
+std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report);
+std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                             const DesignCommandReport& report);
+
+// cond, cond_normalised, log_det, sigma_min, sigma_max, rank (shared with compare).
+nlohmann::json IdentifiabilityJson(const Identifiability& id);
+
+}  // namespace idbench

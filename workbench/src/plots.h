@@ -1,0 +1,79 @@
+// The workbench's plots, built from experiment results (drawn by
+// idbench/render/plot.h): joint signals over time, identified versus true
+// parameters, singular-value spectra, and a comparison of motions.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/measurements.h"
+#include "idbench/ident/per_body_identifier.h"
+#include "idbench/render/plot.h"
+
+namespace idbench {
+
+// Joint signals sampled for plotting: rows are samples, columns joints.
+struct JointSignals {
+  std::vector<double> t;  // [s] (n_samples)
+  Eigen::MatrixXd q;      // [rad]
+  Eigen::MatrixXd qd;     // [rad/s]
+  Eigen::MatrixXd qdd;    // [rad/s²]
+  Eigen::MatrixXd tau;    // [N m]
+};
+
+// Every k-th sample so that at most max_samples remain.
+JointSignals SignalsOf(const SimulationLog& log, int max_samples = 2000);
+JointSignals SignalsOf(const JointLog& log, int max_samples = 2000);
+
+// q, qd, qdd and τ over time, one axes each, one line per joint.
+PlotFigure JointSignalsPlot(const JointSignals& signals);
+
+// One parameter: its true (or reference) value, the estimate and its
+// uncertainty (σ, or the error when there is no σ); NaN estimate = not identified.
+struct ParameterEstimate {
+  std::string name;
+  double reference = 0.0;
+  double estimate = 0.0;
+  double error_bar = 0.0;
+};
+
+// Reference and estimate per parameter, the estimate with ± error bars; a log
+// axis when every value is positive.
+PlotFigure ParameterPlot(const std::string& title, const std::string& reference_label,
+                         const std::vector<ParameterEstimate>& parameters);
+
+// The per-body run's parameters (true vs identified, error bars = |error|).
+std::vector<ParameterEstimate> RunParameterEstimates(const PerBodyIdentificationResult& result);
+
+// Singular values of one or more column-normalised regressors, largest first,
+// on a log axis (zeros are left out: they are the unidentifiable directions).
+struct Spectrum {
+  std::string label;
+  Eigen::VectorXd singular_values;
+};
+PlotFigure SpectrumPlot(const std::string& title, const std::vector<Spectrum>& spectra);
+
+// Singular values of A with every column scaled to unit norm; columns below
+// 1e-9 of the largest norm count as zero.
+Eigen::VectorXd NormalizedSingularValues(const Eigen::MatrixXd& A);
+
+// The Euler (inertia) block of every body, stacked over the samples of a run:
+// the matrix whose conditioning decides J11, J22, J33.
+std::vector<Spectrum> RunEulerSpectra(const RobotModel& model, const SimulationLog& log,
+                                      const std::vector<int>& steps);
+
+// How well motions excite: cond, log10 det(KᵀK) and the largest relative
+// error, as bars per motion.
+struct MotionSummary {
+  std::string name;
+  double cond = 0.0;         // worst cond over the blocks
+  double log10_det = 0.0;    // Σ log10 det(KᵀK) over the blocks' identifiable columns
+  double max_rel_error = 0.0;
+};
+PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions);
+
+// A motion's summary from its spectra (cond and log det) and the result.
+MotionSummary SummarizeMotion(const std::string& name, const std::vector<Spectrum>& spectra, double max_rel_error);
+
+}  // namespace idbench
