@@ -54,7 +54,7 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
 DesignOptions DesignCommandOptions::Resolved() const {
   DesignOptions d = design;
   d.criterion = !criterion.empty() ? *ParseDesignCriterion(criterion)
-                : model == "per-body" ? DesignCriterion::kLogCondNormalised
+                : model == "per-body" ? DesignCriterion::kLogDet
                                       : DesignCriterion::kLogCond;
   d.algorithm = *ParseDesignAlgorithm(algorithm);
   return d;
@@ -67,8 +67,14 @@ DesignRegressor DesignCommandOptions::MakeRegressor(const RobotModel& robot) con
 
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::atomic<bool>* stop) {
-  const std::vector<JointLimits> limits =
-      options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model);
+  DesignControl control;
+  control.stop = stop;
+  return RunDesign(model, options, options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model),
+                   control);
+}
+
+DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
+                              const std::vector<JointLimits>& limits, const DesignControl& observer) {
   CheckDesignLimits(model, limits);
   const DesignRegressor regressor = options.MakeRegressor(model);
   const DesignOptions design = options.Resolved();
@@ -77,13 +83,15 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   std::mutex mutex;
   std::vector<std::chrono::steady_clock::time_point> last(static_cast<size_t>(design.starts));
   DesignControl control;
-  control.stop = stop;
+  control.stop = observer.stop;
+  control.progress = observer.progress;
   if (!options.quiet) {
     std::fprintf(stderr, "design: %s, %s model (%d parameters), %s, %d starts on %d threads, seed %u\n",
                  model.name().c_str(), options.model.c_str(), regressor.n_parameters(),
                  DesignAlgorithmName(design.algorithm).c_str(), design.starts, std::min(design.threads, design.starts),
                  design.seed);
     control.progress = [&](const DesignProgress& p) {
+      if (observer.progress) observer.progress(p);
       const std::lock_guard<std::mutex> lock(mutex);
       const auto now = std::chrono::steady_clock::now();
       auto& t = last[static_cast<size_t>(p.start)];

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "atomic_file.h"
+#include "compare_command.h"
 #include "design_command.h"
 #include "identify_command.h"
 #include "idbench/engine/paper6r.h"
@@ -152,6 +153,20 @@ int DesignCommand(idbench::DesignCommandOptions options) {
        {dir / "design.json", idbench::FormatDesignJson(model, options, report)}});
   std::printf("wrote %s, trajectory.csv and design.json\n", (dir / "trajectory.json").c_str());
   return report.result.check.feasible() ? 0 : kExitFailure;
+}
+
+int CompareCommand(const idbench::CompareOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) return UsageError(why);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::CompareReport report = idbench::RunCompare(model, options);
+  std::fputs(idbench::FormatCompareTable(options, report).c_str(), stdout);
+  const std::filesystem::path dir(options.out_dir);
+  idbench::EnsureOutputDirectory(dir);
+  idbench::WriteFilesAtomically({{dir / "compare.json", idbench::FormatCompareJson(options, report)},
+                                 {dir / "compare.csv", idbench::FormatCompareCsv(report)}});
+  std::printf("wrote %s and compare.csv\n", (dir / "compare.json").c_str());
+  return 0;
 }
 
 // `idbench report --out DIR`: the report of the run whose results.json is in DIR.
@@ -300,7 +315,7 @@ int main(int argc, char** argv) {
   design_cmd->add_option("--friction", design.friction, "Friction terms of the torque model")
       ->delimiter(',')->capture_default_str();
   design_cmd->add_option("--criterion", design.criterion,
-                         "cond, cond-normalised, logdet or hybrid (default: cond; per-body: cond-normalised)");
+                         "cond, cond-normalised, logdet or hybrid (default: cond; per-body: logdet)");
   design_cmd->add_option("--algorithm", design.algorithm, "slsqp, mma (gradient), cobyla, sbplx (derivative-free)")
       ->capture_default_str();
   design_cmd->add_option("--harmonics", design.design.harmonics, "Harmonics H per joint")->capture_default_str();
@@ -324,6 +339,27 @@ int main(int argc, char** argv) {
   design_cmd->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
   design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
   design_cmd->add_option("--out", design.out_dir, "Output directory (created if missing, never wiped)")
+      ->capture_default_str();
+
+  idbench::CompareOptions compare;
+  compare.command_line = command_line;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "Identifiability of motions side by side: cond, log det, %sigma, Monte-Carlo error on Bullet data");
+  compare_cmd->add_option("trajectories", compare.trajectories, "Motions: built-in names or .json/.csv files")
+      ->required();
+  compare_cmd->add_option("--robot", compare.robot, "Built-in robot or URDF file")->capture_default_str();
+  compare_cmd->add_option("--model", compare.model, "torque or per-body")->capture_default_str();
+  compare_cmd->add_option("--friction", compare.friction, "Friction terms of the torque model")
+      ->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--duration", compare.duration, "Length of built-in motions [s]")->capture_default_str();
+  compare_cmd->add_option("--samples", compare.samples, "Samples per motion")->capture_default_str();
+  compare_cmd->add_option("--tau-noise,--noise", compare.tau_noise, "Torque noise sigma per joint [N m] (torque model)")
+      ->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--wrench-noise", compare.wrench_noise, "Hinge force, moment noise sigma [N, N m] (per-body)")
+      ->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();
+  compare_cmd->add_option("--seed", compare.seed, "Noise seed")->capture_default_str();
+  compare_cmd->add_option("--out", compare.out_dir, "Output directory for compare.json and compare.csv")
       ->capture_default_str();
 
   std::string report_dir;
@@ -353,9 +389,10 @@ int main(int argc, char** argv) {
     if (render_cmd->parsed()) return RenderCommand(render);
     if (report_cmd->parsed()) return ReportCommand(report_dir);
     if (design_cmd->parsed()) return DesignCommand(design);
+    if (compare_cmd->parsed()) return CompareCommand(compare);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;
   }
-  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, render, report); see idbench --help");
+  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, compare, render, report); see idbench --help");
 }

@@ -57,6 +57,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   const JointLog log = SimulateNoiseFree(model, *motion, options.dt, sensors.rate_hz);
   const JointLog held = SimulateNoiseFree(model, *held_motion, options.dt, sensors.rate_hz);
   MonteCarloReport report;
+  report.log = log;
   report.base = ComputeBaseParameters(model, friction);
   report.beta_true = report.base.combination * StandardParameters(model, friction);
   const Eigen::MatrixXd W = StackBaseRegressor(model, friction, report.base, log);

@@ -29,6 +29,7 @@ struct MonteCarloOptions {
 };
 
 struct MonteCarloReport {
+  JointLog log;                        // the noise-free identification log (Bullet-executed states)
   BaseParameters base;
   Eigen::VectorXd beta_true;           // C·π of the robot file (n_base)
   Eigen::VectorXd predicted_sigma;     // mean over trials of WLS's σ per base parameter

@@ -1,0 +1,59 @@
+// `idbench compare T1 T2 …`: identifiability of candidate motions side by
+// side, for one robot and identification model. Per motion: cond(W),
+// normalised cond, log det, σ_min of the designed motion on its sample grid;
+// the same cond for the motion Bullet actually executed (computed-torque
+// tracking); predicted %σ per parameter; and the Monte-Carlo identification
+// error on Bullet-simulated data with seeded noise (torque noise for the
+// joint-torque model, hinge-wrench noise for the per-body model).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "idbench/excitation/design_criterion.h"
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+
+struct CompareOptions {
+  std::vector<std::string> trajectories;   // built-in names or .json/.csv files (≥ 1)
+  std::string robot = "puma560";
+  std::string model = "torque";            // torque | per-body
+  std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
+  double duration = 10.0;                  // [s] of built-in motions; files bring their own
+  int samples = 250;                       // samples per motion (grid and simulated log)
+  double dt = 1e-3;                        // Bullet step [s]
+  std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // torque model [N m]
+  std::vector<double> wrench_noise{0.5, 0.05};  // per-body model: force [N], moment [N m] per axis
+  int trials = 20;
+  unsigned seed = 1;
+  std::string out_dir = "out/compare";
+  std::string command_line;
+
+  bool IsValid(std::string* why) const;
+};
+
+struct MotionComparison {
+  std::string name;
+  double duration = 0.0;
+  Identifiability designed;             // analytic motion on the sample grid
+  Identifiability realised;             // the states Bullet executed, same samples
+  Eigen::VectorXd predicted_percent_sigma;  // 100 σ/|true| per parameter (torque model; empty otherwise)
+  double mean_relative_error = 0.0;     // Monte-Carlo mean over trials (see FormatCompareTable)
+  double max_relative_error = 0.0;      // worst parameter, worst trial
+  FeasibilityCheck limits;              // against the robot file's limits at 1 kHz
+};
+
+struct CompareReport {
+  std::vector<std::string> parameter_names;
+  Eigen::VectorXd true_parameters;
+  std::vector<MotionComparison> motions;
+};
+
+// Throws std::invalid_argument naming a bad trajectory or option.
+CompareReport RunCompare(const RobotModel& model, const CompareOptions& options);
+std::string FormatCompareTable(const CompareOptions& options, const CompareReport& report);
+std::string FormatCompareJson(const CompareOptions& options, const CompareReport& report);
+std::string FormatCompareCsv(const CompareReport& report);
+
+}  // namespace idbench
