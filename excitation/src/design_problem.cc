@@ -33,7 +33,12 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
   block_ = 2 * H_ + 1;
   for (double t : times_) bases_.push_back(FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_));
   BuildLinearRows();
-  if (has_torque_limits()) {
+  if (options.clearance >= 0.0 && std::any_of(regressor.model().links().begin(), regressor.model().links().end(),
+                                              [](const Link& l) { return !l.shapes.empty(); })) {
+    clearance_.emplace(regressor.model(), options.clearance);
+    clearance_stride_ = (options.samples + 99) / 100;
+  }
+  if (n_torque_constraints() > 0) {
     FrictionModel full;
     full.viscous = full.coulomb = full.rotor_inertia = true;
     torque_regressor_.emplace(DesignRegressor::JointTorque(regressor.model(), full));
@@ -43,6 +48,10 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
 int DesignProblem::n_torque_constraints() const {
   return static_cast<int>(
       std::count_if(limits_.begin(), limits_.end(), [](const JointLimits& l) { return std::isfinite(l.tau_max); }));
+}
+
+int DesignProblem::n_nonlinear_constraints() const {
+  return n_torque_constraints() + (clearance_ ? static_cast<int>(clearance_->pairs().size()) : 0);
 }
 
 FourierSeriesTrajectory DesignProblem::Trajectory(const Eigen::VectorXd& theta) const {
@@ -78,12 +87,27 @@ void DesignProblem::States(const double* theta, Workspace* ws) const {
   }
 }
 
-void DesignProblem::ChainToUnknowns(size_t k, const Eigen::VectorXd& gx, double* g) const {
+void DesignProblem::ChainToUnknowns(const FourierBasis& basis, const Eigen::VectorXd& gx, double* g) const {
   for (int j = 0; j < n_; ++j) {
     g[j * block_] += gx[j];
     Eigen::Map<Eigen::VectorXd>(g + j * block_ + 1, 2 * H_) +=
-        gx[j] * bases_[k].q + gx[n_ + j] * bases_[k].qd + gx[2 * n_ + j] * bases_[k].qdd;
+        gx[j] * basis.q + gx[n_ + j] * basis.qd + gx[2 * n_ + j] * basis.qdd;
   }
+}
+
+JointState DesignProblem::StateAt(const FourierBasis& basis, const double* theta) const {
+  JointState x(n_);
+  for (int j = 0; j < n_; ++j) {
+    const Eigen::Map<const Eigen::VectorXd> c(theta + j * block_ + 1, 2 * H_);
+    x.q[j] = theta[j * block_] + basis.q.dot(c);
+    x.qd[j] = basis.qd.dot(c);
+    x.qdd[j] = basis.qdd.dot(c);
+  }
+  return x;
+}
+
+void DesignProblem::AddClearanceInstant(double t, Workspace* ws) const {
+  ws->clearance_extra.push_back(FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_));
 }
 
 double DesignProblem::Criterion(const double* theta, double* grad, Workspace* ws) const {
@@ -99,13 +123,20 @@ double DesignProblem::Criterion(const double* theta, double* grad, Workspace* ws
   for (size_t k = 0; k < times_.size(); ++k) {
     regressor_.StateGradient(ws->x[k], ws->G.middleRows(r * static_cast<Eigen::Index>(k), r), &ws->regressor,
                              ws->gx);
-    ChainToUnknowns(k, ws->gx, grad);
+    ChainToUnknowns(bases_[k], ws->gx, grad);
   }
   return c;
 }
 
-void DesignProblem::TorqueConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
+void DesignProblem::NonlinearConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
   States(theta, ws);
+  if (clearance_) {
+    ClearanceConstraints(theta, result + n_torque_constraints(),
+                         grad ? grad + static_cast<size_t>(n_torque_constraints()) * static_cast<size_t>(n_unknowns())
+                              : nullptr,
+                         ws);
+  }
+  if (n_torque_constraints() == 0) return;
   const DesignRegressor& tr = *torque_regressor_;
   Eigen::MatrixXd& rows = ws->torque_rows;
   rows.resize(n_, tr.n_parameters());
@@ -135,9 +166,46 @@ void DesignProblem::TorqueConstraints(const double* theta, double* result, doubl
       tr.StateGradient(ws->x[k], G, &ws->regressor, ws->gx);
       double* g = grad + static_cast<size_t>(m) * static_cast<size_t>(n_unknowns());
       std::fill(g, g + n_unknowns(), 0.0);
-      ChainToUnknowns(k, ws->gx, g);
+      ChainToUnknowns(bases_[k], ws->gx, g);
     }
     ++m;
+  }
+}
+
+void DesignProblem::ClearanceConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
+  constexpr double kScale = 0.1;  // [m]: a constraint value of 1 is 10 cm
+  // The search keeps 1 mm more than asked, so that the fine check passes
+  // between the grid instants (as the margin does for the other limits).
+  constexpr double kSlack = 1e-3;  // [m]
+  const RobotModel& model = regressor_.model();
+  KinematicsData<double>& k = ws->regressor.kinematics;
+  // The instants: every clearance_stride_-th grid sample, then those added.
+  std::vector<const FourierBasis*> instants;
+  for (size_t s = 0; s < times_.size(); s += static_cast<size_t>(clearance_stride_)) instants.push_back(&bases_[s]);
+  for (const FourierBasis& b : ws->clearance_extra) instants.push_back(&b);
+  const size_t n_pairs = clearance_->pairs().size();
+  std::vector<double> worst(n_pairs, std::numeric_limits<double>::infinity());
+  std::vector<size_t> at(n_pairs, 0);
+  for (size_t s = 0; s < instants.size(); ++s) {
+    const JointState x = StateAt(*instants[s], theta);
+    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
+    clearance_->Compute(k, &ws->clearances);
+    for (size_t i = 0; i < n_pairs; ++i) {
+      if (ws->clearances[i].distance < worst[i]) worst[i] = ws->clearances[i].distance, at[i] = s;
+    }
+  }
+  for (size_t i = 0; i < n_pairs; ++i) {
+    result[i] = (clearance_->min_clearance() + kSlack - worst[i]) / kScale;
+    if (!grad) continue;
+    const JointState x = StateAt(*instants[at[i]], theta);
+    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
+    clearance_->Compute(k, &ws->clearances);
+    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], ws->clearances[i]);
+    ws->gx.setZero();
+    ws->gx.head(n_) = -dd_dq / kScale;
+    double* g = grad + i * static_cast<size_t>(n_unknowns());
+    std::fill(g, g + n_unknowns(), 0.0);
+    ChainToUnknowns(*instants[at[i]], ws->gx, g);
   }
 }
 
@@ -153,15 +221,17 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed) const {
       theta[j * block_ + 1 + H_ + h] = normal(rng) / (h + 1);
     }
   }
-  // Each row is affine in the scale s of the coefficients: s (c·coef) + c₀ q0 ≤ rhs.
-  double scale = kInf;
+  // Each joint's rows are affine in the scale s_j of its coefficients:
+  // s_j (c·coef) + c₀ q0 ≤ rhs; every joint goes to 90 % of its tightest row.
+  std::vector<double> scale(static_cast<size_t>(n_), kInf);
   for (const LinearRow& row : rows_) {
     const Eigen::VectorXd block = theta.segment(row.joint * block_, block_);
     const double offset = row.coefficients[0] * block[0];
     const double slope = row.coefficients.tail(2 * H_).dot(block.tail(2 * H_));
-    if (slope > 0.0) scale = std::min(scale, (row.rhs - offset) / slope);
+    double& s = scale[static_cast<size_t>(row.joint)];
+    if (slope > 0.0) s = std::min(s, (row.rhs - offset) / slope);
   }
-  for (int j = 0; j < n_; ++j) theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * scale;
+  for (int j = 0; j < n_; ++j) theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * scale[static_cast<size_t>(j)];
   return theta;
 }
 

@@ -14,6 +14,7 @@
 
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/excitation/design_problem.h"
+#include "idbench/ident/least_squares.h"
 
 namespace idbench {
 namespace {
@@ -38,14 +39,14 @@ struct StartRun {
   int evaluations = 0;
   double best_value = kInf;
   Eigen::VectorXd best_theta;
-  std::vector<double> torque_values;
+  std::vector<double> nonlinear_values;
 
   bool Feasible(const double* theta) {
     if (problem->MaxLinearViolation(theta) > kFeasibilityTolerance) return false;
-    if (!problem->has_torque_limits()) return true;
-    torque_values.resize(static_cast<size_t>(problem->n_torque_constraints()));
-    problem->TorqueConstraints(theta, torque_values.data(), nullptr, &*ws);
-    return *std::max_element(torque_values.begin(), torque_values.end()) <= kFeasibilityTolerance;
+    if (problem->n_nonlinear_constraints() == 0) return true;
+    nonlinear_values.resize(static_cast<size_t>(problem->n_nonlinear_constraints()));
+    problem->NonlinearConstraints(theta, nonlinear_values.data(), nullptr, &*ws);
+    return *std::max_element(nonlinear_values.begin(), nonlinear_values.end()) <= kFeasibilityTolerance;
   }
 
   // Penalty for the unconstrained (SBPLX) form: squared normalised violations.
@@ -55,10 +56,10 @@ struct StartRun {
       const double v = problem->LinearValue(row, theta);
       if (v > 0.0) p += v * v;
     }
-    if (problem->has_torque_limits()) {
-      torque_values.resize(static_cast<size_t>(problem->n_torque_constraints()));
-      problem->TorqueConstraints(theta, torque_values.data(), nullptr, &*ws);
-      for (double v : torque_values) p += v > 0.0 ? v * v : 0.0;
+    if (problem->n_nonlinear_constraints() > 0) {
+      nonlinear_values.resize(static_cast<size_t>(problem->n_nonlinear_constraints()));
+      problem->NonlinearConstraints(theta, nonlinear_values.data(), nullptr, &*ws);
+      for (double v : nonlinear_values) p += v > 0.0 ? v * v : 0.0;
     }
     return 1e4 * p;
   }
@@ -119,9 +120,9 @@ struct StartRun {
     }
   }
 
-  static void NloptTorque(unsigned, double* result, unsigned, const double* x, double* grad, void* data) {
+  static void NloptNonlinear(unsigned, double* result, unsigned, const double* x, double* grad, void* data) {
     auto* self = static_cast<StartRun*>(data);
-    self->problem->TorqueConstraints(x, result, grad, &*self->ws);
+    self->problem->NonlinearConstraints(x, result, grad, &*self->ws);
   }
 };
 
@@ -157,6 +158,7 @@ bool DesignOptions::IsValid(std::string* why) const {
   if (max_evaluations < 1) return fail("--max-evaluations must be >= 1");
   if (!(max_seconds >= 0.0)) return fail("--max-time must be >= 0");
   if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
+  if (!std::isfinite(clearance) || clearance > 1.0) return fail(Format("--clearance must be at most 1 m, got %g", clearance));
   if (!(check_rate_hz > 0.0)) return fail("the check rate must be > 0 Hz");
   return true;
 }
@@ -202,6 +204,11 @@ std::string FeasibilityCheck::Explain() const {
   std::string out;
   for (const ConstraintMargin& m : margins) {
     if (m.margin >= 0.0) continue;
+    if (m.quantity == "clearance") {
+      out += m.pair + Format(" clearance: %.4g m at t = %.4g s is below the minimum %.4g m by %.3g m\n", m.value,
+                             m.time, m.limit, -m.margin);
+      continue;
+    }
     const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
     const bool lower = m.quantity == "q_min";
     out += "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
@@ -214,7 +221,7 @@ std::string FeasibilityCheck::Explain() const {
 }
 
 FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
-                                       const Trajectory& trajectory, double rate_hz) {
+                                       const Trajectory& trajectory, double rate_hz, const ClearanceModel* clearance) {
   const int n = model.n_dof();
   FeasibilityCheck check;
   check.rate_hz = rate_hz;
@@ -235,6 +242,17 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
       worst.push_back(m);
     }
   }
+  const size_t n_pairs = clearance ? clearance->pairs().size() : 0;
+  for (size_t i = 0; i < n_pairs; ++i) {
+    ConstraintMargin m;
+    m.quantity = "clearance";
+    m.joint = static_cast<int>(i);
+    m.pair = clearance->pairs()[i].Name(model);
+    m.limit = clearance->min_clearance();
+    m.margin = kInf;
+    worst.push_back(m);
+  }
+  std::vector<Clearance> distances;
   RobotData data(model);
   JointState x(n);
   const long steps = static_cast<long>(std::floor(trajectory.duration() * rate_hz + 1e-9));
@@ -250,6 +268,13 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
         const double margin = i == 0 ? values[i] - w.limit : w.limit - values[i];
         if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
       }
+    }
+    if (n_pairs == 0) continue;
+    clearance->Compute(data, &distances);  // data holds the poses InverseDynamics computed
+    for (size_t i = 0; i < n_pairs; ++i) {
+      ConstraintMargin& w = worst[static_cast<size_t>(5 * n) + i];
+      const double margin = distances[i].distance - w.limit;
+      if (margin < w.margin) w.margin = margin, w.time = t, w.value = distances[i].distance;
     }
   }
   for (const ConstraintMargin& m : worst) {
@@ -307,9 +332,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
         nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptGrouped, &run,
                                          tol.data());
       }
-      if (problem.has_torque_limits() && algorithm != NLOPT_LN_SBPLX) {
-        const std::vector<double> tol(static_cast<size_t>(problem.n_torque_constraints()), 1e-10);
-        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptTorque, &run,
+      if (problem.n_nonlinear_constraints() > 0 && algorithm != NLOPT_LN_SBPLX) {
+        const std::vector<double> tol(static_cast<size_t>(problem.n_nonlinear_constraints()), 1e-10);
+        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptNonlinear, &run,
                                          tol.data());
       }
       if (!gradient_based) {
@@ -318,15 +343,34 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
         nlopt_set_initial_step(run.opt, step.data());
       }
       nlopt_set_maxeval(run.opt, options.max_evaluations);
-      nlopt_set_ftol_rel(run.opt, 1e-10);
+      nlopt_set_ftol_rel(run.opt, 1e-10);  // looser (1e-7) stops SLSQP on plateaus: cond 50 instead of 43
       nlopt_set_xtol_rel(run.opt, 1e-10);
       if (options.max_seconds > 0.0) {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
         nlopt_set_maxtime(run.opt, std::max(1e-3, options.max_seconds - elapsed));
       }
+      // Clearance is constrained on the grid; where the fine check finds the
+      // links closer between grid instants, those instants join this start's
+      // grid and the search resumes from its best point (at most twice).
       double value = 0.0;
-      const nlopt_result result = nlopt_optimize(run.opt, theta.data(), &value);
+      nlopt_result result = nlopt_optimize(run.opt, theta.data(), &value);
+      for (int round = 0; round < 2 && problem.clearance() && run.best_theta.size() > 0 &&
+                          result != NLOPT_FORCED_STOP && result != NLOPT_MAXTIME_REACHED;
+           ++round) {
+        const FeasibilityCheck fine = CheckTrajectoryLimits(regressor.model(), limits,
+                                                            problem.Trajectory(run.best_theta),
+                                                            options.check_rate_hz, problem.clearance());
+        bool added = false;
+        for (const ConstraintMargin& m : fine.margins) {
+          if (m.quantity == "clearance" && m.margin < 0.0) problem.AddClearanceInstant(m.time, &*run.ws), added = true;
+        }
+        if (!added) break;
+        theta = run.best_theta;
+        run.best_value = kInf;
+        run.best_theta.resize(0);
+        result = nlopt_optimize(run.opt, theta.data(), &value);
+      }
       nlopt_destroy(run.opt);
       summary.best_value = run.best_value;
       summary.evaluations = run.evaluations;
@@ -360,8 +404,22 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   const std::vector<double> times = DesignSampleTimes(options);
   result.initial = ComputeIdentifiability(
       regressor.Stack(problem.Trajectory(problem.StartPoint(options.seed + static_cast<unsigned>(best))), times));
-  result.final = ComputeIdentifiability(regressor.Stack(result.trajectory, times));
-  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.trajectory, options.check_rate_hz);
+  const Eigen::MatrixXd W = regressor.Stack(result.trajectory, times);
+  result.final = ComputeIdentifiability(W);
+  if (result.final.rank < regressor.n_parameters()) {
+    // Name what the limits leave unexcited (the least-squares classifier's reasons).
+    const LeastSquaresSolution ls =
+        SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
+    std::string unexcited;
+    for (size_t i = 0; i < ls.identifiable.size(); ++i) {
+      if (!ls.identifiable[i]) unexcited += "\n  " + ls.reason[i];
+    }
+    throw std::runtime_error("no design within these limits excites every parameter (rank " +
+                             std::to_string(result.final.rank) + " of " + std::to_string(regressor.n_parameters()) +
+                             "); check the limits of the joints involved:" + unexcited);
+  }
+  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.trajectory, options.check_rate_hz,
+                                       problem.clearance());
   result.stopped = control.stop && control.stop->load();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return result;

@@ -50,14 +50,20 @@ BENCHMARK(BM_DesignCriterionPuma560)->Unit(benchmark::kMillisecond);
 void BM_DesignCriterionGradientPuma560(benchmark::State& state) { BenchmarkCriterion(state, true); }
 BENCHMARK(BM_DesignCriterionGradientPuma560)->Unit(benchmark::kMillisecond);
 
-// The whole design with the default options (as `idbench design` runs it).
-void BM_DesignPuma560(benchmark::State& state) {
-  const PumaDesignCase c;
+// The whole design with the default options (as `idbench design` runs it),
+// with the constraint set (joint, velocity, acceleration limits:
+// clearance off) and with the default 1 cm link and ground clearance.
+void BenchmarkDesign(benchmark::State& state, double clearance) {
+  PumaDesignCase c;
+  c.options.clearance = clearance;
   double cond = 0.0;
   for (auto _ : state) cond = DesignExcitation(c.regressor, c.limits, c.options).final.cond;
   state.counters["cond"] = cond;
 }
+void BM_DesignPuma560(benchmark::State& state) { BenchmarkDesign(state, -1.0); }
 BENCHMARK(BM_DesignPuma560)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+void BM_DesignPuma560WithClearance(benchmark::State& state) { BenchmarkDesign(state, 0.01); }
+BENCHMARK(BM_DesignPuma560WithClearance)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 }  // namespace idbench

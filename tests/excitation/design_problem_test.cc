@@ -102,13 +102,16 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
   std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
   limits[1].tau_max = 80.0;
   limits[2].tau_max = 40.0;
-  const DesignProblem problem(r, limits, SmallOptions(false));
+  DesignOptions o = SmallOptions(false);
+  o.clearance = -1.0;  // torque only here
+  const DesignProblem problem(r, limits, o);
   ASSERT_EQ(problem.n_torque_constraints(), 2);
+  ASSERT_EQ(problem.n_nonlinear_constraints(), 2);
   DesignProblem::Workspace ws(problem);
   const Eigen::VectorXd theta = problem.StartPoint(5);
   double value[2], grad[2 * 200];
   ASSERT_LE(problem.n_unknowns(), 200);
-  problem.TorqueConstraints(theta.data(), value, grad, &ws);
+  problem.NonlinearConstraints(theta.data(), value, grad, &ws);
   for (int m = 0; m < 2; ++m) {
     for (int i = 0; i < problem.n_unknowns(); ++i) {
       const double h = 1e-6;
@@ -116,8 +119,8 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
       tp[i] += h;
       tm[i] -= h;
       double vp[2], vm[2];
-      problem.TorqueConstraints(tp.data(), vp, nullptr, &ws);
-      problem.TorqueConstraints(tm.data(), vm, nullptr, &ws);
+      problem.NonlinearConstraints(tp.data(), vp, nullptr, &ws);
+      problem.NonlinearConstraints(tm.data(), vm, nullptr, &ws);
       EXPECT_NEAR(grad[m * problem.n_unknowns() + i], (vp[m] - vm[m]) / (2 * h), 1e-6) << m << " " << i;
     }
   }
@@ -125,6 +128,46 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
   for (const ConstraintMargin& c : check.margins) {
     if (c.quantity == "tau" && c.joint == 1) {
       EXPECT_NEAR(1.0 - c.value / 80.0 - 0.02, -value[0], 1e-9);
+    }
+  }
+}
+
+// Clearance constraints: one per pair, the worst grid distance against the
+// minimum, with the gradient at that sample against central differences.
+TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  DesignOptions o = SmallOptions(false);
+  o.clearance = 0.05;
+  const DesignProblem problem(r, testing::DesignLimits(model, 1.5, 4.0), o);
+  ASSERT_NE(problem.clearance(), nullptr);
+  const int m = problem.n_nonlinear_constraints();
+  ASSERT_EQ(m, static_cast<int>(problem.clearance()->pairs().size()));
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(9);
+  std::vector<double> value(static_cast<size_t>(m)), grad(static_cast<size_t>(m * problem.n_unknowns()));
+  problem.NonlinearConstraints(theta.data(), value.data(), grad.data(), &ws);
+  // Values: the 1 kHz check over the same instants agrees.
+  const FeasibilityCheck check = CheckTrajectoryLimits(model, testing::DesignLimits(model, 1.5, 4.0),
+                                                       problem.Trajectory(theta), 10.0, problem.clearance());
+  int compared = 0;
+  for (const ConstraintMargin& c : check.margins) {
+    if (c.quantity != "clearance") continue;
+    EXPECT_NEAR((0.05 + 0.001 - c.value) / 0.1, value[static_cast<size_t>(c.joint)], 1e-9) << c.pair;
+    ++compared;
+  }
+  EXPECT_EQ(compared, m);
+  const double h = 1e-5;
+  for (int i = 0; i < problem.n_unknowns(); ++i) {
+    Eigen::VectorXd tp = theta, tm = theta;
+    tp[i] += h;
+    tm[i] -= h;
+    std::vector<double> vp(static_cast<size_t>(m)), vm(static_cast<size_t>(m));
+    problem.NonlinearConstraints(tp.data(), vp.data(), nullptr, &ws);
+    problem.NonlinearConstraints(tm.data(), vm.data(), nullptr, &ws);
+    for (int c = 0; c < m; ++c) {
+      EXPECT_NEAR(grad[static_cast<size_t>(c * problem.n_unknowns() + i)], (vp[c] - vm[c]) / (2 * h), 2e-3)
+          << problem.clearance()->pairs()[static_cast<size_t>(c)].Name(model) << " unknown " << i;
     }
   }
 }

@@ -32,7 +32,8 @@ TEST(ExcitationDesignTest, ImprovesTheCriterionAndIsFeasibleAtOneKilohertz) {
   EXPECT_NEAR(std::log(result.final.cond), result.value, 1e-9);  // the criterion is log cond(W)
   EXPECT_TRUE(result.check.feasible()) << result.check.Explain();
   EXPECT_EQ(result.check.rate_hz, 1000.0);
-  EXPECT_EQ(result.check.margins.size(), 6u * 4u);  // q_min, q_max, qd, qdd per joint; no torque limits
+  // q_min, q_max, qd, qdd per joint (no torque limits), and every clearance pair.
+  EXPECT_EQ(result.check.margins.size(), 6u * 4u + ClearanceModel(model, 0.01).pairs().size());
   EXPECT_EQ(result.starts.size(), 3u);
 }
 
@@ -49,7 +50,7 @@ TEST(ExcitationDesignTest, DeterministicForASeedAndAnyThreadCount) {
   EXPECT_EQ(one.trajectory.a(), two.trajectory.a());
   EXPECT_EQ(one.trajectory.b(), two.trajectory.b());
   EXPECT_EQ(one.trajectory.q0(), two.trajectory.q0());
-  o.seed = 2;
+  o.seed = 100;  // starts 100..102 (seed 2 would share starts 2 and 3 with seed 1)
   EXPECT_NE(DesignExcitation(r, testing::DesignLimits(model, 1.5, 4.0), o).value, one.value);
 }
 
@@ -120,11 +121,32 @@ TEST(ExcitationDesignTest, PerBodyDesignBeatsThePaperMotion) {
   std::vector<double> times;
   for (int k = 0; k < 60; ++k) times.push_back(k * 2.0 / 60);
   const Identifiability paper_id = ComputeIdentifiability(r.Stack(*paper, times));
-  EXPECT_TRUE(design.check.feasible());
+  EXPECT_TRUE(design.check.feasible()) << design.check.Explain();
   EXPECT_NEAR(paper_id.cond_normalised, 2.2, 0.1);
   EXPECT_GT(design.final.sigma_min, 3.0 * paper_id.sigma_min);
   EXPECT_LT(design.final.cond, 0.5 * paper_id.cond);
   EXPECT_NEAR(-design.final.log_det / r.n_parameters(), design.value, 1e-9);
+}
+
+// A joint that may barely move leaves its parameters unexcited: the design
+// says which ones instead of reporting cond = inf.
+TEST(ExcitationDesignTest, UnexcitableParametersAreNamed) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  limits[5].qd_max = 1e-12;  // joint 6 held still: its viscous friction and link 6's inertia about its axis
+  limits[5].qdd_max = 1e-12;
+  DesignOptions o = QuickOptions();
+  o.starts = 1;
+  o.max_evaluations = 5;
+  try {
+    DesignExcitation(r, limits, o);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("excites every parameter"), std::string::npos) << what;
+    EXPECT_NE(what.find("Fv6"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "compare_command.h"
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -118,6 +119,8 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
   report.parameter_names = regressor.parameter_names();
   report.true_parameters = regressor.true_parameters();
   const std::vector<JointLimits> limits = RobotLimits(model);
+  std::optional<ClearanceModel> clearance;
+  if (options.clearance >= 0.0) clearance.emplace(model, options.clearance);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
   for (const std::string& name : options.trajectories) {
     const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(name, model, builtin);
@@ -127,7 +130,7 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
     std::vector<double> times;
     for (int k = 0; k < options.samples; ++k) times.push_back(k * motion->duration() / options.samples);
     row.designed = ComputeIdentifiability(regressor.Stack(*motion, times));
-    row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz);
+    row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz, clearance ? &*clearance : nullptr);
     if (per_body) {
       PerBodyMonteCarlo(model, *motion, options, regressor, &row);
     } else {
@@ -157,7 +160,7 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
                 options.model.c_str(), report.parameter_names.size(), options.samples, options.trials);
   out += line;
   std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", "motion", "cond(W)", "norm cond",
-                "log det", "sigma_min", "realised", "MC error", "limits (robot file)");
+                "log det", "sigma_min", "realised", "MC error", "limits, clearance");
   out += line;
   for (const MotionComparison& m : report.motions) {
     std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
@@ -191,7 +194,9 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
     }
   }
   for (const MotionComparison& m : report.motions) {
-    if (!m.limits.feasible()) out += "\n" + m.name + " violates the robot file's limits:\n" + m.limits.Explain();
+    if (!m.limits.feasible()) {
+      out += "\n" + m.name + " violates the robot file's limits or the clearance:\n" + m.limits.Explain();
+    }
   }
   return out;
 }

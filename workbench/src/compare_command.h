@@ -25,6 +25,7 @@ struct CompareOptions {
   double dt = 1e-3;                        // Bullet step [s]
   std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // torque model [N m]
   std::vector<double> wrench_noise{0.5, 0.05};  // per-body model: force [N], moment [N m] per axis
+  double clearance = 0.01;                 // [m] in the limits check; negative: not checked
   int trials = 20;
   unsigned seed = 1;
   std::string out_dir = "out/compare";
@@ -41,7 +42,7 @@ struct MotionComparison {
   Eigen::VectorXd predicted_percent_sigma;  // 100 σ/|true| per parameter (torque model; empty otherwise)
   double mean_relative_error = 0.0;     // Monte-Carlo mean over trials (see FormatCompareTable)
   double max_relative_error = 0.0;      // worst parameter, worst trial
-  FeasibilityCheck limits;              // against the robot file's limits at 1 kHz
+  FeasibilityCheck limits;              // against the robot file's limits and the clearance at 1 kHz
 };
 
 struct CompareReport {

@@ -335,6 +335,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   design_cmd->add_option("--margin", design.design.margin, "Limits tightened by this fraction during the search")
       ->capture_default_str();
+  design_cmd->add_option("--clearance", design.design.clearance,
+                         "Minimum distance between links no joint connects and to the ground z = 0 [m]; -1: off")
+      ->capture_default_str();
   design_cmd->add_option("--limits", design.limits, "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
   design_cmd->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
   design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
@@ -357,6 +360,8 @@ int main(int argc, char** argv) {
       ->delimiter(',')->capture_default_str();
   compare_cmd->add_option("--wrench-noise", compare.wrench_noise, "Hinge force, moment noise sigma [N, N m] (per-body)")
       ->delimiter(',')->capture_default_str();
+  compare_cmd->add_option("--clearance", compare.clearance, "Minimum link clearance in the limits check [m]; -1: off")
+      ->capture_default_str();
   compare_cmd->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();
   compare_cmd->add_option("--seed", compare.seed, "Noise seed")->capture_default_str();
   compare_cmd->add_option("--out", compare.out_dir, "Output directory for compare.json and compare.csv")

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "idbench/engine/link_clearance.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
@@ -35,6 +36,8 @@ class DesignProblem {
     explicit Workspace(const DesignProblem& problem);
     DesignRegressor::Workspace regressor;
     Eigen::MatrixXd W, G, torque_rows;
+    std::vector<Clearance> clearances;
+    std::vector<FourierBasis> clearance_extra;  // instants added by AddClearanceInstant
     Eigen::VectorXd gx;
     std::vector<JointState> x;
   };
@@ -49,7 +52,9 @@ class DesignProblem {
   int n_unknowns() const { return n_ * block_; }
   int n_groups() const { return 4 * n_; }
   int n_torque_constraints() const;
-  bool has_torque_limits() const { return n_torque_constraints() > 0; }
+  // Torque limits, then one clearance constraint per pair of the clearance model.
+  int n_nonlinear_constraints() const;
+  const ClearanceModel* clearance() const { return clearance_ ? &*clearance_ : nullptr; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<LinearRow>& rows() const { return rows_; }
   const DesignRegressor& regressor() const { return regressor_; }
@@ -65,13 +70,19 @@ class DesignProblem {
   double LinearValue(const LinearRow& row, const double* theta) const;
   double MaxLinearViolation(const double* theta) const;
 
-  // Torque constraints, one per joint with a torque limit: max over the grid
-  // of |τ_j|/τ_max − (1 − margin); if grad (n_torque_constraints × n_unknowns,
-  // row-major), its gradient at the worst sample.
-  void TorqueConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
+  // The nonlinear constraints, ≤ 0 when met; if grad (n_nonlinear_constraints
+  // × n_unknowns, row-major), their gradients at the worst sample:
+  //  - per joint with a torque limit, max over the grid of |τ_j|/τ_max − (1 − margin);
+  //  - per clearance pair, max over the grid (every ⌈samples/100⌉-th sample,
+  //    and the instants added) of (min_clearance + 1 mm − distance)/0.1 m.
+  void NonlinearConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
 
-  // A seeded random start around the middle of the joint ranges, scaled to
-  // 90 % of the tightest kinematic limit (so it is feasible on the grid).
+  // Adds an instant t [s] to the clearance grid of this workspace (where a
+  // finer check found the links closer than the grid did).
+  void AddClearanceInstant(double t, Workspace* ws) const;
+
+  // A seeded random start around the middle of the joint ranges, each joint
+  // scaled to 90 % of its tightest kinematic limit (feasible on the grid).
   Eigen::VectorXd StartPoint(unsigned seed) const;
   // Box bounds: q0 inside the joint range, coefficients within twice the
   // velocity limit (a harmonic's velocity amplitude is √(a² + b²)).
@@ -80,8 +91,10 @@ class DesignProblem {
  private:
   void States(const double* theta, Workspace* ws) const;
   // ∂(state derivative gx of sample k) → ∂θ, accumulated into g.
-  void ChainToUnknowns(size_t k, const Eigen::VectorXd& gx, double* g) const;
+  void ChainToUnknowns(const FourierBasis& basis, const Eigen::VectorXd& gx, double* g) const;
+  JointState StateAt(const FourierBasis& basis, const double* theta) const;
   void BuildLinearRows();
+  void ClearanceConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
 
   const DesignRegressor& regressor_;
   std::vector<JointLimits> limits_;
@@ -93,6 +106,8 @@ class DesignProblem {
   std::vector<LinearRow> rows_;
   int n_ = 0, H_ = 0, block_ = 0;
   std::optional<DesignRegressor> torque_regressor_;  // model with all joint dynamics, when τ is limited
+  std::optional<ClearanceModel> clearance_;          // when the options ask for clearance and links have shapes
+  int clearance_stride_ = 1;
 };
 
 }  // namespace idbench

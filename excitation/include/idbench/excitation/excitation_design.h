@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/link_clearance.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
@@ -44,9 +45,11 @@ struct DesignOptions {
   int starts = 2;
   unsigned seed = 1;
   int threads = 2;
-  int max_evaluations = 300;       // per start
+  int max_evaluations = 600;       // per start
   double max_seconds = 0.0;        // whole design; 0 = no limit
   double margin = 0.02;            // limits tightened by this fraction during the search
+  double clearance = 0.01;         // [m] between links that no joint connects, and to the ground z = 0
+                                   // (link_clearance.h); negative: not checked
   double check_rate_hz = 1000.0;   // re-check of the result
 
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
@@ -56,8 +59,9 @@ struct DesignOptions {
 
 // One checked constraint: the worst instant of one joint's limit.
 struct ConstraintMargin {
-  std::string quantity;  // "q_min", "q_max", "qd", "qdd", "tau"
-  int joint = 0;         // 0-based
+  std::string quantity;  // "q_min", "q_max", "qd", "qdd", "tau", "clearance"
+  int joint = 0;         // 0-based (clearance: the pair's index)
+  std::string pair;      // clearance: "link4–link2", "link5–ground"
   double time = 0.0;     // [s] of the worst sample
   double value = 0.0;    // q, |qd|, |qdd| or |τ| there
   double limit = 0.0;
@@ -74,9 +78,11 @@ struct FeasibilityCheck {
 };
 
 // Checks a trajectory's q, qd, qdd and joint torque (inverse dynamics plus
-// the model's joint dynamics) against the limits at rate_hz.
+// the model's joint dynamics) against the limits at rate_hz, and, when
+// clearance is given, the distance of every pair against its minimum.
 FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
-                                       const Trajectory& trajectory, double rate_hz);
+                                       const Trajectory& trajectory, double rate_hz,
+                                       const ClearanceModel* clearance = nullptr);
 
 // The limits of every joint must bound the motion: a finite velocity and
 // acceleration limit > 0, q_min < q_max. Throws std::invalid_argument naming

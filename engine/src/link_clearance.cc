@@ -1,0 +1,165 @@
+#include "idbench/engine/link_clearance.h"
+
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace idbench {
+namespace {
+
+btVector3 ToBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+Eigen::Vector3d FromBt(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+
+btTransform ToBt(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  btMatrix3x3 basis(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2));
+  return btTransform(basis, ToBt(p));
+}
+
+}  // namespace
+
+std::string ClearancePair::Name(const RobotModel& model) const {
+  return model.link(link_a).name + "–" + (link_b < 0 ? std::string("ground") : model.link(link_b).name);
+}
+
+struct ClearanceModel::Impl {
+  struct LinkShape {
+    std::unique_ptr<btConvexShape> shape;
+    Eigen::Isometry3d X_BG;
+  };
+  std::vector<std::vector<LinkShape>> shapes;  // per link
+
+  // Closest points of two placed convex shapes; distance < 0 when overlapping.
+  static Clearance Pair(const btConvexShape* a, const btTransform& X_WA, const btConvexShape* b,
+                        const btTransform& X_WB) {
+    btVoronoiSimplexSolver simplex;
+    btGjkEpaPenetrationDepthSolver epa;
+    btGjkPairDetector gjk(a, b, &simplex, &epa);
+    btGjkPairDetector::ClosestPointInput input;
+    input.m_transformA = X_WA;
+    input.m_transformB = X_WB;
+    btPointCollector out;
+    gjk.getClosestPoints(input, out, nullptr);
+    Clearance c;
+    c.distance = out.m_distance;
+    c.n_W = FromBt(out.m_normalOnBInWorld);  // from B towards A
+    c.p_a_W = FromBt(out.m_pointInWorld) + c.n_W * c.distance;  // m_pointInWorld is on B
+    return c;
+  }
+
+  // Lowest point of a placed shape: its support point along −z.
+  static Clearance Ground(const btConvexShape* a, const btTransform& X_WA) {
+    const btVector3 down_A = X_WA.getBasis().transpose() * btVector3(0, 0, -1);
+    const btVector3 lowest = X_WA * a->localGetSupportingVertex(down_A);
+    Clearance c;
+    c.p_a_W = FromBt(lowest);
+    c.distance = lowest.z();
+    c.n_W = Eigen::Vector3d::UnitZ();
+    return c;
+  }
+
+  Clearance Compute(const KinematicsData<double>& k, const ClearancePair& pair) const {
+    Clearance best;
+    best.distance = std::numeric_limits<double>::infinity();
+    auto placed = [&](int link, const LinkShape& s) {
+      const size_t i = static_cast<size_t>(link);
+      return ToBt(k.R_WB[i] * s.X_BG.linear(), k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
+    };
+    for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
+      const btTransform X_WA = placed(pair.link_a, sa);
+      if (pair.link_b < 0) {
+        const Clearance c = Ground(sa.shape.get(), X_WA);
+        if (c.distance < best.distance) best = c;
+        continue;
+      }
+      for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) {
+        const Clearance c = Pair(sa.shape.get(), X_WA, sb.shape.get(), placed(pair.link_b, sb));
+        if (c.distance < best.distance) best = c;
+      }
+    }
+    return best;
+  }
+};
+
+ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
+    : impl_(std::make_unique<Impl>()), min_clearance_(min_clearance) {
+  if (!(min_clearance >= 0.0)) throw std::invalid_argument("clearance must be >= 0 m");
+  // Bullet keeps a margin around convex shapes; a small one inside the
+  // cylinders and boxes (it is subtracted from their extents) keeps the
+  // geometry exact and GJK robust.
+  constexpr double kMargin = 1e-3;
+  impl_->shapes.resize(static_cast<size_t>(model.n_links()));
+  for (int i = 0; i < model.n_links(); ++i) {
+    for (const Shape& s : model.link(i).shapes) {
+      std::unique_ptr<btConvexShape> shape;
+      switch (s.kind) {
+        case Shape::Kind::kCylinder:
+          shape = std::make_unique<btCylinderShapeZ>(btVector3(s.size.x(), s.size.y(), 0.5 * s.size.z()));
+          break;
+        case Shape::Kind::kBox:
+          shape = std::make_unique<btBoxShape>(ToBt(0.5 * s.size));
+          break;
+        case Shape::Kind::kSphere:
+          shape = std::make_unique<btSphereShape>(s.size.x());
+          break;
+      }
+      if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin);
+      impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG});
+    }
+  }
+  // Candidate pairs; those touching at the home pose are left out.
+  KinematicsData<double> home(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  ComputeKinematicsT<double>(model, zero, zero, zero, &home);
+  for (int a = 0; a < model.n_links(); ++a) {
+    if (impl_->shapes[static_cast<size_t>(a)].empty()) continue;
+    for (int b = -1; b < a; ++b) {
+      if (b >= 0 && (impl_->shapes[static_cast<size_t>(b)].empty() || model.link(a).parent == b)) continue;
+      const ClearancePair pair{a, b};
+      const double d = impl_->Compute(home, pair).distance;
+      if (d < min_clearance) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, ": %.3g m apart at q = 0 (touching by construction)", d);
+        excluded_.push_back(pair.Name(model) + buf);
+      } else {
+        pairs_.push_back(pair);
+      }
+    }
+  }
+}
+
+ClearanceModel::~ClearanceModel() = default;
+ClearanceModel::ClearanceModel(ClearanceModel&&) noexcept = default;
+ClearanceModel& ClearanceModel::operator=(ClearanceModel&&) noexcept = default;
+
+void ClearanceModel::Compute(const KinematicsData<double>& k, std::vector<Clearance>* out) const {
+  out->resize(pairs_.size());
+  for (size_t i = 0; i < pairs_.size(); ++i) (*out)[i] = impl_->Compute(k, pairs_[i]);
+}
+
+Eigen::VectorXd ClearanceModel::DistanceGradient(const RobotModel& model, const KinematicsData<double>& k,
+                                                 const ClearancePair& pair, const Clearance& c) const {
+  // d = nᵀ (p_a − p_b); a point fixed in a link moves by s_j × (p − o_j) per
+  // unit q_j of every joint j on its chain.
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(model.n_dof());
+  const Eigen::Vector3d p_b = c.p_a_W - c.distance * c.n_W;
+  for (int j = pair.link_a; j >= 0; j = model.link(j).parent) {
+    const size_t jj = static_cast<size_t>(j);
+    g[j] += c.n_W.dot(k.axis_W[jj].cross(c.p_a_W - k.p_WBo_W[jj]));
+  }
+  for (int j = pair.link_b; j >= 0; j = model.link(j).parent) {
+    const size_t jj = static_cast<size_t>(j);
+    g[j] -= c.n_W.dot(k.axis_W[jj].cross(p_b - k.p_WBo_W[jj]));
+  }
+  return g;
+}
+
+}  // namespace idbench

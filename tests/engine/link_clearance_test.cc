@@ -1,0 +1,111 @@
+#include "idbench/engine/link_clearance.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/test_util.h"
+#include "idbench/engine/puma560.h"
+
+namespace idbench {
+namespace {
+
+using testing::RandomVector;
+
+// Three links, one sphere each: distances are |c_a − c_b| − r_a − r_b and
+// c_z − r to the ground.
+RobotModel MakeSphereRobot(double r) {
+  std::vector<Link> links(3);
+  const Eigen::Vector3d joint_p[3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}};
+  const Eigen::Vector3d axis[3] = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY()};
+  const Eigen::Vector3d centre[3] = {{0, 0, 0.5}, {0.5, 0, 0}, {0.5, 0, 0}};
+  for (int i = 0; i < 3; ++i) {
+    Link& l = links[static_cast<size_t>(i)];
+    l.name = "L" + std::to_string(i);
+    l.parent = i - 1;
+    l.X_PJ.translation() = joint_p[i];
+    l.axis_J = axis[i];
+    l.inertia.mass = 1.0;
+    l.inertia.I_Bcm_B = 0.01 * Eigen::Matrix3d::Identity();
+    Shape s;
+    s.kind = Shape::Kind::kSphere;
+    s.size.setConstant(r);
+    s.X_BG.translation() = centre[i];
+    l.shapes.push_back(s);
+  }
+  return RobotModel("spheres", std::move(links));
+}
+
+TEST(LinkClearanceTest, SpheresMatchTheAnalyticDistances) {
+  const double r = 0.1;
+  const RobotModel model = MakeSphereRobot(r);
+  const ClearanceModel clearance(model, 0.01);
+  // Pairs: L0–ground, L1–ground, L2–ground, L2–L0 (L1–L0 and L2–L1 are joined).
+  ASSERT_EQ(clearance.pairs().size(), 4u);
+  KinematicsData<double> k(model);
+  std::vector<Clearance> out;
+  std::mt19937 rng(2);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomVector(3, 1.2, &rng), zero = Eigen::VectorXd::Zero(3);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    clearance.Compute(k, &out);
+    for (size_t i = 0; i < out.size(); ++i) {
+      const ClearancePair& p = clearance.pairs()[i];
+      const auto centre = [&](int link) {
+        return Eigen::Vector3d(k.p_WBo_W[static_cast<size_t>(link)] +
+                               k.R_WB[static_cast<size_t>(link)] * model.link(link).shapes[0].X_BG.translation());
+      };
+      const double expected = p.link_b < 0 ? centre(p.link_a).z() - r : (centre(p.link_a) - centre(p.link_b)).norm() - 2 * r;
+      EXPECT_NEAR(out[i].distance, expected, 1e-6) << p.Name(model) << " trial " << trial;
+    }
+  }
+}
+
+// ∂d/∂q against central differences of the GJK distance, puma560's cylinders at random poses.
+TEST(LinkClearanceTest, GradientMatchesFiniteDifferences) {
+  const RobotModel model = MakePuma560();
+  const ClearanceModel clearance(model, 0.005);
+  ASSERT_FALSE(clearance.pairs().empty());
+  KinematicsData<double> k(model);
+  std::vector<Clearance> out, plus, minus;
+  std::mt19937 rng(3);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  int checked = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomVector(6, 1.5, &rng);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    clearance.Compute(k, &out);
+    for (size_t i = 0; i < out.size(); ++i) {
+      if (out[i].distance < 0.02) continue;  // away from contact, where d is smooth
+      const Eigen::VectorXd g = clearance.DistanceGradient(model, k, clearance.pairs()[i], out[i]);
+      Eigen::VectorXd fd(6);
+      for (int j = 0; j < 6; ++j) {
+        const double h = 1e-4;  // GJK stops at a small tolerance: larger steps than usual
+        Eigen::VectorXd qp = q, qm = q;
+        qp[j] += h;
+        qm[j] -= h;
+        ComputeKinematicsT<double>(model, qp, zero, zero, &k);
+        clearance.Compute(k, &plus);
+        ComputeKinematicsT<double>(model, qm, zero, zero, &k);
+        clearance.Compute(k, &minus);
+        fd[j] = (plus[i].distance - minus[i].distance) / (2 * h);
+      }
+      ComputeKinematicsT<double>(model, q, zero, zero, &k);
+      // GJK's witness points (hence n) are accurate to ~1e-3 rad, the distance far better.
+      EXPECT_LT((g - fd).norm(), 2e-3 * std::max(1.0, fd.norm())) << clearance.pairs()[i].Name(model);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(LinkClearanceTest, PumaLeavesOutPairsTouchingAtHome) {
+  const RobotModel model = MakePuma560();
+  const ClearanceModel clearance(model, 0.01);
+  EXPECT_FALSE(clearance.excluded().empty());
+  for (const std::string& e : clearance.excluded()) EXPECT_NE(e.find("touching by construction"), std::string::npos);
+  for (const ClearancePair& p : clearance.pairs()) {
+    if (p.link_b >= 0) EXPECT_NE(p.link_b, model.link(p.link_a).parent) << p.Name(model);
+  }
+}
+
+}  // namespace
+}  // namespace idbench
