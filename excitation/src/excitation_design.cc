@@ -396,14 +396,14 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                              Format("%g", options.margin) + ") on the sample grid");
   }
   const StartRun& winner = runs[static_cast<size_t>(best)];
-  DesignResult result(problem.Trajectory(winner.best_theta));
+  DesignResult result(problem.Trajectory(winner.best_theta),
+                      problem.Trajectory(problem.StartPoint(options.seed + static_cast<unsigned>(best))));
   result.starts = summaries;
   for (const DesignStartSummary& s : summaries) result.evaluations += s.evaluations;
   result.initial_value = summaries[static_cast<size_t>(best)].initial_value;
   result.value = winner.best_value;
   const std::vector<double> times = DesignSampleTimes(options);
-  result.initial = ComputeIdentifiability(
-      regressor.Stack(problem.Trajectory(problem.StartPoint(options.seed + static_cast<unsigned>(best))), times));
+  result.initial = ComputeIdentifiability(regressor.Stack(result.initial_trajectory, times));
   const Eigen::MatrixXd W = regressor.Stack(result.trajectory, times);
   result.final = ComputeIdentifiability(W);
   if (result.final.rank < regressor.n_parameters()) {

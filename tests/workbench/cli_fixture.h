@@ -39,8 +39,9 @@ class CliFixture : public ::testing::Test {
   static const ::testing::TestInfo* Info() { return ::testing::UnitTest::GetInstance()->current_test_info(); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  Result Run(const std::string& args) {
-    const std::string cmd = exe_ + " " + args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
+  // `prefix` runs idbench under another command (e.g. "timeout -s INT 1 ").
+  Result Run(const std::string& args, const std::string& prefix = "") {
+    const std::string cmd = prefix + exe_ + " " + args + " >" + (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
     const int status = std::system(cmd.c_str());
     return {WEXITSTATUS(status), Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
   }

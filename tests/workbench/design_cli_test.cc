@@ -3,6 +3,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "workbench/cli_fixture.h"
 
@@ -136,6 +137,43 @@ TEST_F(DesignCliTest, CompareTorqueModel) {
   EXPECT_LT(designed["mean_relative_error"].get<double>(), general["mean_relative_error"].get<double>());
   const Result bad = Run("compare --robot puma560 --out " + (dir_ / "x").string());
   EXPECT_EQ(bad.exit_code, 2);
+}
+
+// --report: the HTML names only files that exist.
+TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
+  ASSERT_EQ(Run("design --robot puma560 --limits " + PumaLimits() + " " + kQuick + " --report --out " +
+                (dir_ / "d").string())
+                .exit_code,
+            0);
+  ASSERT_EQ(Run("compare general " + (dir_ / "d" / "trajectory.json").string() +
+                " --robot puma560 --samples 100 --trials 3 --report --out " + (dir_ / "c").string())
+                .exit_code,
+            0);
+  for (const fs::path dir : {dir_ / "d", dir_ / "c"}) {
+    const std::string html = Slurp(dir / "report.html");
+    ASSERT_FALSE(html.empty()) << dir;
+    EXPECT_EQ(Slurp(dir / "report.pdf").substr(0, 5), "%PDF-");
+    const std::regex ref(R"re((src|href)="([^"#:]+)")re");
+    int refs = 0;
+    for (auto it = std::sregex_iterator(html.begin(), html.end(), ref); it != std::sregex_iterator(); ++it, ++refs) {
+      EXPECT_TRUE(fs::exists(dir / (*it)[2].str())) << (*it)[2].str();
+    }
+    EXPECT_GT(refs, 1);
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "d" / "figure.png"));
+}
+
+// Ctrl-C: the design stops and keeps the best feasible point found so far.
+TEST_F(DesignCliTest, InterruptKeepsTheBestFeasibleDesign) {
+  const Result r = Run("design --robot puma560 --limits " + PumaLimits() +
+                       " --starts 1 --max-evaluations 1000000 --quiet --out " + (dir_ / "d").string(),
+                       "timeout --preserve-status -s INT 1.5 ");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json design = json::parse(Slurp(dir_ / "d" / "design.json"));
+  EXPECT_TRUE(design["stopped"].get<bool>());
+  EXPECT_EQ(design["starts"][0]["status"], "stopped");
+  EXPECT_TRUE(design["check"]["feasible"].get<bool>());
+  EXPECT_LT(design["after"]["criterion"].get<double>(), design["before"]["criterion"].get<double>());
 }
 
 }  // namespace

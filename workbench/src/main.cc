@@ -11,6 +11,7 @@
 #include "atomic_file.h"
 #include "compare_command.h"
 #include "design_command.h"
+#include "design_report.h"
 #include "identify_command.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/robot_library.h"
@@ -137,7 +138,7 @@ int RenderCommand(const idbench::RenderOptions& options) {
 std::atomic<bool> g_stop_requested{false};
 extern "C" void RequestStop(int) { g_stop_requested = true; }
 
-int DesignCommand(idbench::DesignCommandOptions options) {
+int DesignCommand(const idbench::DesignCommandOptions& options, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
@@ -147,15 +148,21 @@ int DesignCommand(idbench::DesignCommandOptions options) {
   std::fputs(idbench::FormatDesignSummary(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
-  idbench::WriteFilesAtomically(
-      {{dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},
-       {dir / "trajectory.csv", idbench::FormatTrajectoryCsv(report.result.trajectory, options.csv_rate_hz)},
-       {dir / "design.json", idbench::FormatDesignJson(model, options, report)}});
-  std::printf("wrote %s, trajectory.csv and design.json\n", (dir / "trajectory.json").c_str());
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},
+      {dir / "trajectory.csv", idbench::FormatTrajectoryCsv(report.result.trajectory, options.csv_rate_hz)},
+      {dir / "design.json", idbench::FormatDesignJson(model, options, report)}};
+  if (with_report) {
+    for (auto& file : idbench::FormatReportFiles(idbench::MakeDesignReportContent(model, options, report), dir))
+      files.push_back(std::move(file));
+  }
+  idbench::WriteFilesAtomically(files);
+  std::printf("wrote %s, trajectory.csv and design.json%s\n", (dir / "trajectory.json").c_str(),
+              with_report ? ", report.html and report.pdf" : "");
   return report.result.check.feasible() ? 0 : kExitFailure;
 }
 
-int CompareCommand(const idbench::CompareOptions& options) {
+int CompareCommand(const idbench::CompareOptions& options, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
@@ -163,9 +170,16 @@ int CompareCommand(const idbench::CompareOptions& options) {
   std::fputs(idbench::FormatCompareTable(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
-  idbench::WriteFilesAtomically({{dir / "compare.json", idbench::FormatCompareJson(options, report)},
-                                 {dir / "compare.csv", idbench::FormatCompareCsv(report)}});
-  std::printf("wrote %s and compare.csv\n", (dir / "compare.json").c_str());
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "compare.json", idbench::FormatCompareJson(options, report)},
+      {dir / "compare.csv", idbench::FormatCompareCsv(report)}};
+  if (with_report) {
+    for (auto& file : idbench::FormatReportFiles(idbench::MakeCompareReportContent(options, report), dir))
+      files.push_back(std::move(file));
+  }
+  idbench::WriteFilesAtomically(files);
+  std::printf("wrote %s and compare.csv%s\n", (dir / "compare.json").c_str(),
+              with_report ? ", report.html and report.pdf" : "");
   return 0;
 }
 
@@ -341,6 +355,8 @@ int main(int argc, char** argv) {
   design_cmd->add_option("--limits", design.limits, "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
   design_cmd->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
   design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
+  bool design_report = false;
+  design_cmd->add_flag("--report", design_report, "Also write report.html, report.pdf and the plots");
   design_cmd->add_option("--out", design.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
 
@@ -366,6 +382,8 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--seed", compare.seed, "Noise seed")->capture_default_str();
   compare_cmd->add_option("--out", compare.out_dir, "Output directory for compare.json and compare.csv")
       ->capture_default_str();
+  bool compare_report = false;
+  compare_cmd->add_flag("--report", compare_report, "Also write report.html, report.pdf and the plots");
 
   std::string report_dir;
   CLI::App* report_cmd = app.add_subcommand(
@@ -393,8 +411,8 @@ int main(int argc, char** argv) {
     if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo);
     if (render_cmd->parsed()) return RenderCommand(render);
     if (report_cmd->parsed()) return ReportCommand(report_dir);
-    if (design_cmd->parsed()) return DesignCommand(design);
-    if (compare_cmd->parsed()) return CompareCommand(compare);
+    if (design_cmd->parsed()) return DesignCommand(design, design_report);
+    if (compare_cmd->parsed()) return CompareCommand(compare, compare_report);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;

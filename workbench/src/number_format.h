@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,14 @@ inline std::string Shortest(double value) {
   std::string out;
   AppendShortest(&out, value);
   return out;
+}
+
+// printf-style for tables ("%.4g"); "-" for NaN and ±inf.
+inline std::string Format(const char* format, double v) {
+  if (!std::isfinite(v)) return "-";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, v);
+  return text;
 }
 
 // For JSON arrays.

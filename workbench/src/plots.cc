@@ -173,13 +173,13 @@ MotionSummary SummarizeMotion(const std::string& name, const std::vector<Spectru
   return m;
 }
 
-PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions) {
+PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions, const MotionPlotTitles& titles) {
   PlotFigure figure;
   figure.columns = 3;
   figure.height = 300;
-  PlotAxes cond{"cond (worst block)", "", "cond", true, {}, {}};
-  PlotAxes det{"log10 det(KᵀK)", "", "log10 det", false, {}, {}};
-  PlotAxes error{"largest relative error", "", "relative error", true, {}, {}};
+  PlotAxes cond{titles.cond, "", "cond", true, {}, {}};
+  PlotAxes det{titles.log_det, "", "log10 det", false, {}, {}};
+  PlotAxes error{titles.error, "", "relative error", true, {}, {}};
   PlotSeries c{"", {}, {}, {}, PlotSeries::Style::kBars}, d = c, e = c;
   for (size_t i = 0; i < motions.size(); ++i) {
     for (PlotAxes* axes : {&cond, &det, &error}) axes->categories.push_back(motions[i].name);

@@ -71,7 +71,12 @@ struct MotionSummary {
   double log10_det = 0.0;    // Σ log10 det(KᵀK) over the blocks' identifiable columns
   double max_rel_error = 0.0;
 };
-PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions);
+struct MotionPlotTitles {
+  std::string cond = "cond (worst block)";
+  std::string log_det = "log10 det(KᵀK)";
+  std::string error = "largest relative error";
+};
+PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions, const MotionPlotTitles& titles = {});
 
 // A motion's summary from its spectra (cond and log det) and the result.
 MotionSummary SummarizeMotion(const std::string& name, const std::vector<Spectrum>& spectra, double max_rel_error);

@@ -1,5 +1,7 @@
 #include "report_command.h"
 
+#include "number_format.h"
+
 #include <cairo-pdf.h>
 #include <cairo.h>
 
@@ -16,12 +18,6 @@
 namespace idbench {
 namespace {
 
-std::string Format(const char* format, double v) {
-  if (!std::isfinite(v)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), format, v);
-  return text;
-}
 
 // The other built-in motion of a run, for the comparison.
 std::string OtherMotion(const std::string& motion) { return motion == "paper" ? "general" : "paper"; }

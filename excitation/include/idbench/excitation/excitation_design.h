@@ -109,8 +109,10 @@ struct DesignStartSummary {
 };
 
 struct DesignResult {
-  explicit DesignResult(FourierSeriesTrajectory t) : trajectory(std::move(t)) {}
+  DesignResult(FourierSeriesTrajectory t, FourierSeriesTrajectory start)
+      : trajectory(std::move(t)), initial_trajectory(std::move(start)) {}
   FourierSeriesTrajectory trajectory;
+  FourierSeriesTrajectory initial_trajectory;  // the winning start's first point
   double initial_value = 0.0;        // criterion of the best start's initial point
   double value = 0.0;                // criterion of the result
   Identifiability initial, final;    // of W on the design grid
