@@ -303,23 +303,9 @@ std::string Numbers(const Eigen::Vector3d& v) {
   return Number(v.x()) + " " + Number(v.y()) + " " + Number(v.z());
 }
 
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string Attribute(const std::string& name, const std::string& value) {
-  return " " + name + "=\"" + XmlEscape(value) + "\"";
+  return " " + name + "=\"" + EscapeXml(value) + "\"";
 }
 
 std::string Origin(const Eigen::Isometry3d& X) {
@@ -490,6 +476,21 @@ std::string WriteUrdf(const RobotModel& model) {
   }
   out << "</robot>\n";
   return out.str();
+}
+
+std::string EscapeXml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace idbench

@@ -117,6 +117,13 @@ TEST_F(DesignCliTest, CompareShowsThePerBodyErrorFalling) {
                 0.01 * m["designed"]["cond"].get<double>());
   }
   EXPECT_TRUE(fs::exists(dir_ / "c" / "compare.csv"));
+  // The paper's experiment along the designed motion: every moment of B1 but
+  // its hinge's, and all of the other bodies, are identified exactly.
+  const Result run = Run("run --trajectory " + (dir_ / "d" / "trajectory.json").string() +
+                         " --duration 2 --no-figure --out " + (dir_ / "r").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json results = json::parse(Slurp(dir_ / "r" / "results.json"));
+  EXPECT_LT(results["max_rel_error"].get<double>(), 1e-9) << results.dump().substr(0, 400);
 }
 
 // Joint-torque model on puma560: the Monte-Carlo error of WLS under torque

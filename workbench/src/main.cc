@@ -217,7 +217,8 @@ int main(int argc, char** argv) {
   run.command_line = command_line;
   CLI::App* run_cmd = app.add_subcommand("run", "Run the paper's experiment: simulate, identify, compare with the truth");
   run_cmd->add_option("--robot", run.robot, "Robot (built-in: paper6r)")->capture_default_str();
-  run_cmd->add_option("--motion", run.motion, "paper: hinges 1, 2 accelerate, others locked; general: all six move")
+  run_cmd->add_option("--motion,--trajectory", run.motion,
+                      "paper: hinges 1, 2 accelerate, others locked; general: all six move; or a .json/.csv file")
       ->capture_default_str();
   run_cmd->add_option("--accel", run.accel_deg_s2, "Hinge acceleration of the paper motion [deg/s^2]")
       ->capture_default_str();

@@ -75,8 +75,7 @@ std::string RenderPoseFigurePng(const RobotModel& model, const Trajectory& traje
 }
 
 std::string RenderRunFigurePng(const RobotModel& model, const RunOptions& options) {
-  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion(
-      options.motion, model.n_dof(), options.duration, options.accel_deg_s2 * std::numbers::pi / 180.0);
+  const std::unique_ptr<Trajectory> motion = MakeRunMotion(model, options);
   PoseFigureOptions figure;
   figure.times = DefaultFigureTimes(options.duration);
   return RenderPoseFigurePng(model, *motion, figure);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "idbench/engine/urdf.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "plots.h"
 #include "render_command.h"
@@ -19,7 +20,8 @@ namespace idbench {
 namespace {
 
 
-// The other built-in motion of a run, for the comparison.
+// The built-in motion a run is compared with: the other one, or the paper's
+// for a trajectory file.
 std::string OtherMotion(const std::string& motion) { return motion == "paper" ? "general" : "paper"; }
 
 // A joint log played back as a trajectory (the nearest sample at or before t),
@@ -257,19 +259,7 @@ std::string FormatHtml(const ReportContent& content) {
 
 }  // namespace
 
-std::string EscapeHtml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string EscapeHtml(const std::string& text) { return EscapeXml(text); }
 
 ReportContent MakeRunReportContent(const RobotModel& model, const RunOptions& options, const RunReport& report,
                                    std::string pose_figure_png) {
@@ -281,7 +271,9 @@ ReportContent MakeRunReportContent(const RobotModel& model, const RunOptions& op
       {"robot", model.name()},
       {"motion", options.motion == "paper" ? "paper: hinges 1 and 2 accelerate at " +
                                                  Format("%g", options.accel_deg_s2) + " deg/s², others locked"
-                                           : "general: all joints move (two-harmonic Fourier series)"},
+                                           : options.motion == "general"
+                                               ? "general: all joints move (two-harmonic Fourier series)"
+                                               : "trajectory file " + options.motion},
       {"duration, step", Format("%g", options.duration) + " s, " + Format("%g", options.dt) + " s (Bullet, joint feedback)"},
       {"samples", std::to_string(r.n_samples) + " (" +
                       (options.all_samples ? std::string("every step") : [&] {

@@ -10,6 +10,7 @@
 
 #include "idbench/excitation/builtin_motions.h"
 #include "number_format.h"
+#include "trajectory_file.h"
 
 namespace idbench {
 namespace {
@@ -27,14 +28,25 @@ SimulationOptions RunOptions::simulation() const {
   return sim;
 }
 
+std::unique_ptr<Trajectory> MakeRunMotion(const RobotModel& model, const RunOptions& options) {
+  const BuiltinMotionOptions builtin{.duration = options.duration,
+                                     .paper_qdd = options.accel_deg_s2 * std::numbers::pi / 180.0};
+  std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.motion, model, builtin);
+  if (motion->duration() < options.duration - 1e-9) {
+    throw std::invalid_argument(options.motion + ": lasts " + Shortest(motion->duration()) +
+                                " s, shorter than --duration " + Shortest(options.duration) + " s");
+  }
+  return motion;
+}
+
 bool RunOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;
     return false;
   };
   if (robot != "paper6r") return fail("--robot: unknown robot '" + robot + "' (built-in: paper6r)");
-  if (motion != "paper" && motion != "general")
-    return fail("--motion: expected 'paper' or 'general', got '" + motion + "'");
+  if (motion != "paper" && motion != "general" && !IsTrajectoryFile(motion))
+    return fail("--motion: expected 'paper', 'general' or a trajectory file (.json, .csv), got '" + motion + "'");
   if (!std::isfinite(accel_deg_s2) || accel_deg_s2 <= 0.0 || accel_deg_s2 > kMaxAccelDegS2)
     return fail("--accel: must be in (0, " + Shortest(kMaxAccelDegS2) + "] deg/s^2, got " + Shortest(accel_deg_s2));
   if (!std::isfinite(dt) || dt <= 0.0) return fail("--dt: must be > 0 s, got " + Shortest(dt));
@@ -72,10 +84,7 @@ bool RunOptions::IsValid(std::string* why) const {
 }
 
 RunReport RunExperiment(const RobotModel& model, const RunOptions& options) {
-  const std::unique_ptr<Trajectory> motion =
-      options.motion == "general"
-          ? MakeGeneralMotion(model.n_dof(), options.duration)
-          : MakePaperMotion(model.n_dof(), options.accel_deg_s2 * std::numbers::pi / 180.0, options.duration);
+  const std::unique_ptr<Trajectory> motion = MakeRunMotion(model, options);
   RunReport report;
   report.log = Simulate(model, *motion, options.simulation());
   if (options.all_samples) {

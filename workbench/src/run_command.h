@@ -3,6 +3,7 @@
 // quaternion method, compare with the truth (paper Tables 1–3).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,7 @@ namespace idbench {
 
 struct RunOptions {
   std::string robot = "paper6r";
-  std::string motion = "paper";  // "paper": hinges 1, 2 accelerate; "general": all six move
+  std::string motion = "paper";  // "paper": hinges 1, 2 accelerate; "general": all six move; or a trajectory file
   double accel_deg_s2 = 30.0;    // hinge acceleration of the paper motion [deg/s²]
   double duration = 2.0;         // [s]
   double dt = 1e-3;              // [s]
@@ -42,6 +43,11 @@ struct RunReport {
 };
 
 // Runs the experiment (options must be valid).
+// The run's motion: a built-in one (with --accel, --duration) or a
+// trajectory file (trajectory_file.h), which must last at least --duration.
+// Throws std::invalid_argument naming a bad file or a file that is too short.
+std::unique_ptr<Trajectory> MakeRunMotion(const RobotModel& model, const RunOptions& options);
+
 RunReport RunExperiment(const RobotModel& model, const RunOptions& options);
 
 // The analogue of the paper's Tables 1–3 as plain text.

@@ -187,6 +187,10 @@ SampledTrajectory ParseTrajectoryCsv(const std::string& text, const RobotModel& 
   return SampledTrajectory(log.t, log.q.transpose(), log.qd.transpose(), log.qdd.transpose());
 }
 
+bool IsTrajectoryFile(const std::string& name_or_path) {
+  return EndsWith(name_or_path, ".json") || EndsWith(name_or_path, ".csv");
+}
+
 std::unique_ptr<Trajectory> LoadTrajectoryArg(const std::string& name_or_path, const RobotModel& model,
                                               const BuiltinMotionOptions& builtin) {
   if (EndsWith(name_or_path, ".json")) return ParseTrajectoryJson(ReadTextFile(name_or_path), model.n_dof(), name_or_path);

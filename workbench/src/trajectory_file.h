@@ -50,4 +50,7 @@ SampledTrajectory ParseTrajectoryCsv(const std::string& text, const RobotModel& 
 std::unique_ptr<Trajectory> LoadTrajectoryArg(const std::string& name_or_path, const RobotModel& model,
                                               const BuiltinMotionOptions& builtin);
 
+// Whether LoadTrajectoryArg reads `name_or_path` as a file (it ends in .json or .csv).
+bool IsTrajectoryFile(const std::string& name_or_path);
+
 }  // namespace idbench

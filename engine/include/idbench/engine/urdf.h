@@ -84,4 +84,7 @@ Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R);
 // R = Rz(rpy.z)·Ry(rpy.y)·Rx(rpy.x), the rotation URDF means by rpy.
 Eigen::Matrix3d RotationFromRpy(const Eigen::Vector3d& rpy);
 
+// Text with &, <, >, " and ' as XML entities (URDF attributes, HTML).
+std::string EscapeXml(const std::string& text);
+
 }  // namespace idbench
