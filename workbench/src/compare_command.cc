@@ -1,6 +1,8 @@
 #include "compare_command.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -9,6 +11,7 @@
 #include "design_command.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/design_regressor.h"
+#include "idbench/ident/least_squares.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "limits_file.h"
 #include "montecarlo_command.h"
@@ -129,9 +132,19 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
     row.duration = motion->duration();
     std::vector<double> times;
     for (int k = 0; k < options.samples; ++k) times.push_back(k * motion->duration() / options.samples);
-    row.designed = ComputeIdentifiability(regressor.Stack(*motion, times));
+    const Eigen::MatrixXd W = regressor.Stack(*motion, times);
+    row.designed = ComputeIdentifiability(W);
     row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz, clearance ? &*clearance : nullptr);
-    if (per_body) {
+    if (row.designed.rank < regressor.n_parameters()) {
+      const LeastSquaresSolution ls =
+          SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
+      for (size_t i = 0; i < ls.identifiable.size(); ++i) {
+        if (!ls.identifiable[i]) row.unexcited.push_back(regressor.parameter_names()[i]);
+      }
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      row.realised.cond = row.mean_relative_error = nan;
+      row.predicted_percent_sigma = Eigen::VectorXd::Constant(regressor.n_parameters(), nan);
+    } else if (per_body) {
       PerBodyMonteCarlo(model, *motion, options, regressor, &row);
     } else {
       MonteCarloOptions mc;
@@ -164,9 +177,11 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
   out += line;
   for (const MotionComparison& m : report.motions) {
     std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
-    std::snprintf(line, sizeof line, "%-28s %11.5g %11.5g %11.5g %11.5g %11.5g %11.4g  %s\n", name.c_str(),
-                  m.designed.cond, m.designed.cond_normalised, m.designed.log_det, m.designed.sigma_min,
-                  m.realised.cond, m.mean_relative_error, m.limits.feasible() ? "within" : "VIOLATED");
+    std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", name.c_str(),
+                  Format("%.5g", m.designed.cond).c_str(), Format("%.5g", m.designed.cond_normalised).c_str(),
+                  Format("%.5g", m.designed.log_det).c_str(), Format("%.5g", m.designed.sigma_min).c_str(),
+                  Format("%.5g", m.realised.cond).c_str(), Format("%.4g", m.mean_relative_error).c_str(),
+                  m.limits.feasible() ? "within" : "VIOLATED");
     out += line;
   }
   out += options.model == "torque"
@@ -187,13 +202,23 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
       std::snprintf(line, sizeof line, "%4zu", k + 1);
       out += line;
       for (const MotionComparison& m : report.motions) {
-        std::snprintf(line, sizeof line, " %11.4g", m.predicted_percent_sigma[static_cast<Eigen::Index>(k)]);
+        std::snprintf(line, sizeof line, " %11s", Format("%.4g", m.predicted_percent_sigma[static_cast<Eigen::Index>(k)]).c_str());
         out += line;
       }
       out += "  " + report.parameter_names[k] + "\n";
     }
   }
   for (const MotionComparison& m : report.motions) {
+    if (!m.unexcited.empty()) {
+      out += "\n" + m.name + " does not excite every parameter (rank " + std::to_string(m.designed.rank) + " of " +
+             std::to_string(m.designed.cols) + "): no estimate, so no %sigma or Monte-Carlo error. " +
+             std::to_string(m.unexcited.size()) + " parameters are zero or dependent columns of W:\n";
+      constexpr size_t kListed = 8;
+      for (size_t i = 0; i < std::min(kListed, m.unexcited.size()); ++i) out += "  " + m.unexcited[i] + "\n";
+      if (m.unexcited.size() > kListed) {
+        out += "  … and " + std::to_string(m.unexcited.size() - kListed) + " more (compare.json: \"unexcited\")\n";
+      }
+    }
     if (!m.limits.feasible()) {
       out += "\n" + m.name + " violates the robot file's limits or the clearance:\n" + m.limits.Explain();
     }
@@ -209,10 +234,13 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
               {"duration", m.duration},
               {"designed", IdentifiabilityJson(m.designed)},
               {"realised", IdentifiabilityJson(m.realised)},
-              {"mean_relative_error", m.mean_relative_error},
+              {"mean_relative_error", std::isfinite(m.mean_relative_error) ? json(m.mean_relative_error) : json(nullptr)},
+              {"unexcited", m.unexcited},
               {"within_robot_limits", m.limits.feasible()},
               {"limit_violations", m.limits.Explain()}};
-    if (m.predicted_percent_sigma.size() > 0) j["predicted_percent_sigma"] = ToStdVector(m.predicted_percent_sigma);
+    if (m.predicted_percent_sigma.size() > 0 && m.unexcited.empty()) {
+      j["predicted_percent_sigma"] = ToStdVector(m.predicted_percent_sigma);
+    }
     motions.push_back(j);
   }
   const json doc = {{"command", options.command_line},

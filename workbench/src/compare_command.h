@@ -43,6 +43,10 @@ struct MotionComparison {
   double mean_relative_error = 0.0;     // Monte-Carlo mean over trials (see FormatCompareTable)
   double max_relative_error = 0.0;      // worst parameter, worst trial
   FeasibilityCheck limits;              // against the robot file's limits and the clearance at 1 kHz
+  // When the motion does not excite every parameter (rank-deficient W): the
+  // parameters whose columns are zero or dependent; there is then no
+  // estimate, so no %σ, realised cond or Monte-Carlo error (NaN).
+  std::vector<std::string> unexcited;
 };
 
 struct CompareReport {

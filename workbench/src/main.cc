@@ -12,6 +12,7 @@
 #include "compare_command.h"
 #include "design_command.h"
 #include "design_report.h"
+#include "idbench/gui/gui_command.h"
 #include "identify_command.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/robot_library.h"
@@ -392,6 +393,18 @@ int main(int argc, char** argv) {
   report_cmd->add_option("--out", report_dir, "Directory holding results.json; the report is written there")
       ->required();
 
+  idbench::gui::GuiCommandOptions gui;
+  std::string gui_size = "1280x720";
+  CLI::App* gui_cmd = app.add_subcommand(
+      "gui", "The workbench window (GLFW + OpenGL 3); --headless draws it offscreen, driven by --script");
+  gui_cmd->add_option("--robot", gui.robot, "Built-in robot (paper6r, puma560) or URDF file")->capture_default_str();
+  gui_cmd->add_option("--out", gui.out_dir, "Directory for logs and exports")->capture_default_str();
+  gui_cmd->add_flag("--headless", gui.headless, "No window: OSMesa, scripted input");
+  gui_cmd->add_option("--script", gui.script, "Headless: steps (click, set, wait, frames, screenshot), one a line");
+  gui_cmd->add_option("--screenshot", gui.screenshot, "Write the last frame as a PNG");
+  gui_cmd->add_option("--frames", gui.frames, "Window: close after N frames (0: when closed)");
+  gui_cmd->add_option("--size", gui_size, "Window size WxH [px]")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -414,9 +427,16 @@ int main(int argc, char** argv) {
     if (report_cmd->parsed()) return ReportCommand(report_dir);
     if (design_cmd->parsed()) return DesignCommand(design, design_report);
     if (compare_cmd->parsed()) return CompareCommand(compare, compare_report);
+    if (gui_cmd->parsed()) {
+      if (std::sscanf(gui_size.c_str(), "%dx%d", &gui.width, &gui.height) != 2)
+        return UsageError("--size: expected WxH, got '" + gui_size + "'");
+      std::string why;
+      if (!gui.IsValid(&why)) return UsageError(why);
+      return idbench::gui::RunGuiCommand(gui);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;
   }
-  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, compare, render, report); see idbench --help");
+  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, compare, render, report, gui); see idbench --help");
 }

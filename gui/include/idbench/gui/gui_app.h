@@ -1,0 +1,56 @@
+// The workbench window's content: a 3D viewport with a timeline, and the
+// robot, design, experiment, compare and export panels over one Session. The
+// same code draws in a GLFW window and headless (OSMesa); the platform layer
+// (gui_platform.h) owns the GL context, ImGui's context and its renderer,
+// feeds input, and calls Frame between ImGui::NewFrame and ImGui::Render.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "idbench/gui/session.h"
+#include "idbench/gui/widget_registry.h"
+#include "idbench/render/gl_proc_loader.h"
+
+namespace idbench::gui {
+
+// Layout of the window (fractions of its size): the viewport and robot panel
+// on the left, the tabbed panels and the messages on the right.
+struct GuiLayout {
+  float left_fraction = 0.52f;      // width of the left column
+  float viewport_fraction = 0.60f;  // height of the viewport in the left column
+  float messages_height = 120.0f;   // [px] at the bottom right
+};
+
+class GuiApp {
+ public:
+  // A GL 3.3 context must be current (the viewport's renderer loads through
+  // `loader`) and an ImGui context must exist. Throws std::runtime_error when
+  // the renderer cannot be created.
+  GuiApp(const SessionOptions& options, GlProcLoader loader);
+  ~GuiApp();
+  GuiApp(const GuiApp&) = delete;
+  GuiApp& operator=(const GuiApp&) = delete;
+
+  // Builds every panel for one frame of dt_seconds (the timeline advances by
+  // it when playing) and draws the 3D view into the renderer's texture.
+  void Frame(double dt_seconds);
+
+  Session& session();
+  const WidgetRegistry& widgets() const;
+  GuiLayout& layout();
+
+  // Timeline: the shown instant of the current motion [s].
+  double time() const;
+  bool playing() const;
+
+  // A screenshot the Export panel asked for: its path, once.
+  std::optional<std::string> TakeScreenshotRequest();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace idbench::gui

@@ -1,0 +1,40 @@
+// Scripts for the headless GUI: one step per line, '#' starts a comment.
+//
+//   click WIDGET             move the mouse onto a named widget and click it
+//   set WIDGET VALUE...      set the value a widget edits (the rest of the line)
+//   wait JOB [SECONDS]       render frames until the job (design, simulate,
+//                            identify, per-body, compare, report) has
+//                            finished; default 600 s
+//   frames N                 render N frames (the timeline advances when playing)
+//   screenshot FILE          write the window as a PNG
+//
+// Widget names are dotted: tab.design, design.harmonics, design.run,
+// limits.2.qd_max, experiment.simulate, ... (README.md lists them).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "idbench/gui/headless_gui.h"
+
+namespace idbench::gui {
+
+struct ScriptStep {
+  enum class Kind { kClick, kSet, kWait, kFrames, kScreenshot };
+  Kind kind = Kind::kFrames;
+  std::string target;   // widget, job or file
+  std::string value;    // set: the value; wait: timeout [s]; frames: count
+  int line = 0;         // 1-based, for messages
+};
+
+// Throws std::invalid_argument "source:line: what" for an unknown step, a
+// missing argument, an unknown job, or a count that is not a number.
+std::vector<ScriptStep> ParseGuiScript(const std::string& text, const std::string& source);
+
+// Runs the steps in order; stops at the first that fails, with *why
+// "source:line: what". A job that fails is not a script failure: its message
+// is in the session, as a user would see it.
+bool RunGuiScript(HeadlessGui& gui, const std::vector<ScriptStep>& steps, const std::string& source,
+                  std::string* why);
+
+}  // namespace idbench::gui

@@ -1,0 +1,94 @@
+// The GUI in a GLFW window with an OpenGL 3.3 core context. GL is reached
+// only through glfwGetProcAddress (no libGL at link time: this binary also
+// links OSMesa for the headless mode).
+#include <imgui.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "idbench/gui/gui_app.h"
+#include "idbench/gui/gui_command.h"
+#include "imgui_gl.h"
+#include "imgui_setup.h"
+
+namespace idbench::gui {
+namespace {
+
+void* GetProcAddress(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+
+void OnGlfwError(int code, const char* description) { std::fprintf(stderr, "GLFW error %d: %s\n", code, description); }
+
+}  // namespace
+
+int RunGuiWindow(const GuiCommandOptions& options) {
+  glfwSetErrorCallback(&OnGlfwError);
+  if (!glfwInit()) {
+    std::fprintf(stderr, "idbench gui: cannot open a window (no display?); try --headless\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "idbench", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "idbench gui: cannot create an OpenGL 3.3 window\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  int code = 0;
+  ImGuiContext* imgui = ImGui::CreateContext();
+  try {
+    internal::ConfigureImGui();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    internal::InitImGuiRenderer(&GetProcAddress);
+    {
+      GuiApp app({.robot = options.robot, .out_dir = options.out_dir}, &GetProcAddress);
+      double last = glfwGetTime();
+      for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
+        // Wake up regularly while jobs run, so their progress shows.
+        if (app.playing() || app.session().any_running()) glfwWaitEventsTimeout(1.0 / 30.0);
+        else glfwWaitEventsTimeout(0.25);
+        const double now = glfwGetTime();
+        internal::NewImGuiRendererFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        app.Frame(now - last);
+        last = now;
+        ImGui::Render();
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window, &w, &h);
+        internal::RenderImGui(w, h);
+        if (std::optional<std::string> path = app.TakeScreenshotRequest()) {
+          try {
+            internal::WriteFramebufferPng(*path, w, h);
+            app.session().Info("screenshot written to " + *path);
+          } catch (const std::exception& e) {
+            app.session().Error(std::string("screenshot: ") + e.what());
+          }
+        }
+        if (frame == options.frames) {
+          // --frames: the last frame, then close (smoke tests).
+          if (!options.screenshot.empty()) internal::WriteFramebufferPng(options.screenshot, w, h);
+          break;
+        }
+        glfwSwapBuffers(window);
+      }
+    }
+    internal::ShutdownImGuiRenderer();
+    ImGui_ImplGlfw_Shutdown();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "idbench gui: %s\n", e.what());
+    code = 1;
+  }
+  ImGui::DestroyContext(imgui);
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace idbench::gui
