@@ -6,7 +6,8 @@ packages=(build-essential cmake pkg-config
           liburdfdom-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
-          libgtest-dev libbenchmark-dev)
+          libgtest-dev libbenchmark-dev
+          xvfb xauth libgl1-mesa-dri)  # the windowed GUI's smoke test runs under Xvfb
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
 # Only refresh the package lists when something is missing.

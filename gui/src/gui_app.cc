@@ -711,7 +711,10 @@ void GuiApp::Impl::DrawMessages() {
 // ---- Frame ------------------------------------------------------------------
 
 GuiApp::GuiApp(const SessionOptions& options, GlProcLoader loader) : impl_(std::make_unique<Impl>(options, loader)) {
-  impl_->robot_choice = BuiltinRobotNames().front();
+  // The combo starts at the robot the session opened (when it is a built-in).
+  const std::vector<std::string> names = BuiltinRobotNames();
+  const std::string& source = impl_->session.robot_source();
+  impl_->robot_choice = std::find(names.begin(), names.end(), source) != names.end() ? source : names.front();
 }
 
 GuiApp::~GuiApp() = default;
