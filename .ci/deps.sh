@@ -7,7 +7,8 @@ packages=(build-essential cmake pkg-config
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
           libgtest-dev libbenchmark-dev
-          xvfb xauth libgl1-mesa-dri)  # the windowed GUI's smoke test runs under Xvfb
+          xvfb xauth libgl1-mesa-dri  # the windowed GUI's smoke test runs under Xvfb
+          poppler-utils)              # pdfinfo: the report tests open the PDFs
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
 # Only refresh the package lists when something is missing.

@@ -160,6 +160,9 @@ TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
     const std::string html = Slurp(dir / "report.html");
     ASSERT_FALSE(html.empty()) << dir;
     EXPECT_EQ(Slurp(dir / "report.pdf").substr(0, 5), "%PDF-");
+    if (std::system("command -v pdfinfo >/dev/null 2>&1") == 0) {
+      EXPECT_EQ(std::system(("pdfinfo " + (dir / "report.pdf").string() + " >/dev/null 2>&1").c_str()), 0);
+    }
     const std::regex ref(R"re((src|href)="([^"#:]+)")re");
     int refs = 0;
     for (auto it = std::sregex_iterator(html.begin(), html.end(), ref); it != std::sregex_iterator(); ++it, ++refs) {
