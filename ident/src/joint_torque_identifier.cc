@@ -1,11 +1,87 @@
 #include "idbench/ident/joint_torque_identifier.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace idbench {
 
 namespace {
+
+void CheckLog(const RobotModel& model, const JointLog& log) {
+  const int n = model.n_dof();
+  if (log.n_dof() != n || log.tau.cols() != n || log.tau.rows() != log.n_samples()) {
+    throw std::invalid_argument("joint log has " + std::to_string(log.n_dof()) + " joints, robot '" +
+                                model.name() + "' has " + std::to_string(n));
+  }
+  if (!log.has_derivatives()) {
+    throw std::invalid_argument("joint log has no qd/qdd: estimate them first (filtering, signal_filter.h)");
+  }
+}
+
+// Base columns that can be non-zero in joint j's row: the inertial parameters
+// of link j and its descendants (the joints a link's wrench passes are its
+// ancestors), and joint j's own friction terms (ascending, as base columns).
+std::vector<std::vector<int>> JointColumns(const RobotModel& model, const FrictionModel& friction,
+                                           const BaseParameters& base) {
+  const int n_inertial = model.n_links() * kInertialParametersPerLink;
+  std::vector<std::vector<int>> columns(static_cast<size_t>(model.n_dof()));
+  for (int k = 0; k < base.n_base(); ++k) {
+    const int c = base.independent[static_cast<size_t>(k)];
+    if (c < n_inertial) {
+      for (int j = c / kInertialParametersPerLink; j >= 0; j = model.link(j).parent) {
+        columns[static_cast<size_t>(j)].push_back(k);
+      }
+    } else {
+      columns[static_cast<size_t>((c - n_inertial) / friction.per_joint())].push_back(k);
+    }
+  }
+  return columns;
+}
+
+// Factors of samples [s_begin, s_end) of the log, from zero. `data`, `Y`,
+// `rows` (per joint) and `work` are the caller's workspace.
+void FactorSamples(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                   const JointLog& log, int s_begin, int s_end, RobotData* data, Eigen::MatrixXd* Y,
+                   std::vector<Eigen::MatrixXd>* rows, Eigen::VectorXd* work, StackedFactors* factors) {
+  constexpr int kBlock = 128;  // samples per fold
+  const int n = model.n_dof();
+  // Standard column of each factor column, per joint.
+  std::vector<std::vector<int>> standard(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    JointRowFactor& f = factors->joints[static_cast<size_t>(j)];
+    for (int k : f.columns) standard[static_cast<size_t>(j)].push_back(base.independent[static_cast<size_t>(k)]);
+    f.T.setZero();
+    f.n_rows = 0;
+    (*rows)[static_cast<size_t>(j)].resize(kBlock, static_cast<Eigen::Index>(f.columns.size()) + 1);
+  }
+  Eigen::VectorXd q(n), qd(n), qdd(n);
+  for (int s0 = s_begin; s0 < s_end; s0 += kBlock) {
+    const int m = std::min(kBlock, s_end - s0);
+    // Regressor rows of the block, gathered per joint, τ last.
+    for (int s = 0; s < m; ++s) {
+      q = log.q.row(s0 + s).transpose();
+      qd = log.qd.row(s0 + s).transpose();
+      qdd = log.qdd.row(s0 + s).transpose();
+      ComputeJointTorqueRegressor(model, friction, q, qd, qdd, data, Y);
+      for (int j = 0; j < n; ++j) {
+        const std::vector<int>& cols = standard[static_cast<size_t>(j)];
+        Eigen::MatrixXd& r = (*rows)[static_cast<size_t>(j)];
+        const Eigen::Index c = static_cast<Eigen::Index>(cols.size());
+        for (Eigen::Index k = 0; k < c; ++k) r(s, k) = (*Y)(j, cols[static_cast<size_t>(k)]);
+        r(s, c) = log.tau(s0 + s, j);
+      }
+    }
+    // Fold them into each joint's factor.
+    for (int j = 0; j < n; ++j) {
+      FoldJointRows((*rows)[static_cast<size_t>(j)].topRows(m), &factors->joints[static_cast<size_t>(j)], work);
+    }
+  }
+}
 
 TorquePrediction Predict(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, const Eigen::VectorXd& beta,
                          int n_dof) {
@@ -36,14 +112,8 @@ std::optional<TorqueEstimator> ParseTorqueEstimator(const std::string& name) {
 
 Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel& friction,
                                    const BaseParameters& base, const JointLog& log) {
+  CheckLog(model, log);
   const int n = model.n_dof();
-  if (log.n_dof() != n || log.tau.cols() != n || log.tau.rows() != log.n_samples()) {
-    throw std::invalid_argument("joint log has " + std::to_string(log.n_dof()) + " joints, robot '" +
-                                model.name() + "' has " + std::to_string(n));
-  }
-  if (!log.has_derivatives()) {
-    throw std::invalid_argument("joint log has no qd/qdd: estimate them first (filtering, signal_filter.h)");
-  }
   Eigen::MatrixXd W(static_cast<Eigen::Index>(log.n_samples()) * n, base.n_base());
   RobotData data(model);
   Eigen::MatrixXd Y;
@@ -58,6 +128,52 @@ Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel&
     }
   }
   return W;
+}
+
+StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
+                                      const BaseParameters& base, const JointLog& log, int n_threads) {
+  CheckLog(model, log);
+  const StackedFactors empty(base.n_base(), JointColumns(model, friction, base));
+  const int n_samples = log.n_samples();
+  const int n_parts = std::max(1, (n_samples + kSamplesPerFactorPart - 1) / kSamplesPerFactorPart);
+  if (n_threads <= 0) n_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  n_threads = std::min(n_threads, n_parts);
+  // Part p (samples [p·P, (p + 1)·P)) is factored from zero by whichever
+  // thread takes it next, each thread with its own workspace.
+  std::vector<StackedFactors> parts(static_cast<size_t>(n_parts), empty);
+  std::atomic<int> next_part{0};
+  auto factor_parts = [&] {
+    RobotData data(model);
+    Eigen::MatrixXd Y;
+    std::vector<Eigen::MatrixXd> rows(static_cast<size_t>(model.n_dof()));
+    Eigen::VectorXd work;
+    for (int p = next_part++; p < n_parts; p = next_part++) {
+      const int s_begin = p * kSamplesPerFactorPart;
+      const int s_end = std::min(n_samples, s_begin + kSamplesPerFactorPart);
+      FactorSamples(model, friction, base, log, s_begin, s_end, &data, &Y, &rows, &work,
+                    &parts[static_cast<size_t>(p)]);
+    }
+  };
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto run = [&] {
+    try {
+      factor_parts();
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
+  {
+    std::vector<std::jthread> threads;  // joined when the block ends, also on a throw
+    for (int t = 1; t < n_threads; ++t) threads.emplace_back(run);
+    run();
+  }
+  if (failure) std::rethrow_exception(failure);
+  // Merge in part order.
+  StackedFactors factors = std::move(parts.front());
+  for (size_t p = 1; p < parts.size(); ++p) MergeStackedFactors(parts[p], &factors);
+  return factors;
 }
 
 Eigen::VectorXd StackTorques(const JointLog& log) {

@@ -8,22 +8,33 @@
 namespace idbench {
 namespace {
 
+// L = Lin(ω̇) + ω× Lin(ω), with I·w = Lin(w)·[Ixx, Ixy, Iyy, Ixz, Iyz, Izz]:
+// I ω̇ + ω × I ω = L·[Ixx, …, Izz]. Written out entry by entry.
 template <typename Scalar>
-Eigen::Matrix<Scalar, 3, 3> Skew(const Eigen::Matrix<Scalar, 3, 1>& v) {
-  Eigen::Matrix<Scalar, 3, 3> S;
-  S << Scalar(0.0), -v.z(), v.y(), v.z(), Scalar(0.0), -v.x(), -v.y(), v.x(), Scalar(0.0);
-  return S;
+Eigen::Matrix<Scalar, 3, 6> InertiaTorqueMatrix(const Eigen::Matrix<Scalar, 3, 1>& w,
+                                                const Eigen::Matrix<Scalar, 3, 1>& wd) {
+  const Scalar &x = w.x(), &y = w.y(), &z = w.z();
+  Eigen::Matrix<Scalar, 3, 6> L;
+  L << wd.x(), wd.y() - z * x, -z * y, wd.z() + y * x, y * y - z * z, y * z,  //
+      z * x, wd.x() + z * y, wd.y(), z * z - x * x, wd.z() - x * y, -x * z,   //
+      -y * x, x * x - y * y, x * y, wd.x() - y * z, wd.y() + x * z, wd.z();
+  return L;
 }
 
-// I·w = Lin(w)·[Ixx, Ixy, Iyy, Ixz, Iyz, Izz].
+// Rᵀ v, written out (a call to Eigen's product is not inlined at -O2).
 template <typename Scalar>
-Eigen::Matrix<Scalar, 3, 6> InertiaProductMatrix(const Eigen::Matrix<Scalar, 3, 1>& w) {
-  const Scalar z(0.0);
-  Eigen::Matrix<Scalar, 3, 6> L;
-  L << w.x(), w.y(), z, w.z(), z, z,  //
-      z, w.x(), w.y(), z, w.z(), z,   //
-      z, z, z, w.x(), w.y(), w.z();
-  return L;
+[[gnu::always_inline]] inline Eigen::Matrix<Scalar, 3, 1> TransposeTimes(const Eigen::Matrix<Scalar, 3, 3>& R,
+                                                                          const Eigen::Matrix<Scalar, 3, 1>& v) {
+  return {R(0, 0) * v.x() + R(1, 0) * v.y() + R(2, 0) * v.z(),  //
+          R(0, 1) * v.x() + R(1, 1) * v.y() + R(2, 1) * v.z(),  //
+          R(0, 2) * v.x() + R(1, 2) * v.y() + R(2, 2) * v.z()};
+}
+
+// aᵀb, written out: Eigen's packet loads of 3-vectors just stored as scalars
+// stall on store forwarding.
+template <typename Scalar, typename A, typename B>
+[[gnu::always_inline]] inline Scalar Dot3(const A& a, const B& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 }  // namespace
@@ -119,36 +130,44 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
                                   KinematicsData<Scalar>* data,
                                   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>* Y) {
   using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
-  using Block = Eigen::Matrix<Scalar, 3, kInertialParametersPerLink>;
+  using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
   ComputeKinematicsT<Scalar>(model, q, qd, qdd, data);
   const KinematicsData<Scalar>& d = *data;
   const int n = model.n_dof();
+  // Blocks (joint j, link i) with j not on link i's path to the root stay zero.
   Y->setZero(n, NumStandardParameters(model, friction));
   const Vector3 g_W = model.gravity_W().template cast<Scalar>();
   for (int i = 0; i < model.n_links(); ++i) {
     const size_t b = static_cast<size_t>(i);
-    const auto& R = d.R_WB[b];
-    // Link i's own wrench about Bo, body axes, linear in its 10 parameters:
-    //   f = m a + (ω̇× + ω×ω×) mc,   n = I ω̇ + ω × I ω − a × mc,  a = a_Bo − g.
-    const Vector3 w = R.transpose() * d.w_WB_W[b];
-    const Vector3 wd = R.transpose() * d.wd_WB_W[b];
-    const Vector3 a = R.transpose() * (d.a_WBo_W[b] - g_W);
-    Block A_f = Block::Zero();
-    Block A_n = Block::Zero();
-    A_f.col(0) = a;
-    A_f.template block<3, 3>(0, 1) = Skew(wd) + Skew(w) * Skew(w);
-    A_n.template block<3, 3>(0, 1) = -Skew(a);
-    A_n.template block<3, 6>(0, 4) = InertiaProductMatrix(wd) + Skew(w) * InertiaProductMatrix(w);
-    const Block F_W = R * A_f;
-    const Block N_W = R * A_n;
+    const Matrix3& R_WB = d.R_WB[b];
+    // Link i's own wrench about Bo, body axes, linear in its 10 parameters π_i:
+    //   f = m a + (ω̇× + ω×ω×) mc,   n = I ω̇ + ω × I ω − a × mc,  a = a_Bo − g,
+    // i.e. f = [a  K  0] π_i and n = [0  −a×  L] π_i with
+    //   K = ω̇× + ω ωᵀ − |ω|² 𝟙 (3×3),   L = Lin(ω̇) + ω× Lin(ω) (3×6).
+    const Vector3 w = TransposeTimes(R_WB, d.w_WB_W[b]);
+    const Vector3 wd = TransposeTimes(R_WB, d.wd_WB_W[b]);
+    const Vector3 a = TransposeTimes<Scalar>(R_WB, d.a_WBo_W[b] - g_W);
+    Matrix3 K = w * w.transpose();
+    const Scalar w2 = w.squaredNorm();
+    K(0, 0) -= w2, K(1, 1) -= w2, K(2, 2) -= w2;
+    K(0, 1) -= wd.z(), K(1, 0) += wd.z();
+    K(0, 2) += wd.y(), K(2, 0) -= wd.y();
+    K(1, 2) -= wd.x(), K(2, 1) += wd.x();
+    const Eigen::Matrix<Scalar, 3, 6> L = InertiaTorqueMatrix(w, wd);
     // Every joint j on the path from link i to the root carries that wrench:
-    // τ_j += s_jᵀ (n + (p_Bo_i − p_Jo_j) × f).
+    //   τ_j = s_jᵀ (R n + r × R f) = uᵀ n + vᵀ f,  r = p_Bo_i − p_Jo_j,
+    // with the joint's axis u = Rᵀ s_j and moment arm v = Rᵀ (s_j × r) in B
+    // axes (f, n never leave B). Each (joint, link) block is written once.
+    const int c = kInertialParametersPerLink * i;
     for (int j = i; j >= 0; j = model.link(j).parent) {
       const size_t jj = static_cast<size_t>(j);
-      const Eigen::Matrix<Scalar, 1, 3> s = d.axis_W[jj].transpose();
-      const Vector3 r = d.p_WBo_W[b] - d.p_WBo_W[jj];
-      Y->template block<1, kInertialParametersPerLink>(j, kInertialParametersPerLink * i) +=
-          s * N_W + (s * Skew(r)) * F_W;
+      const Vector3& s_W = d.axis_W[jj];
+      const Vector3 u = TransposeTimes(R_WB, s_W);
+      const Vector3 v = TransposeTimes<Scalar>(R_WB, s_W.cross(d.p_WBo_W[b] - d.p_WBo_W[jj]));
+      const Vector3 a_x_u = a.cross(u);
+      (*Y)(j, c) = Dot3<Scalar>(v, a);
+      for (int k = 0; k < 3; ++k) (*Y)(j, c + 1 + k) = Dot3<Scalar>(v, K.col(k)) + a_x_u[k];
+      for (int k = 0; k < 6; ++k) (*Y)(j, c + 4 + k) = Dot3<Scalar>(u, L.col(k));
     }
   }
   // Friction and drive terms, per joint.

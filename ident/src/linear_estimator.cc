@@ -2,7 +2,7 @@
 
 #include "idbench/ident/least_squares.h"
 
-#include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,28 +21,198 @@ void CheckSizes(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof)
   }
 }
 
-// OLS on (W, tau) with row weights already applied. W has full column rank
-// (base parameters), so an unpivoted, blocked Householder QR serves; its R
-// gives the covariance and cond(W) (= cond(R)) without another factorisation.
-LinearFit Fit(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
+// ‖W_j β − τ_j‖ of one joint from its factor: ‖T [β_columns; −1]‖.
+double JointResidualNorm(const JointRowFactor& f, const Eigen::VectorXd& beta) {
+  const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
+  Eigen::VectorXd x(c + 1);
+  for (Eigen::Index k = 0; k < c; ++k) x[k] = beta[f.columns[static_cast<size_t>(k)]];
+  x[c] = -1.0;
+  return (f.T.triangularView<Eigen::Upper>() * x).norm();
+}
+
+// Least squares over all joints' rows, joint j's weighted by weights[j]: the
+// factors, scaled and scattered into the full column space, are folded into
+// one (p + 1) × (p + 1) factor [R z; 0 ρ] of the weighted [W τ]. Then
+//   β = R⁻¹ z,  ‖r‖ = |ρ|,  (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ,  cond(W) = cond(R).
+LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
+  const int p = factors.n_parameters;
+  const double n_equations = static_cast<double>(factors.n_samples()) * factors.n_dof();
+  if (n_equations <= p) {
+    throw std::invalid_argument("least squares: " + std::to_string(static_cast<long long>(n_equations)) +
+                                " equations for " + std::to_string(p) + " parameters; need more samples");
+  }
+  Eigen::Index n_rows = 0;
+  for (const JointRowFactor& f : factors.joints) n_rows += f.T.rows();
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(n_rows, p + 1);
+  Eigen::Index r0 = 0;
+  for (size_t j = 0; j < factors.joints.size(); ++j) {
+    const JointRowFactor& f = factors.joints[j];
+    const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
+    const double weight = weights[static_cast<Eigen::Index>(j)];
+    for (Eigen::Index k = 0; k < c; ++k) {
+      rows.col(f.columns[static_cast<size_t>(k)]).segment(r0, c + 1) = weight * f.T.col(k);
+    }
+    rows.col(p).segment(r0, c + 1) = weight * f.T.col(c);
+    r0 += c + 1;
+  }
+  std::vector<int> all(static_cast<size_t>(p));
+  for (int k = 0; k < p; ++k) all[static_cast<size_t>(k)] = k;
+  StackedFactors total(p, {all});
+  Eigen::VectorXd work;
+  FoldJointRows(rows, &total.joints.front(), &work);
+  const Eigen::MatrixXd& T = total.joints.front().T;
+
   LinearFit fit;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
-  const Eigen::Index p = W.cols();
-  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
-  fit.beta = R.triangularView<Eigen::Upper>().solve((qr.householderQ().transpose() * tau).head(p));
-  const Eigen::VectorXd r = W * fit.beta - tau;
-  const double dof = static_cast<double>(W.rows() - W.cols());
-  const double s2 = r.squaredNorm() / dof;
+  const Eigen::MatrixXd R = T.topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  fit.beta = R.triangularView<Eigen::Upper>().solve(T.col(p).head(p));
+  const double s2 = T(p, p) * T(p, p) / (n_equations - p);
   // (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ.
   const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
   fit.covariance = Rinv * Rinv.transpose() * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
   fit.cond = ConditionNumber(R);
+  // Unweighted residual RMS per joint.
+  fit.joint_rms.resize(factors.n_dof());
+  const double n_samples = static_cast<double>(factors.n_samples());
+  for (int j = 0; j < factors.n_dof(); ++j) {
+    fit.joint_rms[j] = JointResidualNorm(factors.joints[static_cast<size_t>(j)], fit.beta) / std::sqrt(n_samples);
+  }
   return fit;
 }
 
 }  // namespace
+
+StackedFactors::StackedFactors(int n_parameters_in, const std::vector<std::vector<int>>& columns_per_joint)
+    : n_parameters(n_parameters_in) {
+  for (const std::vector<int>& columns : columns_per_joint) {
+    for (size_t k = 0; k < columns.size(); ++k) {
+      if (columns[k] < 0 || columns[k] >= n_parameters || (k > 0 && columns[k] <= columns[k - 1])) {
+        throw std::invalid_argument("stacked factors: expected ascending columns in [0, " +
+                                    std::to_string(n_parameters) + "), got " + std::to_string(columns[k]));
+      }
+    }
+    const Eigen::Index c = static_cast<Eigen::Index>(columns.size());
+    joints.push_back(JointRowFactor{columns, Eigen::MatrixXd::Zero(c + 1, c + 1), 0});
+  }
+}
+
+void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor, Eigen::VectorXd* work) {
+  constexpr Eigen::Index kPanel = 8;  // reflections applied at once to the columns right of a panel
+  Eigen::MatrixXd& T = factor->T;
+  const Eigen::Index n = T.cols();
+  const Eigen::Index m = rows.rows();
+  if (rows.cols() != n) {
+    throw std::invalid_argument("fold rows: expected " + std::to_string(n) + " columns, got " +
+                                std::to_string(rows.cols()));
+  }
+  if (work->size() < 2 * kPanel * n + kPanel * kPanel) work->resize(2 * kPanel * n + kPanel * kPanel);
+  // Householder QR of [T; rows], T upper triangular, a panel of columns at a
+  // time (blocked, compact WY: Schreiber & Van Loan 1989). Column k's
+  // reflection H_k = 𝟙 − t_k v vᵀ, v = [e_k; x/(T_kk − β)] (x: column k of the
+  // rows), maps [T_kk; x] onto [β; 0] (LAPACK dlarfg); v's tail is kept in
+  // place of x. T's zeros below the diagonal stay zero.
+  for (Eigen::Index k0 = 0; k0 < n; k0 += kPanel) {
+    const Eigen::Index bs = std::min(kPanel, n - k0);
+    Eigen::Map<Eigen::MatrixXd> Tw(work->data(), bs, bs);  // H_k0 ⋯ H_k0+bs−1 = 𝟙 − V Tw Vᵀ
+    Tw.setZero();
+    // 1. The panel's reflections, each applied to the panel columns right of it.
+    for (Eigen::Index k = k0; k < k0 + bs; ++k) {
+      auto x = rows.col(k);
+      const double x2 = x.squaredNorm();
+      if (x2 == 0.0) continue;  // t_k = 0, v = e_k
+      const double alpha = T(k, k);
+      const double beta = -std::copysign(std::sqrt(alpha * alpha + x2), alpha);
+      const double t = (beta - alpha) / beta;
+      x /= alpha - beta;
+      T(k, k) = beta;
+      Tw(k - k0, k - k0) = t;
+      const Eigen::Index right = k0 + bs - k - 1;
+      if (right == 0) continue;
+      Eigen::Map<Eigen::RowVectorXd> w(work->data() + bs * bs, right);
+      w.noalias() = x.transpose() * rows.middleCols(k + 1, right);
+      w += T.row(k).segment(k + 1, right);
+      w *= t;
+      T.row(k).segment(k + 1, right) -= w;
+      rows.middleCols(k + 1, right).noalias() -= x * w;
+    }
+    const Eigen::Index right = n - k0 - bs;
+    if (right == 0) break;
+    // 2. Tw by LAPACK dlarft: column i is −t_i Tw(0:i, 0:i) Vᵀ v_i above t_i
+    //    (the e_k parts of V are orthogonal, so Vᵀ v_i = V_xᵀ x_i).
+    const auto V = rows.middleCols(k0, bs);
+    for (Eigen::Index i = 1; i < bs; ++i) {
+      if (Tw(i, i) == 0.0) continue;
+      Eigen::Map<Eigen::VectorXd> y(work->data() + bs * bs, i);
+      y.noalias() = V.leftCols(i).transpose() * V.col(i);
+      Tw.col(i).head(i).noalias() = Tw.topLeftCorner(i, i).triangularView<Eigen::Upper>() * y;
+      Tw.col(i).head(i) *= -Tw(i, i);
+    }
+    // 3. (𝟙 − V Twᵀ Vᵀ) on the columns right of the panel: the panel's rows of
+    //    T and all the new rows.
+    Eigen::Map<Eigen::MatrixXd> Y1(work->data() + bs * bs, bs, right);
+    Eigen::Map<Eigen::MatrixXd> Y2(work->data() + bs * bs + bs * right, bs, right);
+    Y1.noalias() = V.transpose() * rows.rightCols(right);
+    Y1 += T.block(k0, k0 + bs, bs, right);
+    Y2.noalias() = Tw.triangularView<Eigen::Upper>().transpose() * Y1;
+    T.block(k0, k0 + bs, bs, right) -= Y2;
+    rows.rightCols(right).noalias() -= V * Y2;
+  }
+  factor->n_rows += m;
+}
+
+void MergeStackedFactors(const StackedFactors& other, StackedFactors* into) {
+  if (other.n_parameters != into->n_parameters || other.joints.size() != into->joints.size()) {
+    throw std::invalid_argument("merge factors: expected " + std::to_string(into->n_dof()) + " joints and " +
+                                std::to_string(into->n_parameters) + " parameters, got " +
+                                std::to_string(other.n_dof()) + " and " + std::to_string(other.n_parameters));
+  }
+  Eigen::VectorXd work;
+  for (size_t j = 0; j < other.joints.size(); ++j) {
+    JointRowFactor& f = into->joints[j];
+    if (other.joints[j].columns != f.columns) {
+      throw std::invalid_argument("merge factors: joint " + std::to_string(j + 1) + " has other columns");
+    }
+    const Eigen::Index n_rows = f.n_rows + other.joints[j].n_rows;  // T's rows stand for them
+    Eigen::MatrixXd rows = other.joints[j].T;
+    FoldJointRows(rows, &f, &work);
+    f.n_rows = n_rows;
+  }
+}
+
+StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
+  CheckSizes(W, tau, n_dof);
+  const Eigen::Index n_samples = W.rows() / n_dof;
+  using Strided = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  // Per joint, the columns that are non-zero somewhere in its rows.
+  std::vector<std::vector<int>> columns(static_cast<size_t>(n_dof));
+  for (int j = 0; j < n_dof; ++j) {
+    const Strided Wj(W.data() + j, n_samples, W.cols(), Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(W.rows(), n_dof));
+    for (int c = 0; c < W.cols(); ++c) {
+      if ((Wj.col(c).array() != 0.0).any()) columns[static_cast<size_t>(j)].push_back(c);
+    }
+  }
+  StackedFactors factors(static_cast<int>(W.cols()), columns);
+  // Fold each joint's rows in blocks.
+  constexpr Eigen::Index kBlock = 256;
+  Eigen::MatrixXd rows;
+  Eigen::VectorXd work;
+  for (int j = 0; j < n_dof; ++j) {
+    JointRowFactor& f = factors.joints[static_cast<size_t>(j)];
+    const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
+    for (Eigen::Index s0 = 0; s0 < n_samples; s0 += kBlock) {
+      const Eigen::Index m = std::min(kBlock, n_samples - s0);
+      rows.resize(m, c + 1);
+      for (Eigen::Index s = 0; s < m; ++s) {
+        const Eigen::Index row = (s0 + s) * n_dof + j;
+        for (Eigen::Index k = 0; k < c; ++k) rows(s, k) = W(row, f.columns[static_cast<size_t>(k)]);
+        rows(s, c) = tau[row];
+      }
+      FoldJointRows(rows, &f, &work);
+    }
+  }
+  return factors;
+}
 
 Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof) {
   const Eigen::Index n_samples = r.size() / n_dof;
@@ -50,36 +220,32 @@ Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof) {
   return (R.rowwise().squaredNorm() / static_cast<double>(n_samples)).cwiseSqrt();
 }
 
-LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
-  CheckSizes(W, tau, n_dof);
-  LinearFit fit = Fit(W, tau);
-  fit.joint_rms = JointRms(W * fit.beta - tau, n_dof);
+LinearFit SolveOls(const StackedFactors& factors) {
+  LinearFit fit = Fit(factors, Eigen::VectorXd::Ones(factors.n_dof()));
   fit.joint_sigma = fit.joint_rms;
   return fit;
 }
 
-LinearFit SolveWls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
-  CheckSizes(W, tau, n_dof);
+LinearFit SolveWls(const StackedFactors& factors) {
   // Per-joint noise from the OLS residuals, with the degrees of freedom shared
   // evenly among joints.
-  const LinearFit ols = Fit(W, tau);
-  const Eigen::VectorXd r = W * ols.beta - tau;
-  const double n_samples = static_cast<double>(W.rows() / n_dof);
-  const double per_joint_dof = (static_cast<double>(W.rows()) - static_cast<double>(W.cols())) / n_dof;
-  Eigen::VectorXd sigma = (JointRms(r, n_dof).array().square() * n_samples / per_joint_dof).sqrt();
+  const LinearFit ols = SolveOls(factors);
+  const double n_samples = static_cast<double>(factors.n_samples());
+  const double per_joint_dof = (n_samples * factors.n_dof() - factors.n_parameters) / factors.n_dof();
+  Eigen::VectorXd sigma = (ols.joint_rms.array().square() * n_samples / per_joint_dof).sqrt();
   const double floor = 1e-12 * std::max(1.0, sigma.maxCoeff());
   sigma = sigma.cwiseMax(floor);
-  Eigen::MatrixXd Ww = W;
-  Eigen::VectorXd tw = tau;
-  for (Eigen::Index row = 0; row < W.rows(); ++row) {
-    const double w = 1.0 / sigma[row % n_dof];
-    Ww.row(row) *= w;
-    tw[row] *= w;
-  }
-  LinearFit fit = Fit(Ww, tw);
-  fit.joint_rms = JointRms(W * fit.beta - tau, n_dof);
+  LinearFit fit = Fit(factors, sigma.cwiseInverse());
   fit.joint_sigma = sigma;
   return fit;
+}
+
+LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
+  return SolveOls(FactorStackedRows(W, tau, n_dof));
+}
+
+LinearFit SolveWls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
+  return SolveWls(FactorStackedRows(W, tau, n_dof));
 }
 
 }  // namespace idbench

@@ -32,29 +32,55 @@ BENCHMARK(BM_JointTorqueRegressorPaper6r);
 void BM_JointTorqueRegressorPuma560(benchmark::State& state) { BenchmarkRegressor(state, MakePuma560()); }
 BENCHMARK(BM_JointTorqueRegressorPuma560);
 
-// Stack the base regressor of puma560 (Fv, Fc) over N random samples and
-// solve OLS with σ: the whole identification after the log is read.
-void BM_StackAndOlsPuma560(benchmark::State& state) {
-  const RobotModel model = MakePuma560();
-  FrictionModel friction;
-  friction.viscous = friction.coulomb = true;
-  const BaseParameters base = ComputeBaseParameters(model, friction);
-  const int n_samples = static_cast<int>(state.range(0));
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
+// puma560 with Fv, Fc (48 base parameters) and a random log of n_samples
+// states in ±2 (rad, rad/s, rad/s²) and torques.
+struct Puma560Problem {
+  RobotModel model = MakePuma560();
+  FrictionModel friction{.viscous = true, .coulomb = true};
+  BaseParameters base = ComputeBaseParameters(model, friction);
   JointLog log;
-  log.t = Eigen::VectorXd::LinSpaced(n_samples, 0.0, 1e-3 * (n_samples - 1));
-  log.q = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
-  log.qd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
-  log.qdd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
-  log.tau = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+
+  explicit Puma560Problem(int n_samples) {
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<double> u(-2.0, 2.0);
+    log.t = Eigen::VectorXd::LinSpaced(n_samples, 0.0, 1e-3 * (n_samples - 1));
+    log.q = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+    log.qd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+    log.qdd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+    log.tau = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  }
+};
+
+// Stack the base regressor over N samples and solve OLS with σ and cond: the
+// whole identification after the log is read. Streamed: per-joint TSQR
+// factors, never the 6N × 48 W, on the given number of threads (range 1).
+void BM_StackAndOlsPuma560(benchmark::State& state) {
+  const Puma560Problem p(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    const Eigen::MatrixXd W = StackBaseRegressor(model, friction, base, log);
-    const LinearFit fit = SolveOls(W, StackTorques(log), 6);
+    const StackedFactors factors =
+        FactorStackedEquations(p.model, p.friction, p.base, p.log, static_cast<int>(state.range(1)));
+    const LinearFit fit = SolveOls(factors);
     benchmark::DoNotOptimize(fit.beta.data());
   }
 }
-BENCHMARK(BM_StackAndOlsPuma560)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StackAndOlsPuma560)
+    ->Args({10000, 2})
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The same through the whole stacked W (StackBaseRegressor, then SolveOls on
+// W), as IdentifyJointTorque does (its physically consistent fit needs W).
+void BM_StackDenseAndOlsPuma560(benchmark::State& state) {
+  const Puma560Problem p(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const Eigen::MatrixXd W = StackBaseRegressor(p.model, p.friction, p.base, p.log);
+    const LinearFit fit = SolveOls(W, StackTorques(p.log), 6);
+    benchmark::DoNotOptimize(fit.beta.data());
+  }
+}
+BENCHMARK(BM_StackDenseAndOlsPuma560)->Arg(100000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench

@@ -2,12 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <random>
 
+#include "engine/test_util.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/ident/base_parameters.h"
+#include "idbench/ident/joint_torque_identifier.h"
 
 namespace idbench {
 namespace {
@@ -80,6 +85,119 @@ TEST(LinearEstimatorTest, PredictedSigmaMatchesMonteCarloSpread) {
 TEST(LinearEstimatorTest, RejectsTooFewEquations) {
   EXPECT_THROW(SolveOls(Eigen::MatrixXd::Zero(6, 10), Eigen::VectorXd::Zero(6), 6), std::invalid_argument);
   EXPECT_THROW(SolveOls(Eigen::MatrixXd::Zero(12, 2), Eigen::VectorXd::Zero(11), 6), std::invalid_argument);
+}
+
+// The textbook computation on the whole stacked matrix, independent of the
+// per-joint factors: rows of joint j scaled by weights[j], one dense
+// Householder QR, cov = s² R⁻¹R⁻ᵀ, cond(W) from the SVD of W itself,
+// residuals (unweighted) from W β − τ.
+struct DenseFit {
+  Eigen::VectorXd beta, sigma, joint_rms;
+  double cond = 0.0;
+};
+DenseFit DenseReference(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, const Eigen::VectorXd& weights) {
+  const int n_dof = static_cast<int>(weights.size());
+  Eigen::MatrixXd Ww = W;
+  Eigen::VectorXd tw = tau;
+  for (Eigen::Index r = 0; r < W.rows(); ++r) {
+    Ww.row(r) *= weights[r % n_dof];
+    tw[r] *= weights[r % n_dof];
+  }
+  const Eigen::Index p = W.cols();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Ww);
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
+  DenseFit fit;
+  fit.beta = R.triangularView<Eigen::Upper>().solve((qr.householderQ().transpose() * tw).head(p));
+  const double s2 = (Ww * fit.beta - tw).squaredNorm() / static_cast<double>(W.rows() - p);
+  const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
+  fit.sigma = ((Rinv * Rinv.transpose()).diagonal() * s2).cwiseSqrt();
+  const Eigen::VectorXd s = Eigen::BDCSVD<Eigen::MatrixXd>(Ww).singularValues();
+  fit.cond = s[0] / s[s.size() - 1];
+  fit.joint_rms = JointRms(W * fit.beta - tau, n_dof);
+  return fit;
+}
+
+void ExpectSameFit(const LinearFit& fit, const DenseFit& dense) {
+  EXPECT_LT(testing::RelativeError(fit.beta, dense.beta), 1e-10);
+  EXPECT_LT(testing::RelativeError(fit.sigma, dense.sigma), 1e-10);
+  EXPECT_LT(testing::RelativeError(fit.joint_rms, dense.joint_rms), 1e-10);
+  EXPECT_NEAR(fit.cond / dense.cond, 1.0, 1e-10);
+}
+
+// Streamed, per-joint, multi-threaded stacking + OLS/WLS agrees with the dense
+// QR of the whole stacked W, on puma560 (Fv, Fc: 48 base parameters), 10 000
+// random states (three factor parts) and noisy torques; and does not depend
+// on the number of threads.
+TEST(LinearEstimatorTest, StreamedFactorsMatchDenseQr) {
+  const RobotModel model = MakePuma560();
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = true;
+  const BaseParameters base = ComputeBaseParameters(model, friction);
+  ASSERT_EQ(base.n_base(), 48);
+  const int n_samples = 10000;
+  ASSERT_GT(n_samples, 2 * kSamplesPerFactorPart);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::normal_distribution<double> normal;
+  JointLog log;
+  log.t = Eigen::VectorXd::LinSpaced(n_samples, 0.0, 1e-3 * (n_samples - 1));
+  log.q = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return 1.5 * u(rng); });
+  log.qd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return u(rng); });
+  log.qdd = Eigen::MatrixXd::NullaryExpr(n_samples, 6, [&] { return 2.0 * u(rng); });
+  log.tau = Eigen::MatrixXd::Zero(n_samples, 6);  // set below from W
+  const Eigen::MatrixXd W = StackBaseRegressor(model, friction, base, log);
+  const Eigen::VectorXd beta_model = base.combination * StandardParameters(model, friction);
+  const Eigen::VectorXd noise_sigma = (Eigen::VectorXd(6) << 0.5, 0.5, 0.5, 0.05, 0.05, 0.05).finished();
+  Eigen::VectorXd tau = W * beta_model;
+  for (Eigen::Index r = 0; r < tau.size(); ++r) tau[r] += noise_sigma[r % 6] * normal(rng);
+  log.tau = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      tau.data(), n_samples, 6);
+  ASSERT_EQ(StackTorques(log), tau);
+
+  const DenseFit dense_ols = DenseReference(W, tau, Eigen::VectorXd::Ones(6));
+  // WLS weights: per-joint OLS residual variance with the degrees of freedom shared among joints.
+  const double per_joint_dof = (6.0 * n_samples - 48.0) / 6.0;
+  const Eigen::VectorXd joint_sigma = dense_ols.joint_rms * std::sqrt(n_samples / per_joint_dof);
+  const DenseFit dense_wls = DenseReference(W, tau, joint_sigma.cwiseInverse());
+
+  const StackedFactors one_thread = FactorStackedEquations(model, friction, base, log, 1);
+  EXPECT_EQ(one_thread.n_samples(), n_samples);
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    const StackedFactors factors = FactorStackedEquations(model, friction, base, log, threads);
+    const LinearFit ols = SolveOls(factors);
+    ExpectSameFit(ols, dense_ols);
+    const LinearFit wls = SolveWls(factors);
+    ExpectSameFit(wls, dense_wls);
+    EXPECT_LT(testing::RelativeError(wls.joint_sigma, joint_sigma), 1e-10);
+    // Fixed parts merged in a fixed order: bit-identical whatever the thread count.
+    for (int j = 0; j < 6; ++j) EXPECT_EQ(factors.joints[j].T, one_thread.joints[j].T) << "joint " << j + 1;
+  }
+  // The dense entry points (factors of the given W) agree too.
+  ExpectSameFit(SolveOls(W, tau, 6), dense_ols);
+  ExpectSameFit(SolveWls(W, tau, 6), dense_wls);
+  // The noise is what the model says: the estimate is within a few σ of the truth.
+  EXPECT_LT(((dense_ols.beta - beta_model).cwiseQuotient(dense_ols.sigma)).cwiseAbs().maxCoeff(), 5.0);
+}
+
+// Folding rows into a factor in blocks gives the R factor of all rows: RᵀR = AᵀA.
+TEST(LinearEstimatorTest, FoldedFactorIsTheQrFactor) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(50, 5, [&] { return u(rng); });
+  StackedFactors factors(4, {{0, 1, 2, 3}});
+  Eigen::VectorXd work;
+  for (int r0 : {0, 7, 30}) {
+    Eigen::MatrixXd rows = A.middleRows(r0, r0 == 0 ? 7 : r0 == 7 ? 23 : 20);
+    FoldJointRows(rows, &factors.joints[0], &work);
+  }
+  const Eigen::MatrixXd& T = factors.joints[0].T;
+  EXPECT_EQ(factors.joints[0].n_rows, 50);
+  EXPECT_TRUE(T.isUpperTriangular(0.0));
+  EXPECT_LT(testing::RelativeError(Eigen::MatrixXd(T.transpose() * T), Eigen::MatrixXd(A.transpose() * A)), 1e-13);
+  StackedFactors bad(4, {{0, 1, 2}});
+  EXPECT_THROW(MergeStackedFactors(bad, &factors), std::invalid_argument);
+  EXPECT_THROW(StackedFactors(4, {{1, 0}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -60,6 +60,20 @@ struct JointTorqueIdentification {
 Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel& friction,
                                    const BaseParameters& base, const JointLog& log);
 
+// The base regressor and torques of a log compressed per joint as they are
+// stacked (TSQR, linear_estimator.h), without keeping W: what SolveOls and
+// SolveWls need, in O(n_base²) memory. Joint j's factor covers the base
+// columns that can be non-zero in its rows (links at or after j, its own
+// friction terms). The samples are split into fixed parts of
+// kSamplesPerFactorPart, each factored from zero on one of up to n_threads
+// threads (0: the hardware's), and the parts are merged in order, so the
+// result does not depend on the thread count or the scheduling. No parallel
+// filtering (use StackEquations). Throws std::invalid_argument as
+// StackBaseRegressor.
+inline constexpr int kSamplesPerFactorPart = 2048;
+StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
+                                      const BaseParameters& base, const JointLog& log, int n_threads = 0);
+
 // Torques stacked the same way.
 Eigen::VectorXd StackTorques(const JointLog& log);
 

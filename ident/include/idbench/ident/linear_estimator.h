@@ -3,10 +3,16 @@
 //   OLS: β̂ = argmin ‖W β − τ‖, σ² = ‖r‖²/(N − p), cov = σ² (WᵀW)⁻¹;
 //   WLS: rows of joint j weighted by 1/σ_j, σ_j² from joint j's OLS residuals.
 // Rows are ordered sample by sample, joints within a sample (row = s·n_dof + j).
-// Solved by QR; normal equations are never formed.
+// Solved by Householder QR; normal equations are never formed.
+//
+// The rows need not be kept: StackedFactors compresses each joint's rows
+// [W_j τ_j] into a small triangular factor, block by block (TSQR: the QR of
+// [T; new rows] replaces T), and both estimators, σ and cond(W) follow from
+// the factors alone.
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace idbench {
 
@@ -20,11 +26,58 @@ struct LinearFit {
   double cond = 0.0;               // cond(W) (weighted for WLS)
 };
 
+// One joint's rows [W_j τ_j] (m × (p + 1)), compressed: with c the columns of
+// W_j that may be non-zero (`columns`, ascending; the others must be zero in
+// every row), T ((c + 1) × (c + 1), upper triangular) is the R factor of the
+// rows restricted to those columns, τ last. For every β,
+//   ‖W_j β − τ_j‖ = ‖T [β_columns; −1]‖.
+struct JointRowFactor {
+  std::vector<int> columns;  // indices into β (c)
+  Eigen::MatrixXd T;         // ((c + 1) × (c + 1))
+  Eigen::Index n_rows = 0;   // rows folded in (m)
+};
+
+// All joints' rows of stacked equations, compressed per joint.
+struct StackedFactors {
+  int n_parameters = 0;                // p
+  std::vector<JointRowFactor> joints;  // n_dof
+
+  // Empty factors (n_rows 0, T = 0) for these column sets; throws
+  // std::invalid_argument unless every index lies in [0, n_parameters) and
+  // each set is strictly ascending.
+  StackedFactors(int n_parameters, const std::vector<std::vector<int>>& columns_per_joint);
+  StackedFactors() = default;
+
+  int n_dof() const { return static_cast<int>(joints.size()); }
+  Eigen::Index n_samples() const { return joints.empty() ? 0 : joints.front().n_rows; }
+};
+
+// Folds rows of one joint into its factor: `rows` (m × (c + 1)) holds the
+// joint's new rows restricted to factor->columns, τ last; it is overwritten
+// (scratch). `work` is scratch too (resized to c + 1 if smaller; no
+// allocation once sized). Householder reflections on [T; rows].
+void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor, Eigen::VectorXd* work);
+
+// Folds `other`'s rows into *into, joint by joint (as if its rows had been
+// appended). Throws std::invalid_argument unless the column sets agree.
+void MergeStackedFactors(const StackedFactors& other, StackedFactors* into);
+
+// The factors of stacked (W, τ) (rows interleaved by joint), each joint
+// restricted to the columns that are non-zero in its rows. Throws
+// std::invalid_argument on size mismatch.
+StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
+
 // RMS per joint of stacked residuals r (rows interleaved by joint) (n_dof).
 Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof);
 
 // Throws std::invalid_argument on size mismatch or fewer rows than p + 1.
 LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
 LinearFit SolveWls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
+
+// The same from the factors (what the dense versions compute). Throws
+// std::invalid_argument unless there are more equations (n_samples · n_dof)
+// than parameters.
+LinearFit SolveOls(const StackedFactors& factors);
+LinearFit SolveWls(const StackedFactors& factors);
 
 }  // namespace idbench
