@@ -34,6 +34,7 @@ struct ClearanceModel::Impl {
   struct LinkShape {
     std::unique_ptr<btConvexShape> shape;
     Eigen::Isometry3d X_BG;
+    double bounding_radius = 0.0;  // of the sphere about G's origin holding the shape
   };
   std::vector<std::vector<LinkShape>> shapes;  // per link
 
@@ -66,25 +67,44 @@ struct ClearanceModel::Impl {
     return c;
   }
 
-  Clearance Compute(const KinematicsData<double>& k, const ClearancePair& pair) const {
+  // The pair's clearance; shape pairs whose bounding spheres are at least
+  // `at_least` apart are not passed to GJK. When all are, the result is that
+  // lower bound (distance ≥ at_least; points and normal unset).
+  Clearance Compute(const KinematicsData<double>& k, const ClearancePair& pair,
+                    double at_least = std::numeric_limits<double>::infinity()) const {
     Clearance best;
     best.distance = std::numeric_limits<double>::infinity();
-    auto placed = [&](int link, const LinkShape& s) {
+    double bound = std::numeric_limits<double>::infinity();
+    auto centre = [&](int link, const LinkShape& s) {
       const size_t i = static_cast<size_t>(link);
-      return ToBt(k.R_WB[i] * s.X_BG.linear(), k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
+      return Eigen::Vector3d(k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
+    };
+    auto placed = [&](int link, const LinkShape& s) {
+      return ToBt(k.R_WB[static_cast<size_t>(link)] * s.X_BG.linear(), centre(link, s));
     };
     for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
-      const btTransform X_WA = placed(pair.link_a, sa);
+      const Eigen::Vector3d c_a = centre(pair.link_a, sa);
       if (pair.link_b < 0) {
-        const Clearance c = Ground(sa.shape.get(), X_WA);
+        const double lower = c_a.z() - sa.bounding_radius;
+        if (lower >= std::min(at_least, best.distance)) {
+          bound = std::min(bound, lower);
+          continue;
+        }
+        const Clearance c = Ground(sa.shape.get(), placed(pair.link_a, sa));
         if (c.distance < best.distance) best = c;
         continue;
       }
       for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) {
-        const Clearance c = Pair(sa.shape.get(), X_WA, sb.shape.get(), placed(pair.link_b, sb));
+        const double lower = (c_a - centre(pair.link_b, sb)).norm() - sa.bounding_radius - sb.bounding_radius;
+        if (lower >= std::min(at_least, best.distance)) {
+          bound = std::min(bound, lower);
+          continue;
+        }
+        const Clearance c = Pair(sa.shape.get(), placed(pair.link_a, sa), sb.shape.get(), placed(pair.link_b, sb));
         if (c.distance < best.distance) best = c;
       }
     }
+    if (!std::isfinite(best.distance)) best.distance = bound;  // every shape pair pruned
     return best;
   }
 };
@@ -112,7 +132,10 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
           break;
       }
       if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin);
-      impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG});
+      const double radius = s.kind == Shape::Kind::kSphere   ? s.size.x()
+                            : s.kind == Shape::Kind::kBox    ? 0.5 * s.size.norm()
+                                                             : std::hypot(s.size.x(), 0.5 * s.size.z());
+      impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG, radius});
     }
   }
   // Candidate pairs; those touching at the home pose are left out.
@@ -140,9 +163,12 @@ ClearanceModel::~ClearanceModel() = default;
 ClearanceModel::ClearanceModel(ClearanceModel&&) noexcept = default;
 ClearanceModel& ClearanceModel::operator=(ClearanceModel&&) noexcept = default;
 
-void ClearanceModel::Compute(const KinematicsData<double>& k, std::vector<Clearance>* out) const {
+void ClearanceModel::Compute(const KinematicsData<double>& k, std::vector<Clearance>* out,
+                             const std::vector<double>* at_least) const {
   out->resize(pairs_.size());
-  for (size_t i = 0; i < pairs_.size(); ++i) (*out)[i] = impl_->Compute(k, pairs_[i]);
+  for (size_t i = 0; i < pairs_.size(); ++i) {
+    (*out)[i] = at_least ? impl_->Compute(k, pairs_[i], (*at_least)[i]) : impl_->Compute(k, pairs_[i]);
+  }
 }
 
 Eigen::VectorXd ClearanceModel::DistanceGradient(const RobotModel& model, const KinematicsData<double>& k,

@@ -189,7 +189,7 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
   for (size_t s = 0; s < instants.size(); ++s) {
     const JointState x = StateAt(*instants[s], theta);
     ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
-    clearance_->Compute(k, &ws->clearances);
+    clearance_->Compute(k, &ws->clearances, &worst);  // only what can beat the running minimum
     for (size_t i = 0; i < n_pairs; ++i) {
       if (ws->clearances[i].distance < worst[i]) worst[i] = ws->clearances[i].distance, at[i] = s;
     }

@@ -249,10 +249,12 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.joint = static_cast<int>(i);
     m.pair = clearance->pairs()[i].Name(model);
     m.limit = clearance->min_clearance();
+    m.value = kInf;  // the closest distance so far
     m.margin = kInf;
     worst.push_back(m);
   }
   std::vector<Clearance> distances;
+  std::vector<double> closest(n_pairs);
   RobotData data(model);
   JointState x(n);
   const long steps = static_cast<long>(std::floor(trajectory.duration() * rate_hz + 1e-9));
@@ -270,7 +272,8 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
       }
     }
     if (n_pairs == 0) continue;
-    clearance->Compute(data, &distances);  // data holds the poses InverseDynamics computed
+    for (size_t i = 0; i < n_pairs; ++i) closest[i] = worst[static_cast<size_t>(5 * n) + i].value;
+    clearance->Compute(data, &distances, &closest);  // data holds the poses InverseDynamics computed
     for (size_t i = 0; i < n_pairs; ++i) {
       ConstraintMargin& w = worst[static_cast<size_t>(5 * n) + i];
       const double margin = distances[i].distance - w.limit;

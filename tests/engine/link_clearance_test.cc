@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "engine/test_util.h"
 #include "idbench/engine/puma560.h"
 
@@ -95,6 +97,27 @@ TEST(LinkClearanceTest, GradientMatchesFiniteDifferences) {
     }
   }
   EXPECT_GT(checked, 20);
+}
+
+// Tracking each pair's minimum over many poses with the bounding-sphere
+// pruning gives exactly the minimum of the full computation.
+TEST(LinkClearanceTest, PrunedMinimumEqualsTheFullMinimum) {
+  const RobotModel model = MakePuma560();
+  const ClearanceModel clearance(model, 0.01);
+  const size_t n_pairs = clearance.pairs().size();
+  std::vector<double> full(n_pairs, std::numeric_limits<double>::infinity()), pruned = full;
+  KinematicsData<double> k(model);
+  std::vector<Clearance> out;
+  std::mt19937 rng(4);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  for (int pose = 0; pose < 200; ++pose) {
+    ComputeKinematicsT<double>(model, RandomVector(6, 2.5, &rng), zero, zero, &k);
+    clearance.Compute(k, &out);
+    for (size_t i = 0; i < n_pairs; ++i) full[i] = std::min(full[i], out[i].distance);
+    clearance.Compute(k, &out, &pruned);
+    for (size_t i = 0; i < n_pairs; ++i) pruned[i] = std::min(pruned[i], out[i].distance);
+  }
+  for (size_t i = 0; i < n_pairs; ++i) EXPECT_EQ(pruned[i], full[i]) << clearance.pairs()[i].Name(model);
 }
 
 TEST(LinkClearanceTest, PumaLeavesOutPairsTouchingAtHome) {

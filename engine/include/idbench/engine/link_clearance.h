@@ -44,7 +44,11 @@ class ClearanceModel {
   const std::vector<std::string>& excluded() const { return excluded_; }
 
   // The clearance of every pair at the link poses in k (one entry per pair).
-  void Compute(const KinematicsData<double>& k, std::vector<Clearance>* out) const;
+  // With at_least (one value per pair), a pair whose shapes' bounding spheres
+  // are at least that far apart gets that lower bound instead (no GJK; its
+  // points and normal are unset): enough to track a minimum over instants.
+  void Compute(const KinematicsData<double>& k, std::vector<Clearance>* out,
+               const std::vector<double>* at_least = nullptr) const;
 
   // ∂distance/∂q (n_dof) of a pair from its Clearance: the closest point on a
   // moves with the joints of a's chain, the one on b with b's (ground: fixed).

@@ -42,10 +42,10 @@ struct DesignOptions {
   int samples = 250;               // sample times of the criterion and the constraint grid
   DesignCriterion criterion = DesignCriterion::kLogCond;
   DesignAlgorithm algorithm = DesignAlgorithm::kSlsqp;
-  int starts = 2;
+  int starts = 4;
   unsigned seed = 1;
   int threads = 2;
-  int max_evaluations = 600;       // per start
+  int max_evaluations = 300;       // per start
   double max_seconds = 0.0;        // whole design; 0 = no limit
   double margin = 0.02;            // limits tightened by this fraction during the search
   double clearance = 0.01;         // [m] between links that no joint connects, and to the ground z = 0
