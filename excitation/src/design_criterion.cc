@@ -84,11 +84,7 @@ std::string DesignCriterionName(DesignCriterion criterion) {
 }
 
 std::optional<DesignCriterion> ParseDesignCriterion(const std::string& name) {
-  const std::vector<std::string> names = DesignCriterionNames();
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return static_cast<DesignCriterion>(i);
-  }
-  return std::nullopt;
+  return EnumFromName<DesignCriterion>(DesignCriterionNames(), name);
 }
 
 Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W) {

@@ -133,11 +133,7 @@ std::string DesignAlgorithmName(DesignAlgorithm algorithm) {
   return DesignAlgorithmNames()[static_cast<size_t>(algorithm)];
 }
 std::optional<DesignAlgorithm> ParseDesignAlgorithm(const std::string& name) {
-  const std::vector<std::string> names = DesignAlgorithmNames();
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return static_cast<DesignAlgorithm>(i);
-  }
-  return std::nullopt;
+  return EnumFromName<DesignAlgorithm>(DesignAlgorithmNames(), name);
 }
 
 bool DesignOptions::IsValid(std::string* why) const {

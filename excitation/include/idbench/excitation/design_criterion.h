@@ -24,6 +24,15 @@ namespace idbench {
 
 enum class DesignCriterion { kLogCond, kLogCondNormalised, kLogDet, kHybrid };
 
+// The enum value named `name`, with `names` listed in the enum's order.
+template <typename Enum>
+std::optional<Enum> EnumFromName(const std::vector<std::string>& names, const std::string& name) {
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return static_cast<Enum>(i);
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> DesignCriterionNames();  // "cond", "cond-normalised", "logdet", "hybrid"
 std::string DesignCriterionName(DesignCriterion criterion);
 std::optional<DesignCriterion> ParseDesignCriterion(const std::string& name);
