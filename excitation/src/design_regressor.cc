@@ -117,6 +117,12 @@ void DesignRegressor::Rows(const JointState& x, Workspace* ws, Eigen::Ref<Eigen:
 void DesignRegressor::StateGradient(const JointState& x, const Eigen::Ref<const Eigen::MatrixXd>& G,
                                     Workspace* ws, Eigen::Ref<Eigen::VectorXd> g) const {
   const int n = model_->n_dof();
+  const bool torque = kind_ == IdentificationModel::kJointTorque;
+  if (torque) {
+    // G on the standard columns: the base rows are Y's independent columns.
+    ws->G_standard.setZero(n, NumStandardParameters(*model_, friction_));
+    for (int c = 0; c < n_parameters(); ++c) ws->G_standard.col(base_.independent[static_cast<size_t>(c)]) = G.col(c);
+  }
   // The 3n state directions, kDualDirections at a time.
   for (int first = 0; first < 3 * n; first += kDualDirections) {
     for (int j = 0; j < n; ++j) {
@@ -130,18 +136,18 @@ void DesignRegressor::StateGradient(const JointState& x, const Eigen::Ref<const 
       DualState& v = dir < n ? ws->q[j] : dir < 2 * n ? ws->qd[j] : ws->qdd[j];
       v.d[k] = 1.0;
     }
-    if (kind_ == IdentificationModel::kJointTorque) {
-      ComputeJointTorqueRegressorT<DualState>(*model_, friction_, ws->q, ws->qd, ws->qdd, &ws->dual_kinematics,
-                                              &ws->dual_Y);
+    DualState::Tangent sum = DualState::Tangent::Zero();
+    if (torque) {
+      sum = ContractJointTorqueRegressorT<DualState>(*model_, friction_, ws->q, ws->qd, ws->qdd, ws->G_standard,
+                                                     &ws->dual_kinematics)
+                .d;
     } else {
       ComputeKinematicsT<DualState>(*model_, ws->q, ws->qd, ws->qdd, &ws->dual_kinematics);
       PerBodyRows<DualState>(ws->dual_kinematics, &ws->dual_Y);
-    }
-    DualState::Tangent sum = DualState::Tangent::Zero();
-    for (int c = 0; c < n_parameters(); ++c) {
-      const int col = kind_ == IdentificationModel::kJointTorque ? base_.independent[static_cast<size_t>(c)] : c;
-      for (int r = 0; r < rows_per_sample_; ++r) {
-        if (G(r, c) != 0.0) sum += G(r, c) * ws->dual_Y(r, col).d;
+      for (int c = 0; c < n_parameters(); ++c) {
+        for (int r = 0; r < rows_per_sample_; ++r) {
+          if (G(r, c) != 0.0) sum += G(r, c) * ws->dual_Y(r, c).d;
+        }
       }
     }
     g.segment(first, count) = sum.head(count);

@@ -42,13 +42,26 @@ BaseParameters ComputeBaseParameters(const RobotModel& model, const FrictionMode
     if (norms[c] > options.rank_tolerance * max_norm) live.push_back(c);
     else base.unexcited.push_back(c);
   }
-  Eigen::MatrixXd Wn(W.rows(), static_cast<int>(live.size()));
-  for (size_t c = 0; c < live.size(); ++c) Wn.col(static_cast<int>(c)) = W.col(live[c]) / norms[live[c]];
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Wn);
-  qr.setThreshold(options.rank_tolerance);
-  const int rank = static_cast<int>(qr.rank());
-  for (int k = 0; k < rank; ++k) base.independent.push_back(live[static_cast<size_t>(qr.colsPermutation().indices()[k])]);
+  // The independent columns, chosen from the last column backwards (friction
+  // terms first, then the outer links): a column joins the base set when its
+  // normalised residual against the columns already chosen exceeds the
+  // tolerance. Unlike the pivot order of a column-pivoted QR, this
+  // choice does not depend on rounding among equivalent columns (e.g. Izz of
+  // link 1 and the rotor inertia of joint 1), so the base set, and cond(W_b),
+  // are the same on every build.
+  Eigen::MatrixXd Q(W.rows(), 0);
+  for (auto it = live.rbegin(); it != live.rend(); ++it) {
+    const int c = *it;
+    Eigen::VectorXd r = W.col(c) / norms[c];
+    for (int pass = 0; pass < 2; ++pass) r -= Q * (Q.transpose() * r);  // twice: re-orthogonalise
+    const double residual = r.norm();
+    if (residual <= options.rank_tolerance) continue;  // a dependent column: rounding, ~1e-14
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = r / residual;
+    base.independent.push_back(c);
+  }
   std::sort(base.independent.begin(), base.independent.end());
+  const int rank = base.n_base();
 
   // 3. K from W_d = W_b K (W_b has full column rank).
   std::vector<int> dependent;

@@ -122,6 +122,65 @@ RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionMo
   return RobotModel(model.name(), std::move(links), model.gravity_W());
 }
 
+namespace {
+
+// Link i's own wrench about Bo, body axes, linear in its 10 parameters π_i:
+//   f = m a + (ω̇× + ω×ω×) mc,   n = I ω̇ + ω × I ω − a × mc,  a = a_Bo − g,
+// i.e. f = [a  K  0] π_i and n = [0  −a×  L] π_i with
+//   K = ω̇× + ω ωᵀ − |ω|² 𝟙 (3×3),   L = Lin(ω̇) + ω× Lin(ω) (3×6).
+template <typename Scalar>
+struct LinkWrenchTerms {
+  Eigen::Matrix<Scalar, 3, 1> a;
+  Eigen::Matrix<Scalar, 3, 3> K;
+  Eigen::Matrix<Scalar, 3, 6> L;
+};
+
+template <typename Scalar>
+LinkWrenchTerms<Scalar> LinkTerms(const KinematicsData<Scalar>& d, size_t b, const Eigen::Matrix<Scalar, 3, 1>& g_W) {
+  const Eigen::Matrix<Scalar, 3, 3>& R_WB = d.R_WB[b];
+  const Eigen::Matrix<Scalar, 3, 1> w = TransposeTimes(R_WB, d.w_WB_W[b]);
+  const Eigen::Matrix<Scalar, 3, 1> wd = TransposeTimes(R_WB, d.wd_WB_W[b]);
+  LinkWrenchTerms<Scalar> t;
+  t.a = TransposeTimes<Scalar>(R_WB, d.a_WBo_W[b] - g_W);
+  t.K = w * w.transpose();
+  const Scalar w2 = w.squaredNorm();
+  t.K(0, 0) -= w2, t.K(1, 1) -= w2, t.K(2, 2) -= w2;
+  t.K(0, 1) -= wd.z(), t.K(1, 0) += wd.z();
+  t.K(0, 2) += wd.y(), t.K(2, 0) -= wd.y();
+  t.K(1, 2) -= wd.x(), t.K(2, 1) += wd.x();
+  t.L = InertiaTorqueMatrix(w, wd);
+  return t;
+}
+
+// Joint j on the path from link i to the root carries link i's wrench:
+//   τ_j = s_jᵀ (R n + r × R f) = uᵀ n + vᵀ f,  r = p_Bo_i − p_Jo_j,
+// with the joint's axis u = Rᵀ s_j and moment arm v = Rᵀ (s_j × r) in B axes
+// (f, n never leave B).
+template <typename Scalar>
+void JointArms(const KinematicsData<Scalar>& d, size_t b, size_t jj, Eigen::Matrix<Scalar, 3, 1>* u,
+               Eigen::Matrix<Scalar, 3, 1>* v) {
+  const Eigen::Matrix<Scalar, 3, 1>& s_W = d.axis_W[jj];
+  *u = TransposeTimes(d.R_WB[b], s_W);
+  *v = TransposeTimes<Scalar>(d.R_WB[b], s_W.cross(d.p_WBo_W[b] - d.p_WBo_W[jj]));
+}
+
+// Joint j's friction and drive columns, in π order (Fv, Fc, offset, Ia).
+template <typename Scalar>
+int FrictionColumns(const FrictionModel& friction, const Scalar& qd, const Scalar& qdd, Scalar* out) {
+  int c = 0;
+  if (friction.viscous) out[c++] = qd;
+  if (friction.coulomb) {
+    using std::tanh;
+    out[c++] = friction.coulomb_smoothing > 0.0 ? Scalar(tanh(qd / friction.coulomb_smoothing))
+                                                : Scalar(double((ValueOf(qd) > 0.0) - (ValueOf(qd) < 0.0)));
+  }
+  if (friction.offset) out[c++] = 1.0;
+  if (friction.rotor_inertia) out[c++] = qdd;
+  return c;
+}
+
+}  // namespace
+
 template <typename Scalar>
 void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
                                   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
@@ -130,7 +189,6 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
                                   KinematicsData<Scalar>* data,
                                   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>* Y) {
   using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
-  using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
   ComputeKinematicsT<Scalar>(model, q, qd, qdd, data);
   const KinematicsData<Scalar>& d = *data;
   const int n = model.n_dof();
@@ -139,53 +197,73 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
   const Vector3 g_W = model.gravity_W().template cast<Scalar>();
   for (int i = 0; i < model.n_links(); ++i) {
     const size_t b = static_cast<size_t>(i);
-    const Matrix3& R_WB = d.R_WB[b];
-    // Link i's own wrench about Bo, body axes, linear in its 10 parameters π_i:
-    //   f = m a + (ω̇× + ω×ω×) mc,   n = I ω̇ + ω × I ω − a × mc,  a = a_Bo − g,
-    // i.e. f = [a  K  0] π_i and n = [0  −a×  L] π_i with
-    //   K = ω̇× + ω ωᵀ − |ω|² 𝟙 (3×3),   L = Lin(ω̇) + ω× Lin(ω) (3×6).
-    const Vector3 w = TransposeTimes(R_WB, d.w_WB_W[b]);
-    const Vector3 wd = TransposeTimes(R_WB, d.wd_WB_W[b]);
-    const Vector3 a = TransposeTimes<Scalar>(R_WB, d.a_WBo_W[b] - g_W);
-    Matrix3 K = w * w.transpose();
-    const Scalar w2 = w.squaredNorm();
-    K(0, 0) -= w2, K(1, 1) -= w2, K(2, 2) -= w2;
-    K(0, 1) -= wd.z(), K(1, 0) += wd.z();
-    K(0, 2) += wd.y(), K(2, 0) -= wd.y();
-    K(1, 2) -= wd.x(), K(2, 1) += wd.x();
-    const Eigen::Matrix<Scalar, 3, 6> L = InertiaTorqueMatrix(w, wd);
-    // Every joint j on the path from link i to the root carries that wrench:
-    //   τ_j = s_jᵀ (R n + r × R f) = uᵀ n + vᵀ f,  r = p_Bo_i − p_Jo_j,
-    // with the joint's axis u = Rᵀ s_j and moment arm v = Rᵀ (s_j × r) in B
-    // axes (f, n never leave B). Each (joint, link) block is written once.
+    const LinkWrenchTerms<Scalar> t = LinkTerms(d, b, g_W);
     const int c = kInertialParametersPerLink * i;
-    for (int j = i; j >= 0; j = model.link(j).parent) {
-      const size_t jj = static_cast<size_t>(j);
-      const Vector3& s_W = d.axis_W[jj];
-      const Vector3 u = TransposeTimes(R_WB, s_W);
-      const Vector3 v = TransposeTimes<Scalar>(R_WB, s_W.cross(d.p_WBo_W[b] - d.p_WBo_W[jj]));
-      const Vector3 a_x_u = a.cross(u);
-      (*Y)(j, c) = Dot3<Scalar>(v, a);
-      for (int k = 0; k < 3; ++k) (*Y)(j, c + 1 + k) = Dot3<Scalar>(v, K.col(k)) + a_x_u[k];
-      for (int k = 0; k < 6; ++k) (*Y)(j, c + 4 + k) = Dot3<Scalar>(u, L.col(k));
+    for (int j = i; j >= 0; j = model.link(j).parent) {  // each (joint, link) block written once
+      Vector3 u, v;
+      JointArms(d, b, static_cast<size_t>(j), &u, &v);
+      const Vector3 a_x_u = t.a.cross(u);
+      (*Y)(j, c) = Dot3<Scalar>(v, t.a);
+      for (int k = 0; k < 3; ++k) (*Y)(j, c + 1 + k) = Dot3<Scalar>(v, t.K.col(k)) + a_x_u[k];
+      for (int k = 0; k < 6; ++k) (*Y)(j, c + 4 + k) = Dot3<Scalar>(u, t.L.col(k));
     }
   }
-  // Friction and drive terms, per joint.
-  const int k = friction.per_joint();
-  if (k == 0) return;
+  const int per_joint = friction.per_joint();
+  if (per_joint == 0) return;
   const int base = model.n_links() * kInertialParametersPerLink;
+  Scalar columns[4];
   for (int j = 0; j < n; ++j) {
-    int c = base + k * j;
-    if (friction.viscous) (*Y)(j, c++) = qd[j];
-    if (friction.coulomb) {
-      using std::tanh;
-      (*Y)(j, c++) = friction.coulomb_smoothing > 0.0
-                         ? Scalar(tanh(qd[j] / friction.coulomb_smoothing))
-                         : Scalar(double((ValueOf(qd[j]) > 0.0) - (ValueOf(qd[j]) < 0.0)));
-    }
-    if (friction.offset) (*Y)(j, c++) = 1.0;
-    if (friction.rotor_inertia) (*Y)(j, c++) = qdd[j];
+    FrictionColumns(friction, qd[j], qdd[j], columns);
+    for (int k = 0; k < per_joint; ++k) (*Y)(j, base + per_joint * j + k) = columns[k];
   }
+}
+
+template <typename Scalar>
+Scalar ContractJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& G, KinematicsData<Scalar>* data) {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  ComputeKinematicsT<Scalar>(model, q, qd, qdd, data);
+  const KinematicsData<Scalar>& d = *data;
+  const Vector3 g_W = model.gravity_W().template cast<Scalar>();
+  Scalar sum(0.0);
+  for (int i = 0; i < model.n_links(); ++i) {
+    const size_t b = static_cast<size_t>(i);
+    const int c = kInertialParametersPerLink * i;
+    // Σ_j G(j, block i) · Y(j, block i) gathered per link before the link's
+    // own terms are formed: the G-weighted arms first (products with
+    // constants), then one contraction with a, K, L.
+    Vector3 arm_a = Vector3::Zero(), arm_u = Vector3::Zero();
+    Eigen::Matrix<Scalar, 3, 3> arm_K = Eigen::Matrix<Scalar, 3, 3>::Zero();
+    Eigen::Matrix<Scalar, 3, 6> arm_L = Eigen::Matrix<Scalar, 3, 6>::Zero();
+    bool any = false;
+    for (int j = i; j >= 0; j = model.link(j).parent) {
+      const auto g = G.row(j).segment<kInertialParametersPerLink>(c);
+      if (g.isZero()) continue;
+      any = true;
+      Vector3 u, v;
+      JointArms(d, b, static_cast<size_t>(j), &u, &v);
+      arm_a += g[0] * v;
+      for (int k = 0; k < 3; ++k) arm_K.col(k) += g[1 + k] * v;
+      arm_u += u.cross(Eigen::Vector3d(g[1], g[2], g[3]).template cast<Scalar>());  // g·(a × u) = a·(u × g)
+      for (int k = 0; k < 6; ++k) arm_L.col(k) += g[4 + k] * u;
+    }
+    if (!any) continue;
+    const LinkWrenchTerms<Scalar> t = LinkTerms(d, b, g_W);
+    sum += Dot3<Scalar>(t.a, arm_a + arm_u);
+    for (int k = 0; k < 3; ++k) sum += Dot3<Scalar>(t.K.col(k), arm_K.col(k));
+    for (int k = 0; k < 6; ++k) sum += Dot3<Scalar>(t.L.col(k), arm_L.col(k));
+  }
+  const int per_joint = friction.per_joint();
+  const int base = model.n_links() * kInertialParametersPerLink;
+  Scalar columns[4];
+  for (int j = 0; j < model.n_dof() && per_joint > 0; ++j) {
+    FrictionColumns(friction, qd[j], qdd[j], columns);
+    for (int k = 0; k < per_joint; ++k) sum += G(j, base + per_joint * j + k) * columns[k];
+  }
+  return sum;
 }
 
 void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& friction,
@@ -194,6 +272,14 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
   ComputeJointTorqueRegressorT<double>(model, friction, q, qd, qdd, data, Y);
 }
 
+template double ContractJointTorqueRegressorT<double>(const RobotModel&, const FrictionModel&, const Eigen::VectorXd&,
+                                                     const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                                     const Eigen::Ref<const Eigen::MatrixXd>&,
+                                                     KinematicsData<double>*);
+template DualState ContractJointTorqueRegressorT<DualState>(
+    const RobotModel&, const FrictionModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
+    const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
+    const Eigen::Ref<const Eigen::MatrixXd>&, KinematicsData<DualState>*);
 template void ComputeJointTorqueRegressorT<DualState>(
     const RobotModel&, const FrictionModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
     const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,

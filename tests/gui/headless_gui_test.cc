@@ -136,13 +136,13 @@ wait identify 120
   const std::vector<IdentifiedRow> rows = session.IdentifiedRows();
   ASSERT_FALSE(rows.empty());
   // The robot file is the truth of the simulation: every base parameter
-  // within 6 σ of it, the well-determined ones within 0.1 %.
+  // within 6 σ of it, the well-determined ones (σ < 0.01 %) within 0.1 %.
   int well_determined = 0;
   const Eigen::VectorXd& sigma = session.identify_report()->identification.linear.sigma;
   for (size_t k = 0; k < rows.size(); ++k) {
     EXPECT_LE(std::abs(rows[k].identified - rows[k].model_value), 6.0 * sigma[static_cast<Eigen::Index>(k)] + 1e-9)
         << rows[k].name;
-    if (rows[k].sigma_percent < 0.1) {
+    if (rows[k].sigma_percent < 0.01) {
       ++well_determined;
       EXPECT_LT(std::abs(rows[k].relative_error), 1e-3) << rows[k].name;
     }

@@ -88,6 +88,26 @@ TEST_P(JointTorqueRegressorTest, ModelFromStandardParametersRoundTrip) {
   EXPECT_THROW(ModelWithStandardParameters(model_, friction, pi.head(5)), std::invalid_argument);
 }
 
+// ⟨G, Y⟩ without forming Y equals the sum over Y's entries, friction included.
+TEST_P(JointTorqueRegressorTest, ContractionEqualsTheEntrywiseSum) {
+  RobotData d(model_);
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.offset = friction.rotor_inertia = true;
+  std::mt19937 rng(43);
+  Eigen::MatrixXd Y;
+  const int n = model_.n_dof();
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                          qdd = RandomVector(n, 5.0, &rng);
+    ComputeJointTorqueRegressor(model_, friction, q, qd, qdd, &d, &Y);
+    Eigen::MatrixXd G(Y.rows(), Y.cols());
+    for (Eigen::Index k = 0; k < G.size(); ++k) G.data()[k] = RandomVector(1, 1.0, &rng)[0];
+    const double contracted = ContractJointTorqueRegressorT<double>(model_, friction, q, qd, qdd, G, &d);
+    const double entrywise = (G.array() * Y.array()).sum();
+    EXPECT_NEAR(contracted, entrywise, 1e-12 * (G.array().abs() * Y.array().abs()).sum()) << "trial " << trial;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Range(0, testing::kNumTestRobots),
                          testing::TestRobotName);
 

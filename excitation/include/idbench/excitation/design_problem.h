@@ -1,7 +1,8 @@
 // The excitation design as a finite-dimensional problem in the unknowns θ,
 // per joint j the block [q0_j, a_j1..a_jH, b_j1..b_jH] of a Fourier series
 // (fourier_series.h): the criterion with its exact gradient, the kinematic
-// limits on the sample grid as linear rows (q, qd and qdd are linear in θ),
+// limits as linear rows (q, qd and qdd are linear in θ) on the sample grid
+// thinned to 25 instants per period of the highest harmonic,
 // torque limits, start points and box bounds. The optimizer
 // (excitation_design.h) drives it; tests and benchmarks use it directly.
 #pragma once
@@ -108,6 +109,7 @@ class DesignProblem {
   std::optional<DesignRegressor> torque_regressor_;  // model with all joint dynamics, when τ is limited
   std::optional<ClearanceModel> clearance_;          // when the options ask for clearance and links have shapes
   int clearance_stride_ = 1;
+  int limit_stride_ = 1;  // every limit_stride_-th sample carries the linear limit rows
 };
 
 }  // namespace idbench

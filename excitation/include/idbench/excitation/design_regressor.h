@@ -12,7 +12,8 @@
 //                 left out).
 //
 // StateGradient differentiates ⟨G, Rows(x)⟩ exactly with respect to x by
-// forward-mode automatic differentiation (dual.h), for the design's gradient.
+// forward-mode automatic differentiation (dual.h), for the design's gradient
+// (joint torque: through ContractJointTorqueRegressorT, without forming Y).
 #pragma once
 
 #include <Eigen/Core>
@@ -37,7 +38,7 @@ class DesignRegressor {
     explicit Workspace(const RobotModel& model);
     KinematicsData<double> kinematics;
     KinematicsData<DualState> dual_kinematics;
-    Eigen::MatrixXd Y;
+    Eigen::MatrixXd Y, G_standard;
     Eigen::Matrix<DualState, Eigen::Dynamic, Eigen::Dynamic> dual_Y;
     Eigen::Matrix<DualState, Eigen::Dynamic, 1> q, qd, qdd;
   };

@@ -1,7 +1,11 @@
 // Base parameters: the identifiable linear combinations of the standard
-// parameters, found by QR with column pivoting of the regressor stacked over
-// random states (Gautier 1990). With W = [W_b W_d] (independent, dependent
-// columns) and W_d = W_b K, every torque is W π = W_b β with β = π_b + K π_d.
+// parameters, from the regressor stacked over random states (Gautier 1990).
+// The independent columns are chosen from the last backwards (Gram–Schmidt of
+// the column-normalised W: a column whose residual exceeds rank_tolerance
+// joins), so friction terms stay whole and the set does not depend on
+// rounding among equivalent columns. With
+// W = [W_b W_d] (independent, dependent columns) and W_d = W_b K, every torque
+// is W π = W_b β with β = π_b + K π_d.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,7 +22,7 @@ struct BaseParameterOptions {
   double q_range = 3.14159;     // q uniform in ±q_range [rad]
   double qd_range = 3.0;        // [rad/s]
   double qdd_range = 10.0;      // [rad/s²]
-  double rank_tolerance = 1e-9; // relative to the largest pivot of the column-normalised matrix
+  double rank_tolerance = 1e-9; // residual of a normalised column below which it is dependent
 };
 
 struct BaseParameters {

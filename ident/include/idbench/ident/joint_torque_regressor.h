@@ -69,4 +69,16 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
                                   KinematicsData<Scalar>* data,
                                   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>* Y);
 
+// ⟨G, Y(q, qd, qdd)⟩ = Σ G ∘ Y for a G of Y's size, without forming Y: the
+// G-weighted moment arms are gathered per link, then contracted once with the
+// link's wrench terms. On DualState its derivatives are ∂⟨G, Y⟩/∂(q, qd, qdd),
+// what the excitation design's gradient needs (instantiated for double and
+// DualState).
+template <typename Scalar>
+Scalar ContractJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& G, KinematicsData<Scalar>* data);
+
 }  // namespace idbench
