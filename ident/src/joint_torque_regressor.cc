@@ -136,7 +136,7 @@ struct LinkWrenchTerms {
 };
 
 template <typename Scalar>
-LinkWrenchTerms<Scalar> LinkTerms(const KinematicsData<Scalar>& d, size_t b, const Eigen::Matrix<Scalar, 3, 1>& g_W) {
+[[gnu::always_inline]] inline LinkWrenchTerms<Scalar> LinkTerms(const KinematicsData<Scalar>& d, size_t b, const Eigen::Matrix<Scalar, 3, 1>& g_W) {
   const Eigen::Matrix<Scalar, 3, 3>& R_WB = d.R_WB[b];
   const Eigen::Matrix<Scalar, 3, 1> w = TransposeTimes(R_WB, d.w_WB_W[b]);
   const Eigen::Matrix<Scalar, 3, 1> wd = TransposeTimes(R_WB, d.wd_WB_W[b]);
@@ -157,7 +157,7 @@ LinkWrenchTerms<Scalar> LinkTerms(const KinematicsData<Scalar>& d, size_t b, con
 // with the joint's axis u = Rᵀ s_j and moment arm v = Rᵀ (s_j × r) in B axes
 // (f, n never leave B).
 template <typename Scalar>
-void JointArms(const KinematicsData<Scalar>& d, size_t b, size_t jj, Eigen::Matrix<Scalar, 3, 1>* u,
+[[gnu::always_inline]] inline void JointArms(const KinematicsData<Scalar>& d, size_t b, size_t jj, Eigen::Matrix<Scalar, 3, 1>* u,
                Eigen::Matrix<Scalar, 3, 1>* v) {
   const Eigen::Matrix<Scalar, 3, 1>& s_W = d.axis_W[jj];
   *u = TransposeTimes(d.R_WB[b], s_W);
