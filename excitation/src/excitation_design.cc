@@ -41,41 +41,63 @@ struct StartRun {
   Eigen::VectorXd best_theta;
   std::vector<double> nonlinear_values;
 
-  bool Feasible(const double* theta) {
-    if (problem->MaxLinearViolation(theta) > kFeasibilityTolerance) return false;
-    if (problem->n_nonlinear_constraints() == 0) return true;
+  Eigen::VectorXd pending_theta;  // see Objective
+  double pending_value = kInf;
+
+  // Evaluates the nonlinear constraints into nonlinear_values.
+  bool NonlinearFeasible(const double* theta) {
     nonlinear_values.resize(static_cast<size_t>(problem->n_nonlinear_constraints()));
+    if (nonlinear_values.empty()) return true;
     problem->NonlinearConstraints(theta, nonlinear_values.data(), nullptr, &*ws);
     return *std::max_element(nonlinear_values.begin(), nonlinear_values.end()) <= kFeasibilityTolerance;
   }
 
-  // Penalty for the unconstrained (SBPLX) form: squared normalised violations.
-  double Penalty(const double* theta) {
+  bool Feasible(const double* theta) {
+    return problem->MaxLinearViolation(theta) <= kFeasibilityTolerance && NonlinearFeasible(theta);
+  }
+
+  // Penalty for the unconstrained (SBPLX) form: squared normalised violations,
+  // the nonlinear ones from *nonlinear_values (already evaluated at theta).
+  double Penalty(const double* theta) const {
     double p = 0.0;
     for (const LinearRow& row : problem->rows()) {
       const double v = problem->LinearValue(row, theta);
       if (v > 0.0) p += v * v;
     }
-    if (problem->n_nonlinear_constraints() > 0) {
-      nonlinear_values.resize(static_cast<size_t>(problem->n_nonlinear_constraints()));
-      problem->NonlinearConstraints(theta, nonlinear_values.data(), nullptr, &*ws);
-      for (double v : nonlinear_values) p += v > 0.0 ? v * v : 0.0;
-    }
+    for (double v : nonlinear_values) p += v > 0.0 ? v * v : 0.0;
     return 1e4 * p;
   }
 
+  void Consider(const double* theta, double value) {
+    if (value >= best_value) return;
+    best_value = value;
+    best_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
+  }
+
+  // The criterion, and the best feasible point so far. When NLopt evaluates
+  // the nonlinear constraints itself (right after the objective, at the same
+  // x), a point that meets the linear rows waits for them (pending) rather
+  // than computing them twice.
   double Objective(const double* theta, double* grad) {
     ++evaluations;
     if (control->stop && control->stop->load()) nlopt_force_stop(opt);
     const double c = problem->Criterion(theta, grad, &*ws);
-    const bool feasible = Feasible(theta);
-    if (feasible && c < best_value) {
-      best_value = c;
-      best_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
+    const bool linear_ok = problem->MaxLinearViolation(theta) <= kFeasibilityTolerance;
+    const bool sbplx = options->algorithm == DesignAlgorithm::kSbplx;
+    pending_theta.resize(0);
+    bool feasible = linear_ok;
+    if (problem->n_nonlinear_constraints() > 0 && sbplx) {
+      feasible = linear_ok && NonlinearFeasible(theta);
+    } else if (problem->n_nonlinear_constraints() > 0) {
+      feasible = false;
+      if (linear_ok && c < best_value) {
+        pending_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
+        pending_value = c;
+      }
     }
-    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, feasible});
-    if (options->algorithm == DesignAlgorithm::kSbplx) return c + Penalty(theta);
-    return c;
+    if (feasible) Consider(theta, c);
+    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, linear_ok});
+    return sbplx ? c + Penalty(theta) : c;
   }
 
   static double NloptObjective(unsigned, const double* x, double* grad, void* data) {
@@ -120,9 +142,15 @@ struct StartRun {
     }
   }
 
-  static void NloptNonlinear(unsigned, double* result, unsigned, const double* x, double* grad, void* data) {
+  static void NloptNonlinear(unsigned m, double* result, unsigned, const double* x, double* grad, void* data) {
     auto* self = static_cast<StartRun*>(data);
     self->problem->NonlinearConstraints(x, result, grad, &*self->ws);
+    const Eigen::VectorXd& p = self->pending_theta;
+    if (p.size() > 0 && std::equal(p.data(), p.data() + p.size(), x) &&
+        *std::max_element(result, result + m) <= kFeasibilityTolerance) {
+      self->Consider(x, self->pending_value);
+    }
+    self->pending_theta.resize(0);
   }
 };
 
