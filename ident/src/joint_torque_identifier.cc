@@ -44,10 +44,10 @@ std::vector<std::vector<int>> JointColumns(const RobotModel& model, const Fricti
 }
 
 // Factors of samples [s_begin, s_end) of the log, from zero. `data`, `Y`,
-// `rows` (per joint) and `work` are the caller's workspace.
+// and `rows` (per joint) are the caller's workspace.
 void FactorSamples(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
                    const JointLog& log, int s_begin, int s_end, RobotData* data, Eigen::MatrixXd* Y,
-                   std::vector<Eigen::MatrixXd>* rows, Eigen::VectorXd* work, StackedFactors* factors) {
+                   std::vector<Eigen::MatrixXd>* rows, StackedFactors* factors) {
   constexpr int kBlock = 128;  // samples per fold
   const int n = model.n_dof();
   // Standard column of each factor column, per joint.
@@ -78,7 +78,7 @@ void FactorSamples(const RobotModel& model, const FrictionModel& friction, const
     }
     // Fold them into each joint's factor.
     for (int j = 0; j < n; ++j) {
-      FoldJointRows((*rows)[static_cast<size_t>(j)].topRows(m), &factors->joints[static_cast<size_t>(j)], work);
+      FoldJointRows((*rows)[static_cast<size_t>(j)].topRows(m), &factors->joints[static_cast<size_t>(j)]);
     }
   }
 }
@@ -146,11 +146,10 @@ StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionMod
     RobotData data(model);
     Eigen::MatrixXd Y;
     std::vector<Eigen::MatrixXd> rows(static_cast<size_t>(model.n_dof()));
-    Eigen::VectorXd work;
     for (int p = next_part++; p < n_parts; p = next_part++) {
       const int s_begin = p * kSamplesPerFactorPart;
       const int s_end = std::min(n_samples, s_begin + kSamplesPerFactorPart);
-      FactorSamples(model, friction, base, log, s_begin, s_end, &data, &Y, &rows, &work,
+      FactorSamples(model, friction, base, log, s_begin, s_end, &data, &Y, &rows,
                     &parts[static_cast<size_t>(p)]);
     }
   };

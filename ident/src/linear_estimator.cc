@@ -1,6 +1,7 @@
 #include "idbench/ident/linear_estimator.h"
 
 #include "idbench/ident/least_squares.h"
+#include "householder_fold.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,8 +59,7 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   std::vector<int> all(static_cast<size_t>(p));
   for (int k = 0; k < p; ++k) all[static_cast<size_t>(k)] = k;
   StackedFactors total(p, {all});
-  Eigen::VectorXd work;
-  FoldJointRows(rows, &total.joints.front(), &work);
+  FoldJointRows(rows, &total.joints.front());
   const Eigen::MatrixXd& T = total.joints.front().T;
 
   LinearFit fit;
@@ -97,68 +97,15 @@ StackedFactors::StackedFactors(int n_parameters_in, const std::vector<std::vecto
   }
 }
 
-void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor, Eigen::VectorXd* work) {
-  constexpr Eigen::Index kPanel = 8;  // reflections applied at once to the columns right of a panel
+void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor) {
   Eigen::MatrixXd& T = factor->T;
-  const Eigen::Index n = T.cols();
-  const Eigen::Index m = rows.rows();
-  if (rows.cols() != n) {
-    throw std::invalid_argument("fold rows: expected " + std::to_string(n) + " columns, got " +
+  if (rows.cols() != T.cols()) {
+    throw std::invalid_argument("fold rows: expected " + std::to_string(T.cols()) + " columns, got " +
                                 std::to_string(rows.cols()));
   }
-  if (work->size() < 2 * kPanel * n + kPanel * kPanel) work->resize(2 * kPanel * n + kPanel * kPanel);
-  // Householder QR of [T; rows], T upper triangular, a panel of columns at a
-  // time (blocked, compact WY: Schreiber & Van Loan 1989). Column k's
-  // reflection H_k = 𝟙 − t_k v vᵀ, v = [e_k; x/(T_kk − β)] (x: column k of the
-  // rows), maps [T_kk; x] onto [β; 0] (LAPACK dlarfg); v's tail is kept in
-  // place of x. T's zeros below the diagonal stay zero.
-  for (Eigen::Index k0 = 0; k0 < n; k0 += kPanel) {
-    const Eigen::Index bs = std::min(kPanel, n - k0);
-    Eigen::Map<Eigen::MatrixXd> Tw(work->data(), bs, bs);  // H_k0 ⋯ H_k0+bs−1 = 𝟙 − V Tw Vᵀ
-    Tw.setZero();
-    // 1. The panel's reflections, each applied to the panel columns right of it.
-    for (Eigen::Index k = k0; k < k0 + bs; ++k) {
-      auto x = rows.col(k);
-      const double x2 = x.squaredNorm();
-      if (x2 == 0.0) continue;  // t_k = 0, v = e_k
-      const double alpha = T(k, k);
-      const double beta = -std::copysign(std::sqrt(alpha * alpha + x2), alpha);
-      const double t = (beta - alpha) / beta;
-      x /= alpha - beta;
-      T(k, k) = beta;
-      Tw(k - k0, k - k0) = t;
-      const Eigen::Index right = k0 + bs - k - 1;
-      if (right == 0) continue;
-      Eigen::Map<Eigen::RowVectorXd> w(work->data() + bs * bs, right);
-      w.noalias() = x.transpose() * rows.middleCols(k + 1, right);
-      w += T.row(k).segment(k + 1, right);
-      w *= t;
-      T.row(k).segment(k + 1, right) -= w;
-      rows.middleCols(k + 1, right).noalias() -= x * w;
-    }
-    const Eigen::Index right = n - k0 - bs;
-    if (right == 0) break;
-    // 2. Tw by LAPACK dlarft: column i is −t_i Tw(0:i, 0:i) Vᵀ v_i above t_i
-    //    (the e_k parts of V are orthogonal, so Vᵀ v_i = V_xᵀ x_i).
-    const auto V = rows.middleCols(k0, bs);
-    for (Eigen::Index i = 1; i < bs; ++i) {
-      if (Tw(i, i) == 0.0) continue;
-      Eigen::Map<Eigen::VectorXd> y(work->data() + bs * bs, i);
-      y.noalias() = V.leftCols(i).transpose() * V.col(i);
-      Tw.col(i).head(i).noalias() = Tw.topLeftCorner(i, i).triangularView<Eigen::Upper>() * y;
-      Tw.col(i).head(i) *= -Tw(i, i);
-    }
-    // 3. (𝟙 − V Twᵀ Vᵀ) on the columns right of the panel: the panel's rows of
-    //    T and all the new rows.
-    Eigen::Map<Eigen::MatrixXd> Y1(work->data() + bs * bs, bs, right);
-    Eigen::Map<Eigen::MatrixXd> Y2(work->data() + bs * bs + bs * right, bs, right);
-    Y1.noalias() = V.transpose() * rows.rightCols(right);
-    Y1 += T.block(k0, k0 + bs, bs, right);
-    Y2.noalias() = Tw.triangularView<Eigen::Upper>().transpose() * Y1;
-    T.block(k0, k0 + bs, bs, right) -= Y2;
-    rows.rightCols(right).noalias() -= V * Y2;
-  }
-  factor->n_rows += m;
+  internal::FoldRowsIntoTriangle(T.data(), T.outerStride(), rows.data(), rows.outerStride(), rows.rows(),
+                                 T.cols());
+  factor->n_rows += rows.rows();
 }
 
 void MergeStackedFactors(const StackedFactors& other, StackedFactors* into) {
@@ -167,7 +114,6 @@ void MergeStackedFactors(const StackedFactors& other, StackedFactors* into) {
                                 std::to_string(into->n_parameters) + " parameters, got " +
                                 std::to_string(other.n_dof()) + " and " + std::to_string(other.n_parameters));
   }
-  Eigen::VectorXd work;
   for (size_t j = 0; j < other.joints.size(); ++j) {
     JointRowFactor& f = into->joints[j];
     if (other.joints[j].columns != f.columns) {
@@ -175,7 +121,7 @@ void MergeStackedFactors(const StackedFactors& other, StackedFactors* into) {
     }
     const Eigen::Index n_rows = f.n_rows + other.joints[j].n_rows;  // T's rows stand for them
     Eigen::MatrixXd rows = other.joints[j].T;
-    FoldJointRows(rows, &f, &work);
+    FoldJointRows(rows, &f);
     f.n_rows = n_rows;
   }
 }
@@ -196,7 +142,6 @@ StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd
   // Fold each joint's rows in blocks.
   constexpr Eigen::Index kBlock = 256;
   Eigen::MatrixXd rows;
-  Eigen::VectorXd work;
   for (int j = 0; j < n_dof; ++j) {
     JointRowFactor& f = factors.joints[static_cast<size_t>(j)];
     const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
@@ -208,7 +153,7 @@ StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd
         for (Eigen::Index k = 0; k < c; ++k) rows(s, k) = W(row, f.columns[static_cast<size_t>(k)]);
         rows(s, c) = tau[row];
       }
-      FoldJointRows(rows, &f, &work);
+      FoldJointRows(rows, &f);
     }
   }
   return factors;

@@ -181,20 +181,30 @@ TEST(LinearEstimatorTest, StreamedFactorsMatchDenseQr) {
 }
 
 // Folding rows into a factor in blocks gives the R factor of all rows: RᵀR = AᵀA.
+// 5 columns fit in one panel of reflections; 21 take three (two blocked
+// updates, a partial last panel), with an all-zero column among them; block
+// sizes are not multiples of the vector width.
 TEST(LinearEstimatorTest, FoldedFactorIsTheQrFactor) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(50, 5, [&] { return u(rng); });
-  StackedFactors factors(4, {{0, 1, 2, 3}});
-  Eigen::VectorXd work;
-  for (int r0 : {0, 7, 30}) {
-    Eigen::MatrixXd rows = A.middleRows(r0, r0 == 0 ? 7 : r0 == 7 ? 23 : 20);
-    FoldJointRows(rows, &factors.joints[0], &work);
+  for (int n : {5, 21}) {
+    SCOPED_TRACE("columns " + std::to_string(n));
+    Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(50, n, [&] { return u(rng); });
+    if (n > 10) A.col(9).setZero();
+    std::vector<int> columns(static_cast<size_t>(n - 1));
+    for (int k = 0; k < n - 1; ++k) columns[static_cast<size_t>(k)] = k;
+    StackedFactors factors(n - 1, {columns});
+    for (int r0 : {0, 7, 30}) {
+      Eigen::MatrixXd rows = A.middleRows(r0, r0 == 0 ? 7 : r0 == 7 ? 23 : 20);
+      FoldJointRows(rows, &factors.joints[0]);
+    }
+    const Eigen::MatrixXd& T = factors.joints[0].T;
+    EXPECT_EQ(factors.joints[0].n_rows, 50);
+    EXPECT_TRUE(T.isUpperTriangular(0.0));
+    EXPECT_LT(testing::RelativeError(Eigen::MatrixXd(T.transpose() * T), Eigen::MatrixXd(A.transpose() * A)),
+              1e-13);
   }
-  const Eigen::MatrixXd& T = factors.joints[0].T;
-  EXPECT_EQ(factors.joints[0].n_rows, 50);
-  EXPECT_TRUE(T.isUpperTriangular(0.0));
-  EXPECT_LT(testing::RelativeError(Eigen::MatrixXd(T.transpose() * T), Eigen::MatrixXd(A.transpose() * A)), 1e-13);
+  StackedFactors factors(4, {{0, 1, 2, 3}});
   StackedFactors bad(4, {{0, 1, 2}});
   EXPECT_THROW(MergeStackedFactors(bad, &factors), std::invalid_argument);
   EXPECT_THROW(StackedFactors(4, {{1, 0}}), std::invalid_argument);

@@ -54,9 +54,8 @@ struct StackedFactors {
 
 // Folds rows of one joint into its factor: `rows` (m × (c + 1)) holds the
 // joint's new rows restricted to factor->columns, τ last; it is overwritten
-// (scratch). `work` is scratch too (resized to c + 1 if smaller; no
-// allocation once sized). Householder reflections on [T; rows].
-void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor, Eigen::VectorXd* work);
+// (scratch). Householder reflections on [T; rows], no allocation.
+void FoldJointRows(Eigen::Ref<Eigen::MatrixXd> rows, JointRowFactor* factor);
 
 // Folds `other`'s rows into *into, joint by joint (as if its rows had been
 // appended). Throws std::invalid_argument unless the column sets agree.
