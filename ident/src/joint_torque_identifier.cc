@@ -83,12 +83,37 @@ void FactorSamples(const RobotModel& model, const FrictionModel& friction, const
   }
 }
 
-TorquePrediction Predict(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, const Eigen::VectorXd& beta,
-                         int n_dof) {
-  const Eigen::VectorXd r = W * beta - tau;
+void CheckEnoughEquations(Eigen::Index n_samples, int n_dof, int n_base) {
+  if (n_samples * n_dof <= n_base) {
+    throw std::invalid_argument("joint log has " + std::to_string(n_samples) + " usable samples (" +
+                                std::to_string(n_samples * n_dof) + " equations) for " + std::to_string(n_base) +
+                                " base parameters; record more samples");
+  }
+}
+
+// The factors of a log's equations: streamed, or through W when the log is
+// parallel-filtered (the filter runs along whole columns of W). Throws
+// std::invalid_argument when there are no more equations than parameters.
+StackedFactors FactorEquations(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                               const JointLog& log, const std::optional<ParallelFilter>& filter) {
+  if (!filter) {
+    StackedFactors factors = FactorStackedEquations(model, friction, base, log);
+    CheckEnoughEquations(factors.n_samples(), model.n_dof(), base.n_base());
+    return factors;
+  }
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  StackEquations(model, friction, base, log, filter, &W, &tau);
+  CheckEnoughEquations(W.rows() / model.n_dof(), model.n_dof(), base.n_base());
+  return FactorStackedRows(W, tau, model.n_dof());
+}
+
+TorquePrediction Predict(const StackedFactors& factors, const Eigen::VectorXd& beta) {
+  const Eigen::VectorXd residual = JointResidualNorms(factors, beta);
+  const Eigen::VectorXd tau = JointResidualNorms(factors, Eigen::VectorXd::Zero(beta.size()));
   TorquePrediction out;
-  out.joint_rms = JointRms(r, n_dof);
-  out.relative_error = r.norm() / tau.norm();
+  out.joint_rms = residual / std::sqrt(static_cast<double>(factors.n_samples()));
+  out.relative_error = residual.norm() / tau.norm();
   return out;
 }
 
@@ -225,16 +250,8 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   out.standard_names = StandardParameterNames(model, options.friction);
   const Eigen::VectorXd pi_model = StandardParameters(model, options.friction);
   out.beta_model = out.base.combination * pi_model;
-  Eigen::MatrixXd W;
-  Eigen::VectorXd tau;
-  StackEquations(model, options.friction, out.base, log, options.parallel_filter, &W, &tau);
-  if (W.rows() <= W.cols()) {
-    throw std::invalid_argument("joint log has " + std::to_string(W.rows() / model.n_dof()) + " usable samples (" +
-                                std::to_string(W.rows()) + " equations) for " + std::to_string(W.cols()) +
-                                " base parameters; record more samples");
-  }
-  out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(W, tau, model.n_dof())
-                                                          : SolveOls(W, tau, model.n_dof());
+  const StackedFactors factors = FactorEquations(model, options.friction, out.base, log, options.parallel_filter);
+  out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(factors) : SolveOls(factors);
   out.beta = out.linear.beta;
   // Friction and rotor inertia are physical only when >= 0 (offsets are signed).
   PhysicallyConsistentOptions consistent = options.consistent;
@@ -244,20 +261,17 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
       consistent.nonnegative.push_back(static_cast<int>(c));
     }
   }
-  out.consistent = SolvePhysicallyConsistent(W, tau, out.base, model.n_links(), out.linear.beta, pi_model,
-                                             consistent);
+  out.consistent = SolvePhysicallyConsistent(CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof())), out.base,
+                                             model.n_links(), out.linear.beta, pi_model, consistent);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
-  out.fit = Predict(W, tau, out.beta, model.n_dof());
-  out.model_fit = Predict(W, tau, out.beta_model, model.n_dof());
+  out.fit = Predict(factors, out.beta);
+  out.model_fit = Predict(factors, out.beta_model);
   return out;
 }
 
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
-  Eigen::MatrixXd W;
-  Eigen::VectorXd tau;
-  StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
-  return Predict(W, tau, beta, model.n_dof());
+  return Predict(FactorEquations(model, options.friction, base, log, options.parallel_filter), beta);
 }
 
 }  // namespace idbench

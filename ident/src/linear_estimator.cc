@@ -31,9 +31,8 @@ double JointResidualNorm(const JointRowFactor& f, const Eigen::VectorXd& beta) {
   return (f.T.triangularView<Eigen::Upper>() * x).norm();
 }
 
-// Least squares over all joints' rows, joint j's weighted by weights[j]: the
-// factors, scaled and scattered into the full column space, are folded into
-// one (p + 1) × (p + 1) factor [R z; 0 ρ] of the weighted [W τ]. Then
+// Least squares over all joints' rows, joint j's weighted by weights[j], from
+// their combined factor [R z; 0 ρ]:
 //   β = R⁻¹ z,  ‖r‖ = |ρ|,  (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ,  cond(W) = cond(R).
 LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   const int p = factors.n_parameters;
@@ -42,42 +41,18 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
     throw std::invalid_argument("least squares: " + std::to_string(static_cast<long long>(n_equations)) +
                                 " equations for " + std::to_string(p) + " parameters; need more samples");
   }
-  Eigen::Index n_rows = 0;
-  for (const JointRowFactor& f : factors.joints) n_rows += f.T.rows();
-  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(n_rows, p + 1);
-  Eigen::Index r0 = 0;
-  for (size_t j = 0; j < factors.joints.size(); ++j) {
-    const JointRowFactor& f = factors.joints[j];
-    const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
-    const double weight = weights[static_cast<Eigen::Index>(j)];
-    for (Eigen::Index k = 0; k < c; ++k) {
-      rows.col(f.columns[static_cast<size_t>(k)]).segment(r0, c + 1) = weight * f.T.col(k);
-    }
-    rows.col(p).segment(r0, c + 1) = weight * f.T.col(c);
-    r0 += c + 1;
-  }
-  std::vector<int> all(static_cast<size_t>(p));
-  for (int k = 0; k < p; ++k) all[static_cast<size_t>(k)] = k;
-  StackedFactors total(p, {all});
-  FoldJointRows(rows, &total.joints.front());
-  const Eigen::MatrixXd& T = total.joints.front().T;
-
+  const Eigen::MatrixXd T = CombinedFactor(factors, weights);
   LinearFit fit;
   const Eigen::MatrixXd R = T.topLeftCorner(p, p).triangularView<Eigen::Upper>();
   fit.beta = R.triangularView<Eigen::Upper>().solve(T.col(p).head(p));
   const double s2 = T(p, p) * T(p, p) / (n_equations - p);
-  // (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ.
   const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
   fit.covariance = Rinv * Rinv.transpose() * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
   fit.cond = ConditionNumber(R);
   // Unweighted residual RMS per joint.
-  fit.joint_rms.resize(factors.n_dof());
-  const double n_samples = static_cast<double>(factors.n_samples());
-  for (int j = 0; j < factors.n_dof(); ++j) {
-    fit.joint_rms[j] = JointResidualNorm(factors.joints[static_cast<size_t>(j)], fit.beta) / std::sqrt(n_samples);
-  }
+  fit.joint_rms = JointResidualNorms(factors, fit.beta) / std::sqrt(static_cast<double>(factors.n_samples()));
   return fit;
 }
 
@@ -163,6 +138,49 @@ Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof) {
   const Eigen::Index n_samples = r.size() / n_dof;
   const Eigen::Map<const Eigen::MatrixXd> R(r.data(), n_dof, n_samples);
   return (R.rowwise().squaredNorm() / static_cast<double>(n_samples)).cwiseSqrt();
+}
+
+Eigen::VectorXd JointResidualNorms(const StackedFactors& factors, const Eigen::VectorXd& beta) {
+  if (beta.size() != factors.n_parameters) {
+    throw std::invalid_argument("joint residuals: expected " + std::to_string(factors.n_parameters) +
+                                " parameters, got " + std::to_string(beta.size()));
+  }
+  Eigen::VectorXd norms(factors.n_dof());
+  for (int j = 0; j < factors.n_dof(); ++j) norms[j] = JointResidualNorm(factors.joints[static_cast<size_t>(j)], beta);
+  return norms;
+}
+
+Eigen::MatrixXd CombinedFactor(const StackedFactors& factors, const Eigen::VectorXd& weights) {
+  if (weights.size() != factors.n_dof()) {
+    throw std::invalid_argument("combined factor: expected " + std::to_string(factors.n_dof()) +
+                                " joint weights, got " + std::to_string(weights.size()));
+  }
+  // The joints' factors, weighted and scattered into the full column space,
+  // folded into one.
+  const int p = factors.n_parameters;
+  Eigen::Index n_rows = 0;
+  for (const JointRowFactor& f : factors.joints) n_rows += f.T.rows();
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(n_rows, p + 1);
+  Eigen::Index r0 = 0;
+  for (size_t j = 0; j < factors.joints.size(); ++j) {
+    const JointRowFactor& f = factors.joints[j];
+    const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
+    const double weight = weights[static_cast<Eigen::Index>(j)];
+    for (Eigen::Index k = 0; k < c; ++k) {
+      rows.col(f.columns[static_cast<size_t>(k)]).segment(r0, c + 1) = weight * f.T.col(k);
+    }
+    rows.col(p).segment(r0, c + 1) = weight * f.T.col(c);
+    r0 += c + 1;
+  }
+  std::vector<int> all(static_cast<size_t>(p));
+  for (int k = 0; k < p; ++k) all[static_cast<size_t>(k)] = k;
+  StackedFactors total(p, {all});
+  FoldJointRows(rows, &total.joints.front());
+  return std::move(total.joints.front().T);
+}
+
+Eigen::MatrixXd CombinedFactor(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau) {
+  return CombinedFactor(FactorStackedRows(W, tau, 1), Eigen::VectorXd::Ones(1));
 }
 
 LinearFit SolveOls(const StackedFactors& factors) {

@@ -30,6 +30,14 @@ constexpr double kPreconditionerFloor = 1e-12;
 
 std::string Size(Eigen::Index n) { return std::to_string(n); }
 
+// ‖W_b β − τ‖² = ‖R β − z‖² + ρ² from the factor [R z; 0 ρ] of [W_b τ].
+double Cost(const Eigen::MatrixXd& factor, const Eigen::VectorXd& beta) {
+  const Eigen::Index p = beta.size();
+  const double rho = factor(p, p);
+  return (factor.topLeftCorner(p, p).triangularView<Eigen::Upper>() * beta - factor.col(p).head(p)).squaredNorm() +
+         rho * rho;
+}
+
 void CheckVariables(Eigen::Index got, Eigen::Index expected) {
   if (got != expected) {
     throw std::invalid_argument("physically consistent fit: expected " + Size(expected) + " variables, got " +
@@ -226,8 +234,7 @@ bool PhysicallyConsistentOptions::IsValid(std::string* why) const {
   return true;
 }
 
-PhysicallyConsistentObjective::PhysicallyConsistentObjective(const Eigen::MatrixXd& W_base,
-                                                             const Eigen::VectorXd& tau,
+PhysicallyConsistentObjective::PhysicallyConsistentObjective(const Eigen::MatrixXd& factor,
                                                              const BaseParameters& base, int n_links,
                                                              InertiaParameterization parameterization,
                                                              const std::vector<Eigen::Matrix4d>& margins,
@@ -235,21 +242,18 @@ PhysicallyConsistentObjective::PhysicallyConsistentObjective(const Eigen::Matrix
     : n_links_(n_links), parameterization_(parameterization), squared_(nonnegative) {
   const Eigen::MatrixXd& C = base.combination;
   const Eigen::Index n_base = base.n_base();
-  if (W_base.cols() != n_base || C.rows() != n_base) {
-    throw std::invalid_argument("physically consistent fit: expected W_base with " + Size(n_base) +
-                                " columns (the base parameters), got " + Size(W_base.cols()));
-  }
-  if (W_base.rows() != tau.size() || W_base.rows() < n_base) {
-    throw std::invalid_argument("physically consistent fit: expected tau with W_base's " + Size(W_base.rows()) +
-                                " rows, at least " + Size(n_base) + ", got " + Size(tau.size()));
+  if (factor.rows() != n_base + 1 || factor.cols() != n_base + 1 || C.rows() != n_base) {
+    throw std::invalid_argument("physically consistent fit: expected the " + Size(n_base + 1) + " × " +
+                                Size(n_base + 1) + " factor of [W_base tau] (the base parameters and tau), got " +
+                                Size(factor.rows()) + " × " + Size(factor.cols()));
   }
   if (n_links < 0 || C.cols() < kP * n_links) {
     throw std::invalid_argument("physically consistent fit: expected at least " + Size(kP * n_links) +
                                 " standard parameters for " + std::to_string(n_links) + " links, got " +
                                 Size(C.cols()));
   }
-  if (!W_base.allFinite() || !tau.allFinite()) {
-    throw std::invalid_argument("physically consistent fit: expected finite W_base and tau");
+  if (!factor.allFinite()) {
+    throw std::invalid_argument("physically consistent fit: expected a finite factor of [W_base tau]");
   }
   if (!margins.empty() && margins.size() != static_cast<size_t>(n_links)) {
     throw std::invalid_argument("physically consistent fit: expected " + std::to_string(n_links) +
@@ -267,13 +271,11 @@ PhysicallyConsistentObjective::PhysicallyConsistentObjective(const Eigen::Matrix
   for (size_t l = 0; l < margins.size(); ++l) {
     pi_margin_.segment<kP>(kP * static_cast<Eigen::Index>(l)) = InertialParametersFromPseudoInertia(margins[l]);
   }
-  // Thin QR once: ‖W_b β − τ‖² = ‖R β − Q₁ᵀ τ‖² + ‖Q₂ᵀ τ‖² for every β.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W_base);
-  const Eigen::VectorXd q_tau = qr.householderQ().adjoint() * tau;
-  const Eigen::MatrixXd R = qr.matrixQR().topRows(n_base).triangularView<Eigen::Upper>();
+  // ‖W_b β − τ‖² = ‖R β − z‖² + ρ² for every β.
+  const Eigen::MatrixXd R = factor.topLeftCorner(n_base, n_base).triangularView<Eigen::Upper>();
   A_ = R * C;
-  b_ = q_tau.head(n_base);
-  residual_floor_ = q_tau.tail(W_base.rows() - n_base).squaredNorm();
+  b_ = factor.col(n_base).head(n_base);
+  residual_floor_ = factor(n_base, n_base) * factor(n_base, n_base);
   pi_.resize(C.cols());
   r_.resize(n_base);
   g_pi_.resize(C.cols());
@@ -357,8 +359,7 @@ Eigen::MatrixXd PhysicallyConsistentObjective::ResidualJacobian(const Eigen::Vec
   return J;
 }
 
-PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& W_base, const Eigen::VectorXd& tau,
-                                                  const BaseParameters& base, int n_links,
+PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& factor, const BaseParameters& base, int n_links,
                                                   const Eigen::VectorXd& beta_ols, const Eigen::VectorXd& pi_prior,
                                                   const PhysicallyConsistentOptions& options) {
   std::string why;
@@ -400,9 +401,9 @@ PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& W_base,
       pi0[k] = std::max(pi0[k], small);
     }
   }
-  PhysicallyConsistentObjective objective(W_base, tau, base, n_links, options.parameterization, margins,
+  PhysicallyConsistentObjective objective(factor, base, n_links, options.parameterization, margins,
                                           options.nonnegative);
-  fit.ols_cost = (W_base * beta_ols - tau).squaredNorm();
+  fit.ols_cost = Cost(factor, beta_ols);
   NloptContext context;
   context.objective = &objective;
   context.best_x = objective.VariablesAt(pi0);
@@ -438,7 +439,7 @@ PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& W_base,
   // Report in standard parameters.
   fit.pi = objective.StandardParametersAt(context.best_x);
   fit.beta = base.combination * fit.pi;
-  fit.cost = (W_base * fit.beta - tau).squaredNorm();
+  fit.cost = Cost(factor, fit.beta);
   fit.min_pseudo_inertia_eigenvalue = MinPseudoInertiaEigenvalues(fit.pi, n_links);
   fit.evaluations = context.evaluations;
   fit.status = nlopt_result_to_string(result);

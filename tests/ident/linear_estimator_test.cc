@@ -173,6 +173,19 @@ TEST(LinearEstimatorTest, StreamedFactorsMatchDenseQr) {
     // Fixed parts merged in a fixed order: bit-identical whatever the thread count.
     for (int j = 0; j < 6; ++j) EXPECT_EQ(factors.joints[j].T, one_thread.joints[j].T) << "joint " << j + 1;
   }
+  // Residuals of any β from the factors: per joint, and all joints weighted in
+  // one factor (what the physically consistent fit minimises).
+  const Eigen::VectorXd beta = beta_model + 0.1 * testing::RandomVector(48, 1.0, &rng);
+  const Eigen::VectorXd r = W * beta - tau;
+  const Eigen::VectorXd joint_norms = JointRms(r, 6) * std::sqrt(static_cast<double>(n_samples));
+  EXPECT_LT(testing::RelativeError(JointResidualNorms(one_thread, beta), joint_norms), 1e-12);
+  const Eigen::MatrixXd combined = CombinedFactor(one_thread, joint_sigma.cwiseInverse());
+  EXPECT_TRUE(combined.isUpperTriangular(0.0));
+  const double weighted = (combined.topLeftCorner(48, 48) * beta - combined.col(48).head(48)).squaredNorm() +
+                          combined(48, 48) * combined(48, 48);
+  EXPECT_NEAR(weighted, joint_norms.cwiseQuotient(joint_sigma).squaredNorm(), 1e-12 * weighted);
+  EXPECT_THROW(CombinedFactor(one_thread, Eigen::VectorXd::Ones(5)), std::invalid_argument);
+  EXPECT_THROW(JointResidualNorms(one_thread, beta.head(47)), std::invalid_argument);
   // The dense entry points (factors of the given W) agree too.
   ExpectSameFit(SolveOls(W, tau, 6), dense_ols);
   ExpectSameFit(SolveWls(W, tau, 6), dense_wls);

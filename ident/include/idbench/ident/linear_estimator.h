@@ -69,6 +69,19 @@ StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd
 // RMS per joint of stacked residuals r (rows interleaved by joint) (n_dof).
 Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof);
 
+// ‖W_j β − τ_j‖ of each joint from its factor (n_dof); at β = 0, ‖τ_j‖.
+// Throws std::invalid_argument unless β has n_parameters entries.
+Eigen::VectorXd JointResidualNorms(const StackedFactors& factors, const Eigen::VectorXd& beta);
+
+// All rows in one factor: the (p + 1) × (p + 1) upper-triangular [R z; 0 ρ]
+// of [W τ], joint j's rows weighted by weights[j] (n_dof), so that for every β
+//   Σ_j weights[j]² ‖W_j β − τ_j‖² = ‖R β − z‖² + ρ².
+// Throws std::invalid_argument unless weights has n_dof entries.
+Eigen::MatrixXd CombinedFactor(const StackedFactors& factors, const Eigen::VectorXd& weights);
+// The same of a dense [W τ] (unweighted). Throws std::invalid_argument on a
+// size mismatch or fewer rows than columns + 1.
+Eigen::MatrixXd CombinedFactor(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau);
+
 // Throws std::invalid_argument on size mismatch or fewer rows than p + 1.
 LinearFit SolveOls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
 LinearFit SolveWls(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);

@@ -24,7 +24,9 @@
 // OLS estimate is inconsistent) is at finite u but at θ → ∞, where gradients
 // vanish. On paper6r with an inconsistent OLS estimate the log-Cholesky search
 // stalled at a 14% (no margin) to 160% (default margin) higher cost than the
-// Cholesky one, so the Cholesky factor is the default.
+// Cholesky one, and where it stalls moves with rounding (with the default
+// margin: 2.6× or 10× the Cholesky cost for two factors of [W τ] that differ
+// by rounding only), so the Cholesky factor is the default.
 #pragma once
 
 #include <Eigen/Core>
@@ -119,29 +121,27 @@ struct PhysicallyConsistentFit {
 // f(x) = ‖W_b C π(x) − τ‖² and its gradient, over x = (factor of link 1, …,
 // factor of link n_links, friction): each link's 10 coordinates, then the
 // remaining entries of π (friction), as is or, for the nonnegative ones,
-// squared (π_k = x_k²). With the thin QR W_b = Q₁ R,
-// computed once,
-//   f = ‖r‖² + ‖Q₂ᵀ τ‖²,  r = R C π(x) − Q₁ᵀ τ,
+// squared (π_k = x_k²). From the triangular factor [R z; 0 ρ] of [W_b τ]
+// (CombinedFactor, linear_estimator.h),
+//   f = ‖r‖² + ρ²,  r = R C π(x) − z,
 // so an evaluation costs O(n_base · n_standard) and not O(rows);
 //   ∇f = 2 (∂π/∂x)ᵀ (R C)ᵀ r,  ∂π/∂x block-diagonal.
 class PhysicallyConsistentObjective {
  public:
-  // Throws std::invalid_argument unless W_base is rows × n_base with rows ≥
-  // n_base, τ has rows entries, both are finite, and the combination has
-  // ≥ 10·n_links columns.
+  // Throws std::invalid_argument unless `factor` is (n_base + 1) × (n_base + 1)
+  // and finite, and the combination has ≥ 10·n_links columns.
   // Link l's pseudo-inertia is J_l = U_l U_lᵀ + margins[l] (margins empty:
   // none; else n_links symmetric matrices); `nonnegative` lists friction
   // indices into π that are squares. Also throws unless margins is empty or
   // has n_links entries and every nonnegative index is a friction entry.
-  PhysicallyConsistentObjective(const Eigen::MatrixXd& W_base, const Eigen::VectorXd& tau,
-                                const BaseParameters& base, int n_links,
+  PhysicallyConsistentObjective(const Eigen::MatrixXd& factor, const BaseParameters& base, int n_links,
                                 InertiaParameterization parameterization = InertiaParameterization::kCholesky,
                                 const std::vector<Eigen::Matrix4d>& margins = {},
                                 const std::vector<int>& nonnegative = {});
 
   int n_variables() const { return static_cast<int>(A_.cols()); }
   int n_links() const { return n_links_; }
-  double residual_floor() const { return residual_floor_; }  // ‖Q₂ᵀ τ‖² [N² m²], the least f
+  double residual_floor() const { return residual_floor_; }  // ρ² [N² m²], the least f
 
   // π(x) (n_standard) and an x with π(x) = π (throws std::invalid_argument
   // unless every link's J − margin is positive definite and every nonnegative
@@ -163,8 +163,8 @@ class PhysicallyConsistentObjective {
   int n_links_ = 0;
   InertiaParameterization parameterization_;
   Eigen::MatrixXd A_;          // R C (n_base × n_standard)
-  Eigen::VectorXd b_;          // Q₁ᵀ τ (n_base)
-  double residual_floor_ = 0;  // ‖Q₂ᵀ τ‖²
+  Eigen::VectorXd b_;          // z (n_base)
+  double residual_floor_ = 0;  // ρ²
   Eigen::VectorXd pi_margin_;  // π of the margins, zero friction (n_standard)
   std::vector<int> squared_;   // friction indices with π_k = x_k²
   // Workspace.
@@ -186,12 +186,14 @@ class PhysicallyConsistentObjective {
 // boundary the cost converges sublinearly: expect MAXEVAL_REACHED there (on
 // the paper6r tests the default budget ends 4·10⁻⁶ and 2·10⁻⁵ above the cost
 // reached with 20 000 evaluations).
-// β_ols is normally SolveOls(W_b, τ, n_dof).beta. Rows may be pre-weighted
-// (WLS): the cost is whatever ‖W_b β − τ‖² the rows define. Throws
-// std::invalid_argument on invalid options or sizes (see the objective) or if
-// β_ols, π_prior are not finite; a stop on max_evaluations or a solver
-// failure is reported in status/converged, with the best point found.
-PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& W_base, const Eigen::VectorXd& tau,
+// `factor` is the triangular factor [R z; 0 ρ] of [W_b τ] (CombinedFactor,
+// linear_estimator.h: of a dense W_b or of streamed StackedFactors), β_ols
+// normally R⁻¹ z (SolveOls). Rows may be weighted (WLS): the cost is whatever
+// ‖W_b β − τ‖² the factor defines. Throws std::invalid_argument on invalid
+// options or sizes (see the objective) or if β_ols, π_prior are not finite; a
+// stop on max_evaluations or a solver failure is reported in
+// status/converged, with the best point found.
+PhysicallyConsistentFit SolvePhysicallyConsistent(const Eigen::MatrixXd& factor,
                                                   const BaseParameters& base, int n_links,
                                                   const Eigen::VectorXd& beta_ols, const Eigen::VectorXd& pi_prior,
                                                   const PhysicallyConsistentOptions& options = {});
