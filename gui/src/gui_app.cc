@@ -510,7 +510,9 @@ void GuiApp::Impl::DrawExperimentTab() {
     ImGui::TableHeadersRow();
     for (const IdentifiedRow& row : rows) {
       ImGui::TableNextRow();
-      const ImVec4* color = row.poorly_identified ? &kErrorColor : nullptr;
+      const ImVec4* color = row.status == ParameterStatus::kPoor                       ? &kErrorColor
+                            : row.status == ParameterStatus::kIndistinguishableFromZero ? &kDimColor
+                                                                                         : nullptr;
       ImGui::TableSetColumnIndex(0);
       TextCell(row.name, color);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", row.name.c_str());
@@ -523,10 +525,14 @@ void GuiApp::Impl::DrawExperimentTab() {
       ImGui::TableSetColumnIndex(4);
       TextCell(Number(row.sigma_percent, "%.2g"), color);
       ImGui::TableSetColumnIndex(5);
-      TextCell(row.poorly_identified ? "poor" : "ok", color);
-      if (row.poorly_identified && ImGui::IsItemHovered())
-        ImGui::SetTooltip("%%σ above %g %%: poorly identified by this motion (or a parameter near zero)",
-                          IdentifiedRow::kPoorSigmaPercent);
+      const bool zero = row.status == ParameterStatus::kIndistinguishableFromZero;
+      TextCell(row.status == ParameterStatus::kDetermined ? "ok" : zero ? "~0" : "poor", color);
+      if (zero && ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("|identified| <= %g σ: the data cannot tell it from zero (a parameter that is 0, or one "
+                          "this motion hardly excites)", kZeroSigmas);
+      } else if (row.status == ParameterStatus::kPoor && ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%%σ above %g %%: poorly identified by this motion", kDeterminedSigmaPercent);
+      }
     }
     ImGui::EndTable();
   }

@@ -262,7 +262,7 @@ std::vector<IdentifiedRow> Session::IdentifiedRows() const {
     row.relative_error = row.model_value != 0.0 ? (row.identified - row.model_value) / std::abs(row.model_value)
                                                 : std::numeric_limits<double>::quiet_NaN();
     row.sigma_percent = id.linear.rel_sigma_percent[k];
-    row.poorly_identified = !(row.sigma_percent <= IdentifiedRow::kPoorSigmaPercent);
+    row.status = ClassifyParameter(row.identified, id.linear.sigma[k]);
     rows.push_back(row);
   }
   return rows;

@@ -50,6 +50,8 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   fit.covariance = Rinv * Rinv.transpose() * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
+  // ‖W_k‖ = ‖R_k‖ (W = Q R), (WᵀW)⁻¹_kk = ‖row k of R⁻¹‖².
+  fit.variance_inflation = Rinv.rowwise().squaredNorm().cwiseProduct(R.colwise().squaredNorm().transpose());
   fit.cond = ConditionNumber(R);
   // Unweighted residual RMS per joint.
   fit.joint_rms = JointResidualNorms(factors, fit.beta) / std::sqrt(static_cast<double>(factors.n_samples()));
@@ -57,6 +59,22 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
 }
 
 }  // namespace
+
+ParameterStatus ClassifyParameter(double beta, double sigma) {
+  if (!std::isfinite(beta) || !std::isfinite(sigma)) return ParameterStatus::kPoor;
+  if (sigma <= kDeterminedSigmaPercent / 100.0 * std::abs(beta)) return ParameterStatus::kDetermined;
+  if (std::abs(beta) > kZeroSigmas * sigma) return ParameterStatus::kPoor;
+  return ParameterStatus::kIndistinguishableFromZero;
+}
+
+const char* ToString(ParameterStatus status) {
+  switch (status) {
+    case ParameterStatus::kDetermined: return "determined";
+    case ParameterStatus::kPoor: return "poor";
+    case ParameterStatus::kIndistinguishableFromZero: return "indistinguishable from zero";
+  }
+  return "?";
+}
 
 StackedFactors::StackedFactors(int n_parameters_in, const std::vector<std::vector<int>>& columns_per_joint)
     : n_parameters(n_parameters_in) {

@@ -146,7 +146,7 @@ wait identify 120
       ++well_determined;
       EXPECT_LT(std::abs(rows[k].relative_error), 1e-3) << rows[k].name;
     }
-    EXPECT_EQ(rows[k].poorly_identified, !(rows[k].sigma_percent <= IdentifiedRow::kPoorSigmaPercent));
+    EXPECT_EQ(rows[k].status, ClassifyParameter(rows[k].identified, sigma[static_cast<Eigen::Index>(k)]));
   }
   EXPECT_GT(well_determined, 5);
   // Link 1 turns about a fixed axis: its mass cannot affect any torque.

@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <cmath>
 #include <random>
 
 #include "engine/test_util.h"
@@ -80,6 +82,17 @@ TEST(LinearEstimatorTest, PredictedSigmaMatchesMonteCarloSpread) {
   for (Eigen::Index k = 0; k < spread.size(); ++k) {
     EXPECT_NEAR(spread[k] / predicted[k], 1.0, 0.2) << "base parameter " << k;
   }
+}
+
+TEST(LinearEstimatorTest, ClassifiesParametersBySigma) {
+  EXPECT_EQ(ClassifyParameter(1.0, 0.05), ParameterStatus::kDetermined);
+  EXPECT_EQ(ClassifyParameter(-2.0, 0.2), ParameterStatus::kDetermined);  // 10 %: the boundary
+  EXPECT_EQ(ClassifyParameter(1.0, 0.2), ParameterStatus::kPoor);
+  EXPECT_EQ(ClassifyParameter(-1.0, 0.3), ParameterStatus::kPoor);
+  EXPECT_EQ(ClassifyParameter(1.0, 1.0 / 3.0), ParameterStatus::kIndistinguishableFromZero);
+  EXPECT_EQ(ClassifyParameter(0.0, 1e-6), ParameterStatus::kIndistinguishableFromZero);
+  EXPECT_EQ(ClassifyParameter(0.0, 0.0), ParameterStatus::kDetermined);
+  EXPECT_EQ(ClassifyParameter(1.0, std::nan("")), ParameterStatus::kPoor);
 }
 
 TEST(LinearEstimatorTest, RejectsTooFewEquations) {
@@ -173,6 +186,11 @@ TEST(LinearEstimatorTest, StreamedFactorsMatchDenseQr) {
     // Fixed parts merged in a fixed order: bit-identical whatever the thread count.
     for (int j = 0; j < 6; ++j) EXPECT_EQ(factors.joints[j].T, one_thread.joints[j].T) << "joint " << j + 1;
   }
+  // Variance inflation: (WᵀW)⁻¹_kk ‖W_k‖², from W itself.
+  const Eigen::MatrixXd gram_inverse = (W.transpose() * W).inverse();
+  const Eigen::VectorXd vif = gram_inverse.diagonal().cwiseProduct(W.colwise().squaredNorm().transpose());
+  EXPECT_LT(testing::RelativeError(SolveOls(one_thread).variance_inflation, vif), 1e-9);
+  EXPECT_GE(vif.minCoeff(), 1.0);
   // Residuals of any β from the factors: per joint, and all joints weighted in
   // one factor (what the physically consistent fit minimises).
   const Eigen::VectorXd beta = beta_model + 0.1 * testing::RandomVector(48, 1.0, &rng);

@@ -103,14 +103,18 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
                 report.filtered ? " (qd, qdd from the filtered q)" : "", id.base.n_base(), options.estimator.c_str(),
                 id.linear.cond);
   out += line;
-  std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %s\n", "#", "robot file", "identified", "sigma", "%sigma",
-                "base parameter");
+  std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
+                "%sigma", "status", "base parameter");
   out += line;
   for (int k = 0; k < id.base.n_base(); ++k) {
-    std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %s\n", k + 1, id.beta_model[k], id.beta[k],
-                  id.linear.sigma[k], id.linear.rel_sigma_percent[k], id.base.names[static_cast<size_t>(k)].c_str());
+    const ParameterStatus status = ClassifyParameter(id.beta[k], id.linear.sigma[k]);
+    std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %-10s  %s\n", k + 1, id.beta_model[k],
+                  id.beta[k], id.linear.sigma[k], id.linear.rel_sigma_percent[k],
+                  status == ParameterStatus::kIndistinguishableFromZero ? "~0" : ToString(status),
+                  id.base.names[static_cast<size_t>(k)].c_str());
     out += line;
   }
+  out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero\n";
   auto joint_row = [&](const char* label, const Eigen::VectorXd& v) {
     out += label;
     for (int j = 0; j < v.size(); ++j) {
@@ -143,6 +147,8 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
                     {"value", id.beta[k]},
                     {"sigma", id.linear.sigma[k]},
                     {"rel_sigma_percent", id.linear.rel_sigma_percent[k]},
+                    {"variance_inflation", id.linear.variance_inflation[k]},
+                    {"status", ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]))},
                     {"robot_file_value", id.beta_model[k]}});
   }
   json standard = json::array();

@@ -356,13 +356,14 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
     content.pose_caption = "The poses of " + model.name() + " along the log (times from its first sample).";
   }
   ReportTable base{"Base parameters (robot file value is the truth for a simulated log)",
-                   {"#", "base parameter", "identified", "σ", "%σ", "robot file", "difference"},
+                   {"#", "base parameter", "identified", "σ", "%σ", "status", "robot file", "difference"},
                    {}};
   std::vector<ParameterEstimate> estimates;
   for (int k = 0; k < id.base.n_base(); ++k) {
     const std::string& name = id.base.names[static_cast<size_t>(k)];
     base.rows.push_back({std::to_string(k + 1), name, Format("%.6g", id.beta[k]), Format("%.3g", id.linear.sigma[k]),
-                         Format("%.3g", id.linear.rel_sigma_percent[k]), Format("%.6g", id.beta_model[k]),
+                         Format("%.3g", id.linear.rel_sigma_percent[k]),
+                         ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k])), Format("%.6g", id.beta_model[k]),
                          Format("%.3g", id.beta[k] - id.beta_model[k])});
     estimates.push_back({std::to_string(k + 1), id.beta_model[k], id.beta[k], 3.0 * id.linear.sigma[k]});
   }

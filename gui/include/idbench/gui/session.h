@@ -53,8 +53,7 @@ struct IdentifiedRow {
   double identified = 0.0;    // the chosen estimator's
   double relative_error = 0.0;     // (identified − model) / |model|; NaN when model is 0
   double sigma_percent = 0.0;      // 100 σ/|β̂| of the linear fit
-  bool poorly_identified = false;  // sigma_percent above kPoorSigmaPercent (or not finite)
-  static constexpr double kPoorSigmaPercent = 10.0;
+  ParameterStatus status = ParameterStatus::kDetermined;  // from β̂ and σ (linear_estimator.h)
 };
 
 class Session {

@@ -21,10 +21,28 @@ struct LinearFit {
   Eigen::MatrixXd covariance;      // (p × p)
   Eigen::VectorXd sigma;           // standard deviations (p)
   Eigen::VectorXd rel_sigma_percent;  // 100 σ/|β| (p)
+  // (WᵀW)⁻¹_kk ‖W_k‖² ≥ 1 (p): how much the other columns inflate σ_k² over
+  // what column k alone would give; 1/sin² of the angle between column k and
+  // the others' span. Large: the motion confuses parameter k with others.
+  Eigen::VectorXd variance_inflation;
   Eigen::VectorXd joint_rms;       // residual RMS per joint [N m] (n_dof), unweighted
   Eigen::VectorXd joint_sigma;     // per-joint noise estimates (WLS weights are 1/σ_j)
   double cond = 0.0;               // cond(W) (weighted for WLS)
 };
+
+// What the data say about one parameter, from its estimate β̂ and σ:
+//   kDetermined: σ ≤ 10 % of |β̂|;
+//   kPoor: 10 % < σ/|β̂| < 1/3;
+//   kIndistinguishableFromZero: |β̂| ≤ 3σ, the data cannot tell it from 0
+//   (a parameter that is 0, e.g. by symmetry, or one the motion hardly
+//   excites: σ and variance_inflation tell which);
+// a β̂ or σ that is not finite is kPoor.
+enum class ParameterStatus { kDetermined, kPoor, kIndistinguishableFromZero };
+inline constexpr double kDeterminedSigmaPercent = 10.0;
+inline constexpr double kZeroSigmas = 3.0;
+ParameterStatus ClassifyParameter(double beta, double sigma);
+// "determined", "poor", "indistinguishable from zero".
+const char* ToString(ParameterStatus status);
 
 // One joint's rows [W_j τ_j] (m × (p + 1)), compressed: with c the columns of
 // W_j that may be non-zero (`columns`, ascending; the others must be zero in
