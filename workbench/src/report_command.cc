@@ -142,18 +142,19 @@ class PdfWriter {
   void Table(const ReportTable& table) {
     Text(table.caption, 10.0, true);
     double size = 7.5;
-    cairo_select_font_face(cr_, kSans, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr_, size);
     std::vector<double> widths(table.header.size(), 0.0);
-    const auto measure = [&](const std::vector<std::string>& row) {
+    // Measured in the weight each row is drawn in (the header bold).
+    const auto measure = [&](const std::vector<std::string>& row, bool bold) {
+      cairo_select_font_face(cr_, kSans, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
       for (size_t c = 0; c < row.size() && c < widths.size(); ++c) {
         cairo_text_extents_t e;
         cairo_text_extents(cr_, Clip(row[c], 60).c_str(), &e);
         widths[c] = std::max(widths[c], e.x_advance + 8.0);
       }
     };
-    measure(table.header);
-    for (const auto& row : table.rows) measure(row);
+    measure(table.header, true);
+    for (const auto& row : table.rows) measure(row, false);
     double total = 0.0;
     for (double w : widths) total += w;
     const double shrink = std::min(1.0, (kPageWidth - 2 * kMargin) / total);
