@@ -492,6 +492,10 @@ void GuiApp::Impl::DrawExperimentTab() {
   const JointTorqueIdentification& ident = report->identification;
   ImGui::Text("%d base parameters, cond(W) %.4g, torque error %.3g%% (robot file %.3g%%)", ident.base.n_base(),
               ident.linear.cond, 100 * ident.fit.relative_error, 100 * ident.model_fit.relative_error);
+  if (ident.linear.rank < ident.base.n_base()) {
+    ImGui::TextColored(kErrorColor, "This log determines only %d combinations (rank): the motion does not excite the "
+                       "rows marked n/a.", ident.linear.rank);
+  }
   // Bars: |relative error| per base parameter [%].
   std::vector<float> bars;
   for (const IdentifiedRow& row : rows) bars.push_back(std::isnan(row.relative_error) ? 0.0f : static_cast<float>(100 * std::abs(row.relative_error)));
@@ -510,7 +514,8 @@ void GuiApp::Impl::DrawExperimentTab() {
     ImGui::TableHeadersRow();
     for (const IdentifiedRow& row : rows) {
       ImGui::TableNextRow();
-      const ImVec4* color = row.status == ParameterStatus::kPoor                       ? &kErrorColor
+      const bool missing = row.status == ParameterStatus::kNotIdentifiable;
+      const ImVec4* color = row.status == ParameterStatus::kPoor || missing             ? &kErrorColor
                             : row.status == ParameterStatus::kIndistinguishableFromZero ? &kDimColor
                                                                                          : nullptr;
       ImGui::TableSetColumnIndex(0);
@@ -526,7 +531,10 @@ void GuiApp::Impl::DrawExperimentTab() {
       TextCell(Number(row.sigma_percent, "%.2g"), color);
       ImGui::TableSetColumnIndex(5);
       const bool zero = row.status == ParameterStatus::kIndistinguishableFromZero;
-      TextCell(row.status == ParameterStatus::kDetermined ? "ok" : zero ? "~0" : "poor", color);
+      TextCell(row.status == ParameterStatus::kDetermined ? "ok" : zero ? "~0" : missing ? "n/a" : "poor", color);
+      if (missing && ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Not identifiable: this log does not excite it (W is rank deficient); no value is given");
+      }
       if (zero && ImGui::IsItemHovered()) {
         ImGui::SetTooltip("|identified| <= %g σ: the data cannot tell it from zero (a parameter that is 0, or one "
                           "this motion hardly excites)", kZeroSigmas);
@@ -654,6 +662,15 @@ void GuiApp::Impl::DrawCompareTab() {
                               m.realised.cond, m.mean_relative_error};
       for (int k = 0; k < 6; ++k) {
         ImGui::TableSetColumnIndex(1 + k);
+        if (k == 0 && !m.unexcited.empty()) {  // cond(W) = inf: name what the motion leaves undetermined
+          TextCell("rank deficient", &kErrorColor);
+          if (ImGui::IsItemHovered()) {
+            std::string names;
+            for (const std::string& n : m.unexcited) names += (names.empty() ? "" : ", ") + n;
+            ImGui::SetTooltip("This motion does not determine: %s", names.c_str());
+          }
+          continue;
+        }
         TextCell(Number(cells[k], "%.3g"));
       }
       ImGui::TableSetColumnIndex(7);

@@ -243,8 +243,9 @@ void Session::StartIdentify() {
       identified_with_ = options;
       const JointTorqueIdentification& id = identify_report_->identification;
       char line[256];
-      std::snprintf(line, sizeof line, "identify: %d base parameters, cond(W) %.4g, torque error %.3g%%",
-                    id.base.n_base(), id.linear.cond, 100.0 * id.fit.relative_error);
+      std::snprintf(line, sizeof line, "identify: %d base parameters, %d determined by the log (rank), cond(W) %.4g, "
+                    "torque error %.3g%%", id.base.n_base(), id.linear.rank, id.linear.cond,
+                    100.0 * id.fit.relative_error);
       Info(line);
     });
   });
@@ -258,7 +259,8 @@ std::vector<IdentifiedRow> Session::IdentifiedRows() const {
     IdentifiedRow row;
     row.name = id.base.names[static_cast<size_t>(k)];
     row.model_value = id.beta_model[k];
-    row.identified = id.beta[k];
+    const bool identifiable = id.linear.identifiable[static_cast<size_t>(k)];
+    row.identified = identifiable ? id.beta[k] : std::numeric_limits<double>::quiet_NaN();  // no number
     row.relative_error = row.model_value != 0.0 ? (row.identified - row.model_value) / std::abs(row.model_value)
                                                 : std::numeric_limits<double>::quiet_NaN();
     row.sigma_percent = id.linear.rel_sigma_percent[k];

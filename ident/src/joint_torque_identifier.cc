@@ -261,8 +261,11 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
       consistent.nonnegative.push_back(static_cast<int>(c));
     }
   }
-  out.consistent = SolvePhysicallyConsistent(CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof())), out.base,
-                                             model.n_links(), out.linear.beta, pi_model, consistent);
+  // It starts from the least-squares solution near the robot file: the
+  // directions a log does not or hardly excites keep the file's values.
+  const Eigen::MatrixXd factor = CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof()));
+  out.consistent = SolvePhysicallyConsistent(factor, out.base, model.n_links(),
+                                             SolutionNearPrior(factor, out.beta_model), pi_model, consistent);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
   out.fit = Predict(factors, out.beta);
   out.model_fit = Predict(factors, out.beta_model);

@@ -4,7 +4,9 @@
 #include "householder_fold.h"
 
 #include <algorithm>
+#include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +24,30 @@ void CheckSizes(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof)
   }
 }
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Singular values of the column-normalised R below this × the largest count
+// as zero (the data do not determine that direction).
+constexpr double kRankTolerance = 1e-6;
+
+// R D with unit columns (D = 1/‖column‖), so that units do not decide the
+// rank. A column below 1e-9 of the largest (as SolveLeastSquares: the data do
+// not excite that parameter, e.g. a joint that does not move) is zero in R D,
+// with D = 1.
+Eigen::MatrixXd UnitColumns(const Eigen::MatrixXd& R, Eigen::VectorXd* D) {
+  constexpr double kZeroColumn = 1e-9;
+  const Eigen::VectorXd norms = R.colwise().norm().transpose();
+  const double largest = norms.size() > 0 ? norms.maxCoeff() : 0.0;
+  D->resize(norms.size());
+  Eigen::MatrixXd RD = R;
+  for (Eigen::Index k = 0; k < norms.size(); ++k) {
+    const bool zero = !(norms[k] > kZeroColumn * largest);
+    (*D)[k] = zero ? 1.0 : 1.0 / norms[k];
+    if (zero) RD.col(k).setZero();
+    else RD.col(k) *= (*D)[k];
+  }
+  return RD;
+}
+
 // ‖W_j β − τ_j‖ of one joint from its factor: ‖T [β_columns; −1]‖.
 double JointResidualNorm(const JointRowFactor& f, const Eigen::VectorXd& beta) {
   const Eigen::Index c = static_cast<Eigen::Index>(f.columns.size());
@@ -32,8 +58,14 @@ double JointResidualNorm(const JointRowFactor& f, const Eigen::VectorXd& beta) {
 }
 
 // Least squares over all joints' rows, joint j's weighted by weights[j], from
-// their combined factor [R z; 0 ρ]:
-//   β = R⁻¹ z,  ‖r‖ = |ρ|,  (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ,  cond(W) = cond(R).
+// their combined factor [R z; 0 ρ]: ‖W β − τ‖² = ‖R β − z‖² + ρ². Full rank:
+//   β = R⁻¹ z,  (WᵀW)⁻¹ = R⁻¹ R⁻ᵀ,  cond(W) = cond(R).
+// Otherwise, with R D = U Σ Vᵀ (D scales R's columns to unit norm, so that
+// units do not decide the rank) and r singular values above
+// kRankTolerance × the largest (a column below 1e-9 of the largest counted as
+// zero): the minimum-norm solution β = D V_r Σ_r⁻¹ U_rᵀ z,
+// covariance s² D V_r Σ_r⁻² V_rᵀ D; a parameter is identifiable iff its row
+// of V_null, the rest of V, vanishes (as SolveLeastSquares).
 LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   const int p = factors.n_parameters;
   const double n_equations = static_cast<double>(factors.n_samples()) * factors.n_dof();
@@ -42,26 +74,74 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
                                 " equations for " + std::to_string(p) + " parameters; need more samples");
   }
   const Eigen::MatrixXd T = CombinedFactor(factors, weights);
-  LinearFit fit;
   const Eigen::MatrixXd R = T.topLeftCorner(p, p).triangularView<Eigen::Upper>();
-  fit.beta = R.triangularView<Eigen::Upper>().solve(T.col(p).head(p));
-  const double s2 = T(p, p) * T(p, p) / (n_equations - p);
-  const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
-  fit.covariance = Rinv * Rinv.transpose() * s2;
+  const Eigen::VectorXd z = T.col(p).head(p);
+  const Eigen::VectorXd norms = R.colwise().norm();
+  Eigen::VectorXd D;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(UnitColumns(R, &D), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::VectorXd& s = svd.singularValues();
+  int rank = 0;
+  while (rank < p && s[rank] > kRankTolerance * s[0]) ++rank;
+
+  LinearFit fit;
+  fit.rank = rank;
+  fit.identifiable.assign(static_cast<size_t>(p), true);
+  // ‖r‖² = ρ² plus, when rank deficient, the part of z no β can fit (in the
+  // rounding-level rows of R a dependent column leaves).
+  const double residual2 = T(p, p) * T(p, p) + (svd.matrixU().rightCols(p - rank).transpose() * z).squaredNorm();
+  const double s2 = residual2 / (n_equations - rank);
+  if (rank == p) {
+    fit.beta = R.triangularView<Eigen::Upper>().solve(z);
+    const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
+    fit.covariance = Rinv * Rinv.transpose() * s2;
+    fit.cond = ConditionNumber(R);
+  } else {
+    const auto V_r = svd.matrixV().leftCols(rank);
+    const Eigen::MatrixXd V_null = svd.matrixV().rightCols(p - rank);
+    const Eigen::VectorXd y = (svd.matrixU().leftCols(rank).transpose() * z).cwiseQuotient(s.head(rank));
+    fit.beta = D.asDiagonal() * (V_r * y);
+    const Eigen::MatrixXd B = D.asDiagonal() * V_r * s.head(rank).cwiseInverse().asDiagonal();
+    fit.covariance = B * B.transpose() * s2;
+    for (int k = 0; k < p; ++k) fit.identifiable[static_cast<size_t>(k)] = V_null.row(k).norm() <= 1e-6;
+    fit.cond = std::numeric_limits<double>::infinity();
+  }
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
+  // (WᵀW)⁻¹_kk ‖W_k‖² with ‖W_k‖ = ‖R_k‖ (W = Q R).
+  fit.variance_inflation = fit.covariance.diagonal().cwiseProduct(norms.cwiseAbs2()) / s2;
+  for (int k = 0; k < p; ++k) {
+    if (!fit.identifiable[static_cast<size_t>(k)]) fit.sigma[k] = fit.variance_inflation[k] = kInfinity;
+  }
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
-  // ‖W_k‖ = ‖R_k‖ (W = Q R), (WᵀW)⁻¹_kk = ‖row k of R⁻¹‖².
-  fit.variance_inflation = Rinv.rowwise().squaredNorm().cwiseProduct(R.colwise().squaredNorm().transpose());
-  fit.cond = ConditionNumber(R);
-  // Unweighted residual RMS per joint.
+  // Unweighted residual RMS per joint (the same for every least-squares β).
   fit.joint_rms = JointResidualNorms(factors, fit.beta) / std::sqrt(static_cast<double>(factors.n_samples()));
   return fit;
 }
 
 }  // namespace
 
+Eigen::VectorXd SolutionNearPrior(const Eigen::MatrixXd& factor, const Eigen::VectorXd& prior, double relative) {
+  const Eigen::Index p = prior.size();
+  if (factor.rows() != p + 1 || factor.cols() != p + 1) {
+    throw std::invalid_argument("solution near prior: expected a " + std::to_string(p + 1) + " × " +
+                                std::to_string(p + 1) + " factor, got " + std::to_string(factor.rows()) + " × " +
+                                std::to_string(factor.cols()));
+  }
+  // With R D = U Σ Vᵀ and β = D y: y = V (Σ² + λ²)⁻¹ (Σ Uᵀ z + λ² Vᵀ D⁻¹ prior).
+  const Eigen::MatrixXd R = factor.topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  Eigen::VectorXd D;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(UnitColumns(R, &D), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // Singular values below the rank tolerance are rounding: zero, as in Fit.
+  const Eigen::VectorXd s = svd.singularValues().unaryExpr(
+      [&](double v) { return v > kRankTolerance * svd.singularValues()[0] ? v : 0.0; });
+  const double lambda2 = s.size() > 0 ? std::pow(relative * s[0], 2) : 0.0;
+  const Eigen::VectorXd rhs = s.cwiseProduct(svd.matrixU().transpose() * factor.col(p).head(p)) +
+                              lambda2 * (svd.matrixV().transpose() * prior.cwiseQuotient(D));
+  const Eigen::VectorXd y = svd.matrixV() * rhs.cwiseQuotient((s.cwiseAbs2().array() + lambda2).matrix());
+  return D.cwiseProduct(y);
+}
+
 ParameterStatus ClassifyParameter(double beta, double sigma) {
-  if (!std::isfinite(beta) || !std::isfinite(sigma)) return ParameterStatus::kPoor;
+  if (!std::isfinite(beta) || !std::isfinite(sigma)) return ParameterStatus::kNotIdentifiable;
   if (sigma <= kDeterminedSigmaPercent / 100.0 * std::abs(beta)) return ParameterStatus::kDetermined;
   if (std::abs(beta) > kZeroSigmas * sigma) return ParameterStatus::kPoor;
   return ParameterStatus::kIndistinguishableFromZero;
@@ -72,6 +152,7 @@ const char* ToString(ParameterStatus status) {
     case ParameterStatus::kDetermined: return "determined";
     case ParameterStatus::kPoor: return "poor";
     case ParameterStatus::kIndistinguishableFromZero: return "indistinguishable from zero";
+    case ParameterStatus::kNotIdentifiable: return "not identifiable";
   }
   return "?";
 }

@@ -6,6 +6,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "engine/test_util.h"
@@ -92,7 +93,8 @@ TEST(LinearEstimatorTest, ClassifiesParametersBySigma) {
   EXPECT_EQ(ClassifyParameter(1.0, 1.0 / 3.0), ParameterStatus::kIndistinguishableFromZero);
   EXPECT_EQ(ClassifyParameter(0.0, 1e-6), ParameterStatus::kIndistinguishableFromZero);
   EXPECT_EQ(ClassifyParameter(0.0, 0.0), ParameterStatus::kDetermined);
-  EXPECT_EQ(ClassifyParameter(1.0, std::nan("")), ParameterStatus::kPoor);
+  EXPECT_EQ(ClassifyParameter(1.0, std::nan("")), ParameterStatus::kNotIdentifiable);
+  EXPECT_EQ(ClassifyParameter(1.0, std::numeric_limits<double>::infinity()), ParameterStatus::kNotIdentifiable);
 }
 
 TEST(LinearEstimatorTest, RejectsTooFewEquations) {
@@ -239,6 +241,57 @@ TEST(LinearEstimatorTest, FoldedFactorIsTheQrFactor) {
   StackedFactors bad(4, {{0, 1, 2}});
   EXPECT_THROW(MergeStackedFactors(bad, &factors), std::invalid_argument);
   EXPECT_THROW(StackedFactors(4, {{1, 0}}), std::invalid_argument);
+}
+
+// A W that does not determine every parameter: columns 2 and 5 equal (only
+// their sum is determined) and column 7 zero (a joint that does not move).
+// Those three are flagged and get σ = ∞; the others equal the least squares
+// of W without columns 5 and 7 (column 2 then carrying the sum); the solution
+// near a prior takes the prior's split of the pair and its value of column 7.
+TEST(LinearEstimatorTest, RankDeficientDataFlagTheParametersTheyDoNotDetermine) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  const int n_samples = 400, n_dof = 2, p = 9;
+  Eigen::MatrixXd W = Eigen::MatrixXd::NullaryExpr(n_samples * n_dof, p, [&] { return normal(rng); });
+  W.col(5) = W.col(2);
+  W.col(7).setZero();
+  const Eigen::VectorXd beta_true = testing::RandomVector(p, 2.0, &rng);
+  Eigen::VectorXd tau = W * beta_true;
+  for (Eigen::Index r = 0; r < tau.size(); ++r) tau[r] += 0.01 * normal(rng);
+  const LinearFit fit = SolveOls(W, tau, n_dof);
+  EXPECT_EQ(fit.rank, p - 2);
+  EXPECT_TRUE(std::isinf(fit.cond));
+  // Reference: the reduced problem, by dense QR.
+  const std::vector<int> kept = {0, 1, 2, 3, 4, 6, 8};
+  Eigen::MatrixXd W_kept(W.rows(), static_cast<Eigen::Index>(kept.size()));
+  for (size_t c = 0; c < kept.size(); ++c) W_kept.col(static_cast<Eigen::Index>(c)) = W.col(kept[c]);
+  const DenseFit reduced = DenseReference(W_kept, tau, Eigen::VectorXd::Ones(n_dof));
+  for (size_t c = 0; c < kept.size(); ++c) {
+    const int k = kept[c];
+    SCOPED_TRACE(k);
+    if (k == 2) {  // only the pair's sum
+      EXPECT_FALSE(fit.identifiable[2]);
+      EXPECT_NEAR(fit.beta[2] + fit.beta[5], reduced.beta[static_cast<Eigen::Index>(c)], 1e-10);
+      continue;
+    }
+    EXPECT_TRUE(fit.identifiable[static_cast<size_t>(k)]);
+    EXPECT_NEAR(fit.beta[k], reduced.beta[static_cast<Eigen::Index>(c)], 1e-10 * std::abs(fit.beta[k]) + 1e-12);
+    EXPECT_NEAR(fit.sigma[k], reduced.sigma[static_cast<Eigen::Index>(c)], 1e-8 * fit.sigma[k]);
+    EXPECT_EQ(ClassifyParameter(fit.beta[k], fit.sigma[k]) == ParameterStatus::kNotIdentifiable, false);
+  }
+  for (int k : {2, 5, 7}) {
+    EXPECT_FALSE(fit.identifiable[static_cast<size_t>(k)]) << k;
+    EXPECT_TRUE(std::isinf(fit.sigma[k])) << k;
+    EXPECT_EQ(ClassifyParameter(fit.beta[k], fit.sigma[k]), ParameterStatus::kNotIdentifiable) << k;
+  }
+  EXPECT_LT(testing::RelativeError(fit.joint_rms, reduced.joint_rms), 1e-10);
+  // Near a prior: the determined sum, the prior's difference, the prior's column 7.
+  const Eigen::VectorXd prior = testing::RandomVector(p, 2.0, &rng);
+  const Eigen::VectorXd beta = SolutionNearPrior(CombinedFactor(W, tau), prior);
+  EXPECT_NEAR(beta[2] + beta[5], fit.beta[2] + fit.beta[5], 1e-9);
+  EXPECT_NEAR(beta[2] - beta[5], prior[2] - prior[5], 1e-9);
+  EXPECT_NEAR(beta[7], prior[7], 1e-12);
+  EXPECT_NEAR((W * beta - tau).norm(), (W * fit.beta - tau).norm(), 1e-12 * tau.norm());
 }
 
 }  // namespace

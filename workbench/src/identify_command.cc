@@ -1,5 +1,6 @@
 #include "identify_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -108,13 +109,27 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   out += line;
   for (int k = 0; k < id.base.n_base(); ++k) {
     const ParameterStatus status = ClassifyParameter(id.beta[k], id.linear.sigma[k]);
-    std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %-10s  %s\n", k + 1, id.beta_model[k],
-                  id.beta[k], id.linear.sigma[k], id.linear.rel_sigma_percent[k],
-                  status == ParameterStatus::kIndistinguishableFromZero ? "~0" : ToString(status),
-                  id.base.names[static_cast<size_t>(k)].c_str());
+    const char* name = id.base.names[static_cast<size_t>(k)].c_str();
+    if (status == ParameterStatus::kNotIdentifiable) {
+      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14s  %11s  %8s  %-10s  %s\n", k + 1, id.beta_model[k], "-", "-",
+                    "-", "not ident.", name);
+    } else {
+      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %-10s  %s\n", k + 1, id.beta_model[k],
+                    id.beta[k], id.linear.sigma[k], id.linear.rel_sigma_percent[k],
+                    status == ParameterStatus::kIndistinguishableFromZero ? "~0" : ToString(status), name);
+    }
     out += line;
   }
   out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero\n";
+  if (id.linear.rank < id.base.n_base()) {
+    const int n = id.base.n_base();
+    const int missing = static_cast<int>(std::count(id.linear.identifiable.begin(), id.linear.identifiable.end(), false));
+    std::snprintf(line, sizeof(line), "This log does not determine every base parameter: W has rank %d of %d (the "
+                  "motion does not excite %d combinations); the %d parameters marked 'not ident.' take part in them "
+                  "and get no value. The physically consistent fit keeps the robot file's values in those "
+                  "directions.\n", id.linear.rank, n, n - id.linear.rank, missing);
+    out += line;
+  }
   auto joint_row = [&](const char* label, const Eigen::VectorXd& v) {
     out += label;
     for (int j = 0; j < v.size(); ++j) {
@@ -143,11 +158,13 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
   const JointTorqueIdentification& id = report.identification;
   json base = json::array();
   for (int k = 0; k < id.base.n_base(); ++k) {
+    const bool identifiable = id.linear.identifiable[static_cast<size_t>(k)];
+    const json nothing;  // null: not identifiable from this log
     base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
-                    {"value", id.beta[k]},
-                    {"sigma", id.linear.sigma[k]},
-                    {"rel_sigma_percent", id.linear.rel_sigma_percent[k]},
-                    {"variance_inflation", id.linear.variance_inflation[k]},
+                    {"value", identifiable ? json(id.beta[k]) : nothing},
+                    {"sigma", identifiable ? json(id.linear.sigma[k]) : nothing},
+                    {"rel_sigma_percent", identifiable ? json(id.linear.rel_sigma_percent[k]) : nothing},
+                    {"variance_inflation", identifiable ? json(id.linear.variance_inflation[k]) : nothing},
                     {"status", ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]))},
                     {"robot_file_value", id.beta_model[k]}});
   }
@@ -166,7 +183,8 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"model", options.model},
       {"estimator", options.estimator},
       {"friction", options.friction},
-      {"cond", id.linear.cond},
+      {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
+      {"rank", id.linear.rank},
       {"base_parameters", base},
       {"unexcited_standard_parameters", unexcited},
       {"fit", {{"joint_rms", ToStdVector(report.identification.fit.joint_rms)}, {"relative_error", report.identification.fit.relative_error}}},
@@ -175,6 +193,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"physically_consistent",
        {{"cost", id.consistent.cost},
         {"ols_cost", id.consistent.ols_cost},
+        {"start_cost", id.consistent.start_cost},
         {"min_pseudo_inertia_eigenvalue", ToStdVector(id.consistent.min_pseudo_inertia_eigenvalue)},
         {"status", id.consistent.status},
         {"evaluations", id.consistent.evaluations},

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <stdexcept>
 
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
@@ -82,6 +83,11 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   Eigen::MatrixXd cov_sum = Eigen::MatrixXd::Zero(p, p);
   for (int trial = 0; trial < options.trials; ++trial) {
     const LinearFit fit = SolveWls(W, noisy(tau), n);
+    if (fit.rank < p) {
+      throw std::invalid_argument("montecarlo: the motion does not excite every base parameter (W has rank " +
+                                  std::to_string(fit.rank) + " of " + std::to_string(p) +
+                                  "); choose a richer --trajectory (see idbench compare)");
+    }
     estimates.col(trial) = fit.beta;
     sigma_sum += fit.sigma;
     cov_sum += fit.covariance;

@@ -341,7 +341,10 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
                                      (report.filtered ? ", qd and qdd estimated by zero-phase filtering" : "") + ")"},
                         {"estimator", options.estimator},
                         {"friction", friction},
-                        {"cond(W)", Format("%.4g", id.linear.cond)},
+                        {"cond(W)", id.linear.rank < id.base.n_base()
+                                        ? "inf: rank " + std::to_string(id.linear.rank) + " of " +
+                                              std::to_string(id.base.n_base()) + " (parameters not identifiable below)"
+                                        : Format("%.4g", id.linear.cond)},
                         {"relative torque error (fit)", Format("%.4g", id.fit.relative_error)},
                         {"relative torque error (robot file)", Format("%.4g", id.model_fit.relative_error)}};
   if (report.validation) {
@@ -362,9 +365,13 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   std::vector<ParameterEstimate> estimates;
   for (int k = 0; k < id.base.n_base(); ++k) {
     const std::string& name = id.base.names[static_cast<size_t>(k)];
+    const std::string status = ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]));
+    if (!id.linear.identifiable[static_cast<size_t>(k)]) {  // no number: the log does not determine it
+      base.rows.push_back({std::to_string(k + 1), name, "-", "-", "-", status, Format("%.6g", id.beta_model[k]), "-"});
+      continue;
+    }
     base.rows.push_back({std::to_string(k + 1), name, Format("%.6g", id.beta[k]), Format("%.3g", id.linear.sigma[k]),
-                         Format("%.3g", id.linear.rel_sigma_percent[k]),
-                         ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k])), Format("%.6g", id.beta_model[k]),
+                         Format("%.3g", id.linear.rel_sigma_percent[k]), status, Format("%.6g", id.beta_model[k]),
                          Format("%.3g", id.beta[k] - id.beta_model[k])});
     estimates.push_back({std::to_string(k + 1), id.beta_model[k], id.beta[k], 3.0 * id.linear.sigma[k]});
   }

@@ -50,7 +50,7 @@ std::optional<JobKind> ParseJobName(const std::string& name);
 struct IdentifiedRow {
   std::string name;           // the combination of standard parameters it stands for
   double model_value = 0.0;   // the robot file's value (the truth for a simulated log)
-  double identified = 0.0;    // the chosen estimator's
+  double identified = 0.0;    // the chosen estimator's; NaN when the log does not determine it
   double relative_error = 0.0;     // (identified − model) / |model|; NaN when model is 0
   double sigma_percent = 0.0;      // 100 σ/|β̂| of the linear fit
   ParameterStatus status = ParameterStatus::kDetermined;  // from β̂ and σ (linear_estimator.h)

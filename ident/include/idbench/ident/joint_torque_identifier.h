@@ -47,7 +47,10 @@ struct JointTorqueIdentification {
   BaseParameters base;
   std::vector<std::string> standard_names;
   Eigen::VectorXd beta_model;   // the robot file's parameters as base parameters (C·π_model)
-  LinearFit linear;             // OLS, or WLS when asked (the physically consistent fit starts from it)
+  // OLS, or WLS when asked. When the log does not determine every base
+  // parameter, β is the minimum-norm solution, with those flagged (LinearFit);
+  // the physically consistent fit starts from SolutionNearPrior(·, beta_model).
+  LinearFit linear;
   // Always computed: standard parameters need it (a URDF holds physical links).
   PhysicallyConsistentFit consistent;
   Eigen::VectorXd beta;         // the chosen estimator's base parameters

@@ -16,10 +16,14 @@
 
 namespace idbench {
 
+// A least-squares estimate. When the data do not determine every parameter
+// (W rank deficient: the motion does not excite some combination), beta is
+// the least-squares solution of minimum norm, the parameters with a component
+// along the null space are flagged not identifiable (σ = ∞), and cond = ∞.
 struct LinearFit {
-  Eigen::VectorXd beta;            // estimate (p)
-  Eigen::MatrixXd covariance;      // (p × p)
-  Eigen::VectorXd sigma;           // standard deviations (p)
+  Eigen::VectorXd beta;            // estimate (p); unique only where identifiable
+  Eigen::MatrixXd covariance;      // (p × p); rank deficient: of the minimum-norm estimator
+  Eigen::VectorXd sigma;           // standard deviations (p); ∞ where not identifiable
   Eigen::VectorXd rel_sigma_percent;  // 100 σ/|β| (p)
   // (WᵀW)⁻¹_kk ‖W_k‖² ≥ 1 (p): how much the other columns inflate σ_k² over
   // what column k alone would give; 1/sin² of the angle between column k and
@@ -27,8 +31,24 @@ struct LinearFit {
   Eigen::VectorXd variance_inflation;
   Eigen::VectorXd joint_rms;       // residual RMS per joint [N m] (n_dof), unweighted
   Eigen::VectorXd joint_sigma;     // per-joint noise estimates (WLS weights are 1/σ_j)
-  double cond = 0.0;               // cond(W) (weighted for WLS)
+  double cond = 0.0;               // cond(W) (weighted for WLS); ∞ when rank deficient
+  // Numerical rank of W: of its column-normalised R, singular values above
+  // 1e-6 of the largest, columns below 1e-9 of the largest counted as zero.
+  int rank = 0;
+  std::vector<bool> identifiable;  // per parameter: the data determine it (p)
 };
+
+// The least-squares solution from a combined factor [R z; 0 ρ]
+// (CombinedFactor), pulled toward `prior` (e.g. the robot file's parameters)
+// only in the directions the data hardly determine:
+//   argmin ‖R β − z‖² + λ² ‖D⁻¹ (β − prior)‖²,  λ = relative · σ_max(R D),
+// D scaling R's columns to unit norm. A direction with singular value σ ≫ λ
+// keeps its least-squares value (to (λ/σ)² relative); one with σ ≪ λ (not or
+// hardly excited) takes the prior's, exactly so below LinearFit's rank
+// tolerance. Throws std::invalid_argument on a size
+// mismatch.
+Eigen::VectorXd SolutionNearPrior(const Eigen::MatrixXd& factor, const Eigen::VectorXd& prior,
+                                  double relative = 1e-6);
 
 // What the data say about one parameter, from its estimate β̂ and σ:
 //   kDetermined: σ ≤ 10 % of |β̂|;
@@ -36,12 +56,13 @@ struct LinearFit {
 //   kIndistinguishableFromZero: |β̂| ≤ 3σ, the data cannot tell it from 0
 //   (a parameter that is 0, e.g. by symmetry, or one the motion hardly
 //   excites: σ and variance_inflation tell which);
-// a β̂ or σ that is not finite is kPoor.
-enum class ParameterStatus { kDetermined, kPoor, kIndistinguishableFromZero };
+//   kNotIdentifiable: σ or β̂ not finite (LinearFit: the data do not
+//   determine it).
+enum class ParameterStatus { kDetermined, kPoor, kIndistinguishableFromZero, kNotIdentifiable };
 inline constexpr double kDeterminedSigmaPercent = 10.0;
 inline constexpr double kZeroSigmas = 3.0;
 ParameterStatus ClassifyParameter(double beta, double sigma);
-// "determined", "poor", "indistinguishable from zero".
+// "determined", "poor", "indistinguishable from zero", "not identifiable".
 const char* ToString(ParameterStatus status);
 
 // One joint's rows [W_j τ_j] (m × (p + 1)), compressed: with c the columns of
