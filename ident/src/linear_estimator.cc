@@ -78,24 +78,26 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   const Eigen::VectorXd z = T.col(p).head(p);
   const Eigen::VectorXd norms = R.colwise().norm();
   Eigen::VectorXd D;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(UnitColumns(R, &D), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd& s = svd.singularValues();
+  const Eigen::MatrixXd RD = UnitColumns(R, &D);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(RD);  // singular values only, unless rank deficient
   int rank = 0;
-  while (rank < p && s[rank] > kRankTolerance * s[0]) ++rank;
+  while (rank < p && svd.singularValues()[rank] > kRankTolerance * svd.singularValues()[0]) ++rank;
 
   LinearFit fit;
   fit.rank = rank;
   fit.identifiable.assign(static_cast<size_t>(p), true);
-  // ‖r‖² = ρ² plus, when rank deficient, the part of z no β can fit (in the
-  // rounding-level rows of R a dependent column leaves).
-  const double residual2 = T(p, p) * T(p, p) + (svd.matrixU().rightCols(p - rank).transpose() * z).squaredNorm();
-  const double s2 = residual2 / (n_equations - rank);
+  double s2 = T(p, p) * T(p, p) / (n_equations - rank);
   if (rank == p) {
     fit.beta = R.triangularView<Eigen::Upper>().solve(z);
     const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
     fit.covariance = Rinv * Rinv.transpose() * s2;
     fit.cond = ConditionNumber(R);
   } else {
+    svd.compute(RD, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::VectorXd& s = svd.singularValues();
+    // ‖r‖² = ρ² plus the part of z no β can fit (in the rounding-level rows
+    // of R that a dependent column leaves).
+    s2 += (svd.matrixU().rightCols(p - rank).transpose() * z).squaredNorm() / (n_equations - rank);
     const auto V_r = svd.matrixV().leftCols(rank);
     const Eigen::MatrixXd V_null = svd.matrixV().rightCols(p - rank);
     const Eigen::VectorXd y = (svd.matrixU().leftCols(rank).transpose() * z).cwiseQuotient(s.head(rank));
