@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config
           libbullet-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
-          liburdfdom-dev libnlopt-cxx-dev
+          liburdfdom-dev libassimp-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
           libgtest-dev libbenchmark-dev

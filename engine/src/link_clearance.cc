@@ -1,6 +1,7 @@
 #include "idbench/engine/link_clearance.h"
 
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
@@ -8,6 +9,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -130,11 +132,25 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
         case Shape::Kind::kSphere:
           shape = std::make_unique<btSphereShape>(s.size.x());
           break;
+        case Shape::Kind::kMesh: {
+          // Its convex hull: never smaller than the mesh, so the clearance
+          // is conservative (a hull's margin lies outside it, 1 mm more).
+          auto hull = std::make_unique<btConvexHullShape>();
+          for (const Eigen::Vector3d& v : s.mesh->vertices) hull->addPoint(ToBt(v), false);
+          hull->recalcLocalAabb();
+          hull->optimizeConvexHull();
+          shape = std::move(hull);
+          break;
+        }
       }
       if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin);
-      const double radius = s.kind == Shape::Kind::kSphere   ? s.size.x()
-                            : s.kind == Shape::Kind::kBox    ? 0.5 * s.size.norm()
-                                                             : std::hypot(s.size.x(), 0.5 * s.size.z());
+      double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
+                      : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm()
+                                                     : std::hypot(s.size.x(), 0.5 * s.size.z());
+      if (s.kind == Shape::Kind::kMesh) {
+        radius = kMargin;
+        for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm() + kMargin);
+      }
       impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG, radius});
     }
   }

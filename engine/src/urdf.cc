@@ -9,6 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -56,11 +60,56 @@ LinkInertia Lump(const std::vector<PointInertia>& parts) {
   return lumped;
 }
 
+// The file a URDF <mesh filename> names:
+//   package://P/rest → D/P/rest for each D in ROS_PACKAGE_PATH (':'-separated);
+//     then, walking up from the URDF's directory, A/rest for an ancestor A
+//     named P, or A/P/rest (a package next to or above the URDF);
+//   file:///abs → /abs; an absolute path as is; a relative path against the
+//   URDF's directory.
+// The first existing regular file; nullopt otherwise, with every candidate in
+// *looked.
+std::optional<std::filesystem::path> ResolveMeshUri(const std::string& uri, const std::filesystem::path& base_directory,
+                                                    std::vector<std::string>* looked) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> candidates;
+  const std::string package = "package://", file = "file://";
+  if (uri.rfind(package, 0) == 0) {
+    const std::string rest = uri.substr(package.size());
+    const size_t slash = rest.find('/');
+    const std::string name = rest.substr(0, slash), inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
+    if (const char* paths = std::getenv("ROS_PACKAGE_PATH")) {
+      std::stringstream list(paths);
+      for (std::string dir; std::getline(list, dir, ':');) {
+        if (!dir.empty()) candidates.push_back(fs::path(dir) / name / inside);
+      }
+    }
+    std::error_code error;
+    for (fs::path a = fs::absolute(base_directory, error); !a.empty(); a = a.parent_path()) {
+      if (a.filename() == name) candidates.push_back(a / inside);
+      candidates.push_back(a / name / inside);
+      if (a == a.parent_path()) break;
+    }
+  } else if (uri.rfind(file, 0) == 0) {
+    candidates.push_back(fs::path(uri.substr(file.size())));
+  } else if (fs::path(uri).is_absolute()) {
+    candidates.push_back(fs::path(uri));
+  } else {
+    candidates.push_back(base_directory / uri);
+  }
+  for (const fs::path& c : candidates) {
+    std::error_code error;
+    if (fs::is_regular_file(c, error)) return fs::absolute(c, error).lexically_normal();
+    looked->push_back(c.string());
+  }
+  return std::nullopt;
+}
+
 // Walks a urdfdom tree from its root along the one chain of moving joints,
 // merging fixed subtrees into the link above them.
 class Loader {
  public:
-  Loader(const urdf::ModelInterface& urdf, std::string source) : urdf_(urdf), source_(std::move(source)) {}
+  Loader(const urdf::ModelInterface& urdf, std::string source, std::filesystem::path base_directory)
+      : urdf_(urdf), source_(std::move(source)), base_directory_(std::move(base_directory)) {}
 
   UrdfLoadResult Load() {
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
@@ -258,8 +307,16 @@ class Loader {
             shape.size = Eigen::Vector3d::Constant(radius);
             break;
           }
+          case urdf::Geometry::MESH: {
+            const auto& mesh = static_cast<const urdf::Mesh&>(*visual->geometry);
+            shape.kind = Shape::Kind::kMesh;
+            shape.size = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+            shape.mesh_uri = mesh.filename;
+            shape.mesh = Mesh(mesh.filename, shape.size, where, &shape.mesh_uri);
+            if (shape.mesh == nullptr) continue;
+            break;
+          }
           default:
-            warnings_.push_back(where + "mesh visual skipped; only box, cylinder and sphere are kept");
             continue;
         }
         link->shapes.push_back(shape);
@@ -285,9 +342,40 @@ class Loader {
     return {};
   }
 
+  // The mesh a <mesh filename> names, read once per file and scale; null with
+  // a warning when it cannot be found or read (the link then lacks that shape).
+  // A relative path in *uri is made absolute (so that a URDF written
+  // elsewhere still finds it).
+  std::shared_ptr<const TriangleMesh> Mesh(const std::string& uri, const Eigen::Vector3d& scale,
+                                           const std::string& where, std::string* written_uri) {
+    std::vector<std::string> looked;
+    const std::optional<std::filesystem::path> path = ResolveMeshUri(uri, base_directory_, &looked);
+    if (!path) {
+      std::string places;
+      for (const std::string& p : looked) places += (places.empty() ? "" : ", ") + p;
+      warnings_.push_back(where + "mesh " + Quote(uri) + " not found (looked in " + places +
+                          "; set ROS_PACKAGE_PATH for package:// names); visual skipped");
+      return nullptr;
+    }
+    if (uri.find("://") == std::string::npos && std::filesystem::path(uri).is_relative()) *written_uri = path->string();
+    const std::string key = path->string() + " " + std::to_string(scale.x()) + " " + std::to_string(scale.y()) +
+                            " " + std::to_string(scale.z());
+    if (const auto it = meshes_.find(key); it != meshes_.end()) return it->second;
+    try {
+      auto mesh = std::make_shared<const TriangleMesh>(LoadTriangleMesh(path->string(), scale));
+      meshes_[key] = mesh;
+      return mesh;
+    } catch (const std::runtime_error& e) {
+      warnings_.push_back(where + e.what() + "; visual skipped");
+      return nullptr;
+    }
+  }
+
   const urdf::ModelInterface& urdf_;
   std::string source_;
+  std::filesystem::path base_directory_;  // relative mesh paths start here
   std::vector<std::string> warnings_;
+  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;  // by path and scale
 };
 
 // ---- Writing ----
@@ -345,7 +433,8 @@ Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R) {
   return Eigen::Vector3d(roll, pitch, yaw);
 }
 
-UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name) {
+UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name,
+                               const std::string& base_directory) {
   // urdfdom reports why a file is invalid through console_bridge: keep the
   // first error for our one message instead of letting it print.
   struct FirstError : console_bridge::OutputHandler {
@@ -367,7 +456,7 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
     throw std::invalid_argument(source_name + ": not a valid URDF" +
                                 (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
   }
-  return Loader(*urdf, source_name).Load();
+  return Loader(*urdf, source_name, std::filesystem::path(base_directory.empty() ? "." : base_directory)).Load();
 }
 
 UrdfLoadResult LoadUrdfFile(const std::string& path) {
@@ -379,7 +468,7 @@ UrdfLoadResult LoadUrdfFile(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   if (file.bad()) throw std::invalid_argument(path + ": error while reading the file");
-  return LoadUrdfString(text.str(), path);
+  return LoadUrdfString(text.str(), path, std::filesystem::path(path).parent_path().string());
 }
 
 std::string WriteUrdf(const RobotModel& model) {
@@ -439,6 +528,10 @@ std::string WriteUrdf(const RobotModel& model) {
               << Attribute("length", Number(shape.size.z())) << "/>";
           break;
         case Shape::Kind::kSphere: out << "<sphere" << Attribute("radius", Number(shape.size.x())) << "/>"; break;
+        case Shape::Kind::kMesh:
+          out << "<mesh" << Attribute("filename", shape.mesh_uri) << Attribute("scale", Numbers(shape.size))
+              << "/>";
+          break;
       }
       out << "</geometry>\n"
           << "    </visual>\n";

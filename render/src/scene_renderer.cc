@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -159,11 +161,34 @@ Floor FitFloor(const std::vector<Eigen::Vector3d>& points) {
   return floor;
 }
 
+// A triangle mesh on the GPU, in its own buffer: flat-shaded triangles of
+// (position, normal).
+struct GpuMesh {
+  GLuint vao = 0, vbo = 0;
+  int count = 0;  // vertices
+};
+
+std::vector<float> FlatTriangles(const TriangleMesh& mesh) {
+  std::vector<float> v;
+  v.reserve(18 * mesh.triangles.size());
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Eigen::Vector3d &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (!(n.norm() > 0.0)) continue;  // degenerate
+    const Eigen::Vector3d unit = n.normalized();
+    AddVertex(&v, a, unit), AddVertex(&v, b, unit), AddVertex(&v, c, unit);
+  }
+  return v;
+}
+
 struct SceneRenderer::Impl {
   GlFunctions gl;
   int samples = 4;
   GLuint program = 0, vao = 0, vbo = 0;
   MeshRange cylinder, box, sphere, quad;
+  // Meshes uploaded on first use, kept while the renderer lives (the shared
+  // pointer keeps the key's address from being reused).
+  std::map<std::shared_ptr<const TriangleMesh>, GpuMesh> meshes;
   // Multisampled target and its resolved copy (a texture).
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0, resolve_fbo = 0, resolve_texture = 0;
   int width = 0, height = 0;
@@ -206,6 +231,38 @@ struct SceneRenderer::Impl {
     u_tile = at("u_tile");
   }
 
+  // Binds the vertex array of a primitive's mesh (the shared one for the unit
+  // primitives); returns the vertex range to draw.
+  MeshRange BindMeshOf(const ScenePrimitive& p) {
+    if (p.kind != Shape::Kind::kMesh || p.mesh == nullptr) {
+      gl.BindVertexArray(vao);
+      return MeshOf(p.kind);
+    }
+    auto it = meshes.find(p.mesh);
+    if (it == meshes.end()) {
+      const std::vector<float> v = FlatTriangles(*p.mesh);
+      GpuMesh g;
+      g.count = static_cast<int>(v.size() / 6);
+      gl.GenVertexArrays(1, &g.vao);
+      gl.BindVertexArray(g.vao);
+      gl.GenBuffers(1, &g.vbo);
+      gl.BindBuffer(GL_ARRAY_BUFFER, g.vbo);
+      gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
+      SetVertexLayout();
+      it = meshes.emplace(p.mesh, g).first;
+    }
+    gl.BindVertexArray(it->second.vao);
+    return MeshRange{0, it->second.count};
+  }
+
+  // Position at location 0 and normal at 1, interleaved, for the bound buffer.
+  void SetVertexLayout() {
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+    gl.EnableVertexAttribArray(1);
+  }
+
   void BuildMeshes() {
     std::vector<float> v;
     const auto range = [&](auto add) {
@@ -225,10 +282,7 @@ struct SceneRenderer::Impl {
     gl.GenBuffers(1, &vbo);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
     gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
-    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-    gl.EnableVertexAttribArray(0);
-    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-    gl.EnableVertexAttribArray(1);
+    SetVertexLayout();
     gl.BindVertexArray(0);
   }
 
@@ -294,6 +348,7 @@ SceneRenderer::SceneRenderer(GlProcLoader loader, int msaa_samples) : impl_(std:
 SceneRenderer::~SceneRenderer() {
   Impl& r = *impl_;
   r.DeleteTargets();
+  for (auto& [mesh, g] : r.meshes) r.gl.DeleteBuffers(1, &g.vbo), r.gl.DeleteVertexArrays(1, &g.vao);
   r.gl.DeleteBuffers(1, &r.vbo);
   r.gl.DeleteVertexArrays(1, &r.vao);
   r.gl.DeleteProgram(r.program);
@@ -354,14 +409,14 @@ void SceneRenderer::Draw(const Scene& scene, const Floor& floor, const Camera& c
   shadow(2, 3) = floor.z;
   gl.Enable(GL_POLYGON_OFFSET_FILL);
   gl.PolygonOffset(-1.0f, -4.0f);
-  for (const ScenePrimitive& p : scene.primitives) r.DrawMesh(r.MeshOf(p.kind), shadow * ModelMatrix(p));
+  for (const ScenePrimitive& p : scene.primitives) r.DrawMesh(r.BindMeshOf(p), shadow * ModelMatrix(p));
   gl.Disable(GL_POLYGON_OFFSET_FILL);
 
   // The lit primitives.
   gl.Uniform1i(r.u_mode, 0);
   for (const ScenePrimitive& p : scene.primitives) {
     gl.Uniform3fv(r.u_color, 1, p.color.data());
-    r.DrawMesh(r.MeshOf(p.kind), ModelMatrix(p));
+    r.DrawMesh(r.BindMeshOf(p), ModelMatrix(p));
   }
 
   // Resolve the samples into the texture; restore the caller's state.

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <limits>
+#include <memory>
 
+#include "engine/test_meshes.h"
 #include "engine/test_util.h"
 #include "idbench/engine/puma560.h"
 
@@ -127,6 +131,54 @@ TEST(LinkClearanceTest, PumaLeavesOutPairsTouchingAtHome) {
   for (const std::string& e : clearance.excluded()) EXPECT_NE(e.find("touching by construction"), std::string::npos);
   for (const ClearancePair& p : clearance.pairs()) {
     if (p.link_b >= 0) EXPECT_NE(p.link_b, model.link(p.link_a).parent) << p.Name(model);
+  }
+}
+
+// The sphere robot's links as boxes, primitive or mesh (the same box as 12
+// triangles).
+RobotModel MakeBoxRobot(bool as_mesh) {
+  const RobotModel spheres = MakeSphereRobot(0.1);
+  std::vector<Link> links = spheres.links();
+  const Eigen::Vector3d edges(0.3, 0.12, 0.2);
+  const auto mesh = std::make_shared<const TriangleMesh>(testing::BoxMesh(edges));
+  for (Link& l : links) {
+    Shape& s = l.shapes[0];
+    s.X_BG.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+    s.kind = as_mesh ? Shape::Kind::kMesh : Shape::Kind::kBox;
+    s.size = as_mesh ? Eigen::Vector3d::Ones() : edges;
+    if (as_mesh) s.mesh = mesh;
+  }
+  return RobotModel("boxes", std::move(links));
+}
+
+// A mesh is checked through its convex hull, inflated by a 1 mm margin: for a
+// box mesh, the primitive box's distances less 1 mm per mesh (conservative).
+TEST(LinkClearanceTest, BoxMeshesGiveTheBoxDistancesLessTheMargin) {
+  const RobotModel boxes = MakeBoxRobot(false), meshes = MakeBoxRobot(true);
+  const ClearanceModel box_clearance(boxes, 0.0), mesh_clearance(meshes, 0.0);
+  ASSERT_EQ(box_clearance.pairs().size(), mesh_clearance.pairs().size());
+  KinematicsData<double> k(boxes);
+  std::vector<Clearance> d_box, d_mesh;
+  std::mt19937 rng(4);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomVector(3, 1.2, &rng), zero = Eigen::VectorXd::Zero(3);
+    ComputeKinematicsT<double>(boxes, q, zero, zero, &k);
+    box_clearance.Compute(k, &d_box);
+    mesh_clearance.Compute(k, &d_mesh);
+    for (size_t i = 0; i < d_box.size(); ++i) {
+      const ClearancePair& p = box_clearance.pairs()[i];
+      if (p.link_b < 0) {  // support point: exact
+        EXPECT_NEAR(d_mesh[i].distance, d_box[i].distance - 1e-3, 1e-9) << p.Name(boxes) << " trial " << trial;
+        continue;
+      }
+      // Bullet's box keeps its extents by rounding its edges and corners
+      // with the 1 mm margin, so it is never larger than the box: exact
+      // distance ≤ d_box ≤ exact + 2 (√3 − 1) mm (corner to corner), while
+      // the hull's margin shell takes exactly 1 mm per mesh off the exact one.
+      EXPECT_LE(d_mesh[i].distance, d_box[i].distance - 2e-3 + 1e-9) << p.Name(boxes) << " trial " << trial;
+      EXPECT_GE(d_mesh[i].distance, d_box[i].distance - 2e-3 - 2.0 * (std::sqrt(3.0) - 1.0) * 1e-3 - 1e-9)
+          << p.Name(boxes) << " trial " << trial;
+    }
   }
 }
 

@@ -56,5 +56,40 @@ TEST(RobotSceneTest, BoundingPointsAreTheBoxCorners) {
   EXPECT_EQ(hi, Eigen::Vector3d(11, 2, 3));
 }
 
+// A robot whose links have no shapes (meshes not found) still shows: a rod
+// from each link's joint to its child's joint, a ball at the last link's
+// centre of mass, and the hinges.
+TEST(RobotSceneTest, LinksWithoutShapesGetRodsBetweenTheirJoints) {
+  const RobotModel paper = MakePaper6r();
+  std::vector<Link> links = paper.links();
+  for (Link& l : links) l.shapes.clear();
+  const RobotModel bare("bare", std::move(links));
+  RobotData data(bare);
+  const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(6, 0.2, 1.2), zero = Eigen::VectorXd::Zero(6);
+  ComputeKinematics(bare, q, zero, zero, &data);
+  const Scene scene = BuildRobotScene(bare, data);
+  int rods = 0, balls = 0;
+  for (int i = 0; i < bare.n_links(); ++i) {
+    const Eigen::Vector3f color = LinkColor(i);
+    for (const ScenePrimitive& p : scene.primitives) {
+      if (p.color != color) continue;
+      if (p.kind == Shape::Kind::kSphere) {
+        ++balls;
+        EXPECT_LT((p.X_WG.translation() - data.p_WBo_W[5] - data.R_WB[5] * bare.link(5).inertia.p_BoBcm_B).norm(),
+                  1e-12);
+        continue;
+      }
+      ASSERT_LT(i, 5);
+      ++rods;
+      const Eigen::Vector3d half = 0.5 * p.size.z() * p.X_WG.linear().col(2);
+      EXPECT_LT((p.X_WG.translation() - half - data.p_WBo_W[static_cast<size_t>(i)]).norm(), 1e-12);
+      EXPECT_LT((p.X_WG.translation() + half - data.p_WBo_W[static_cast<size_t>(i + 1)]).norm(), 1e-12);
+    }
+  }
+  EXPECT_EQ(balls, 1);
+  EXPECT_GE(rods, 4);  // joints that coincide get no rod
+  EXPECT_FALSE(scene.BoundingPoints().empty());
+}
+
 }  // namespace
 }  // namespace idbench

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "idbench/render/osmesa_context.h"
+#include "engine/test_meshes.h"
+#include "engine/test_util.h"
 #include "render/image_test_util.h"
 
 namespace idbench {
@@ -70,6 +75,43 @@ TEST_F(SceneRendererTest, EmptySceneIsTheNeutralBackgroundAndSizesAreChecked) {
   EXPECT_THROW(renderer_.Render(Scene{}, out_of_sight, Camera{}, 0, 48), std::invalid_argument);
   EXPECT_THROW(renderer_.Render(Scene{}, out_of_sight, Camera{}, 64, SceneRenderer::kMaxSize + 1),
                std::invalid_argument);
+}
+
+// A box drawn from its mesh (12 triangles, flat normals) looks like the box
+// primitive: the same pixels up to the antialiased edges.
+TEST_F(SceneRendererTest, BoxMeshLooksLikeTheBoxPrimitive) {
+  const Eigen::Vector3d edges(0.6, 0.3, 0.4);
+  Camera camera;
+  camera.p_WEye_W = Eigen::Vector3d(1.5, -2.0, 1.5);
+  camera.p_WTarget_W = Eigen::Vector3d(0, 0, 0.4);
+  Scene box, mesh;
+  ScenePrimitive p;
+  p.kind = Shape::Kind::kBox;
+  p.size = edges;
+  p.X_WG.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d(0.3, 0.2, 1.0).normalized()).toRotationMatrix();
+  p.X_WG.translation() = Eigen::Vector3d(0.1, 0.0, 0.5);
+  p.color = Eigen::Vector3f(0.2f, 0.4f, 0.8f);
+  box.primitives.push_back(p);
+  p.kind = Shape::Kind::kMesh;
+  p.size = Eigen::Vector3d::Ones();
+  p.mesh = std::make_shared<const TriangleMesh>(testing::BoxMesh(edges));
+  mesh.primitives.push_back(p);
+  ASSERT_LT(testing::RelativeError(Eigen::MatrixXd::Map(mesh.BoundingPoints().data()->data(), 3, 8),
+                                   Eigen::MatrixXd::Map(box.BoundingPoints().data()->data(), 3, 8)),
+            1e-12);
+  const Floor floor = FitFloor(box.BoundingPoints());
+  const Image a = renderer_.Render(box, floor, camera, 200, 150), b = renderer_.Render(mesh, floor, camera, 200, 150);
+  int robot = 0, different = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      robot += IsRobotPixel(a.at(x, y));
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c])));
+      different += d > 8;
+    }
+  }
+  EXPECT_GT(robot, 1000);
+  EXPECT_LT(different, robot / 50) << robot << " box pixels";
 }
 
 }  // namespace

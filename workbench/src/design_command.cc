@@ -85,6 +85,15 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   DesignControl control;
   control.stop = observer.stop;
   control.progress = observer.progress;
+  if (design.clearance >= 0.0) {  // said even when quiet: the design is not protected there
+    std::string bare;
+    for (const Link& link : model.links()) {
+      if (link.shapes.empty()) bare += (bare.empty() ? "" : ", ") + link.name;
+    }
+    if (!bare.empty()) {
+      std::fprintf(stderr, "idbench: warning: clearance is not checked for links without shapes: %s\n", bare.c_str());
+    }
+  }
   if (!options.quiet) {
     std::fprintf(stderr, "design: %s, %s model (%d parameters), %s, %d starts on %d threads, seed %u\n",
                  model.name().c_str(), options.model.c_str(), regressor.n_parameters(),

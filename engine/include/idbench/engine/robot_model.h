@@ -14,8 +14,11 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "idbench/engine/triangle_mesh.h"
 
 namespace idbench {
 
@@ -43,14 +46,17 @@ struct JointDynamics {
   double rotor_inertia = 0.0;  // Ia, reflected to the joint [kg m²]
 };
 
-// A visual/collision primitive attached to a link.
+// A visual/collision shape attached to a link: a primitive or a mesh.
 struct Shape {
-  enum class Kind { kCylinder, kBox, kSphere };
+  enum class Kind { kCylinder, kBox, kSphere, kMesh };
   Kind kind = Kind::kCylinder;
   // Cylinder: (radius, radius, length) with the axis along z of G;
-  // box: full edge lengths; sphere: (radius, radius, radius).
+  // box: full edge lengths; sphere: (radius, radius, radius); mesh: the
+  // scale its file was read with (already applied to `mesh`).
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  // shape frame G in B
+  std::shared_ptr<const TriangleMesh> mesh;  // kMesh: the triangles, in G
+  std::string mesh_uri;                      // kMesh: as the robot file names it (package://…, a path)
 };
 
 struct Link {

@@ -24,7 +24,7 @@ namespace idbench {
 struct UrdfLoadResult {
   RobotModel model;
   // What was accepted but not fully kept, one line each naming the link or
-  // joint: skipped mesh visuals, ignored <mimic>, inertias that break the
+  // joint: mesh visuals that could not be found or read, ignored <mimic>, inertias that break the
   // triangle inequality (not physically realisable, still loaded).
   std::vector<std::string> warnings;
 };
@@ -43,8 +43,12 @@ struct UrdfLoadResult {
 // (continuous: none); velocity → qd_max and effort → tau_max, where a value
 // ≤ 0 (urdfdom's default when absent) means not given = ∞; qdd_max = ∞.
 // <dynamics damping friction> → JointDynamics viscous, coulomb.
-// Visuals: box, cylinder (size (r, r, length), axis along z of G) and sphere;
-// meshes are skipped with a warning.
+// Visuals: box, cylinder (size (r, r, length), axis along z of G), sphere, and
+// mesh (read with assimp: STL, COLLADA, OBJ, …; scale applied; the file found
+// as ResolveMeshUri in urdf.cc says: package:// names through
+// ROS_PACKAGE_PATH or a directory of that name above the URDF, relative paths
+// against `base_directory`, the current directory when empty). A mesh that cannot be found or read is skipped
+// with a warning naming the link and the file.
 //
 // Throws std::invalid_argument with one message that starts with the source
 // name and names the link or joint at fault, for: text urdfdom rejects ("not a
@@ -54,9 +58,11 @@ struct UrdfLoadResult {
 // a negative mass or an inertia that is not positive semidefinite on any
 // merged link; a zero joint axis; revolute limits with lower ≥ upper;
 // negative damping or friction; no moving joint at all.
-UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name = "<string>");
+UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name = "<string>",
+                               const std::string& base_directory = "");
 
-// As LoadUrdfString, with source_name = path. Also throws
+// As LoadUrdfString, with source_name = path and meshes looked up from the
+// file's directory. Also throws
 // std::invalid_argument naming the path when the file cannot be read.
 UrdfLoadResult LoadUrdfFile(const std::string& path);
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <vector>
 
 #include "idbench/engine/kinematics.h"
@@ -13,8 +14,10 @@ namespace idbench {
 
 struct ScenePrimitive {
   Shape::Kind kind = Shape::Kind::kCylinder;
-  // As Shape::size: cylinder (r, r, length) along z of G; box edges; sphere (r, r, r) [m].
+  // As Shape::size: cylinder (r, r, length) along z of G; box edges; sphere
+  // (r, r, r) [m]; mesh: a scale applied on top of the mesh's vertices.
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  std::shared_ptr<const TriangleMesh> mesh;  // kMesh
   Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();  // primitive frame G in W
   Eigen::Vector3f color = Eigen::Vector3f::Ones();         // linear RGB in [0, 1]
 };
@@ -31,7 +34,9 @@ struct Scene {
 Eigen::Vector3f LinkColor(int link);
 
 // The robot at the pose in `data` (ComputeKinematics done): every link's
-// shapes in its colour, and a dark marker at every hinge: a pin along the
+// shapes in its colour (a link without any, e.g. whose meshes were not found:
+// a rod from its joint to each child's joint, or a ball at its centre of mass
+// for the last link), and a dark marker at every hinge: a pin along the
 // axis sticking out of both links, or a collar when the axis runs along the
 // link (so it would hide inside a pin); a grey pedestal under a base joint
 // that sits above the ground z = 0.
