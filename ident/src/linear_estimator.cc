@@ -76,7 +76,7 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   const Eigen::MatrixXd T = CombinedFactor(factors, weights);
   const Eigen::MatrixXd R = T.topLeftCorner(p, p).triangularView<Eigen::Upper>();
   const Eigen::VectorXd z = T.col(p).head(p);
-  const Eigen::VectorXd norms = R.colwise().norm();
+  const Eigen::VectorXd norms = R.colwise().norm().transpose();
   Eigen::VectorXd D;
   const Eigen::MatrixXd RD = UnitColumns(R, &D);
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(RD);  // singular values only, unless rank deficient
@@ -87,10 +87,11 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   fit.rank = rank;
   fit.identifiable.assign(static_cast<size_t>(p), true);
   double s2 = T(p, p) * T(p, p) / (n_equations - rank);
+  Eigen::MatrixXd gram_inverse;  // (WᵀW)⁻¹, or the g-inverse of the minimum-norm estimator
   if (rank == p) {
     fit.beta = R.triangularView<Eigen::Upper>().solve(z);
     const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
-    fit.covariance = Rinv * Rinv.transpose() * s2;
+    gram_inverse = Rinv * Rinv.transpose();
     fit.cond = ConditionNumber(R);
   } else {
     svd.compute(RD, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -103,13 +104,14 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
     const Eigen::VectorXd y = (svd.matrixU().leftCols(rank).transpose() * z).cwiseQuotient(s.head(rank));
     fit.beta = D.asDiagonal() * (V_r * y);
     const Eigen::MatrixXd B = D.asDiagonal() * V_r * s.head(rank).cwiseInverse().asDiagonal();
-    fit.covariance = B * B.transpose() * s2;
+    gram_inverse = B * B.transpose();
     for (int k = 0; k < p; ++k) fit.identifiable[static_cast<size_t>(k)] = V_null.row(k).norm() <= 1e-6;
-    fit.cond = std::numeric_limits<double>::infinity();
+    fit.cond = kInfinity;
   }
+  fit.covariance = gram_inverse * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
   // (WᵀW)⁻¹_kk ‖W_k‖² with ‖W_k‖ = ‖R_k‖ (W = Q R).
-  fit.variance_inflation = fit.covariance.diagonal().cwiseProduct(norms.cwiseAbs2()) / s2;
+  fit.variance_inflation = gram_inverse.diagonal().cwiseProduct(norms.cwiseAbs2());
   for (int k = 0; k < p; ++k) {
     if (!fit.identifiable[static_cast<size_t>(k)]) fit.sigma[k] = fit.variance_inflation[k] = kInfinity;
   }

@@ -49,6 +49,9 @@ TEST_F(IdentifyCliTest, NoiseFreeSimulationRecoversTheBaseParameters) {
   for (const auto& p : j["base_parameters"]) {
     const double truth = p["robot_file_value"], value = p["value"];
     EXPECT_LE(std::abs(value - truth), 1e-8 * std::max(1.0, std::abs(truth))) << p["name"];
+    // Noise-free: σ = 0, yet the variance inflation is a property of W alone.
+    ASSERT_TRUE(p["variance_inflation"].is_number()) << p["name"];
+    EXPECT_GE(p["variance_inflation"].get<double>(), 1.0 - 1e-9) << p["name"];
   }
   EXPECT_LT(j["validation"]["relative_error"].get<double>(), 1e-10);
   EXPECT_EQ(j["n_samples"].get<int>(), 1000);
