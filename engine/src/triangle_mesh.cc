@@ -4,16 +4,18 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <utility>
 
 namespace idbench {
 namespace {
 
-// Appends node's meshes (and its children's) with the accumulated transform.
-void AddNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, TriangleMesh* out) {
-  const aiMatrix4x4 transform = parent * node.mTransformation;
+// Appends node's meshes, placed by `transform` (the node's, accumulated from
+// the root), and its children's.
+void AddNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& transform, TriangleMesh* out) {
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
     const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
     if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
@@ -29,7 +31,9 @@ void AddNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
                                   first + static_cast<int>(face.mIndices[2]));
     }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c) AddNode(scene, *node.mChildren[c], transform, out);
+  for (unsigned c = 0; c < node.mNumChildren; ++c) {
+    AddNode(scene, *node.mChildren[c], transform * node.mChildren[c]->mTransformation, out);
+  }
 }
 
 }  // namespace
@@ -42,7 +46,19 @@ TriangleMesh LoadTriangleMesh(const std::string& path, const Eigen::Vector3d& sc
     throw std::runtime_error("mesh '" + path + "': " + importer.GetErrorString());
   }
   TriangleMesh mesh;
-  AddNode(*scene, *scene->mRootNode, aiMatrix4x4(), &mesh);
+  // COLLADA: assimp rotates a Z_UP file into Y_UP at the root; ROS tools
+  // (rviz, geometric_shapes) drop that rotation and keep the root's scale
+  // (the file's <unit>) and offset, and so do we.
+  aiMatrix4x4 root = scene->mRootNode->mTransformation;
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".dae" || extension == ".zae") {
+    aiVector3D scaling, position;
+    aiQuaternion rotation;
+    root.Decompose(scaling, rotation, position);
+    root = aiMatrix4x4(scaling, aiQuaternion(), position);
+  }
+  AddNode(*scene, *scene->mRootNode, root, &mesh);
   if (mesh.triangles.empty()) throw std::runtime_error("mesh '" + path + "': no triangles");
   mesh.lo_G = Eigen::Vector3d::Constant(INFINITY);
   mesh.hi_G = -mesh.lo_G;

@@ -297,7 +297,7 @@ LinearFit SolveWls(const StackedFactors& factors) {
   // evenly among joints.
   const LinearFit ols = SolveOls(factors);
   const double n_samples = static_cast<double>(factors.n_samples());
-  const double per_joint_dof = (n_samples * factors.n_dof() - factors.n_parameters) / factors.n_dof();
+  const double per_joint_dof = (n_samples * factors.n_dof() - ols.rank) / factors.n_dof();
   Eigen::VectorXd sigma = (ols.joint_rms.array().square() * n_samples / per_joint_dof).sqrt();
   const double floor = 1e-12 * std::max(1.0, sigma.maxCoeff());
   sigma = sigma.cwiseMax(floor);

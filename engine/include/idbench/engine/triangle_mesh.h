@@ -15,9 +15,11 @@ struct TriangleMesh {
 
 // Reads every mesh of a file assimp understands (STL, COLLADA .dae, OBJ,
 // …), each placed by its node's transform, triangulated, identical vertices
-// joined, scaled by `scale` per axis (URDF's scale attribute; COLLADA's own
-// unit is applied by assimp). Throws std::runtime_error naming the file and
-// assimp's reason when it cannot be read or holds no triangle.
+// joined, scaled by `scale` per axis (URDF's scale attribute). COLLADA as in
+// ROS (rviz, geometric_shapes): the file's <unit> applies, its <up_axis> does
+// not (assimp's rotation to Y_UP at the root is dropped). Throws
+// std::runtime_error naming the file and assimp's reason when it cannot be
+// read or holds no triangle.
 TriangleMesh LoadTriangleMesh(const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 
 }  // namespace idbench
