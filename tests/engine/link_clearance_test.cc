@@ -130,7 +130,9 @@ TEST(LinkClearanceTest, PumaLeavesOutPairsTouchingAtHome) {
   EXPECT_FALSE(clearance.excluded().empty());
   for (const std::string& e : clearance.excluded()) EXPECT_NE(e.find("touching by construction"), std::string::npos);
   for (const ClearancePair& p : clearance.pairs()) {
-    if (p.link_b >= 0) EXPECT_NE(p.link_b, model.link(p.link_a).parent) << p.Name(model);
+    if (p.link_b >= 0) {
+      EXPECT_NE(p.link_b, model.link(p.link_a).parent) << p.Name(model);
+    }
   }
 }
 

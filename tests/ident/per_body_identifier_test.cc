@@ -85,7 +85,9 @@ TEST_F(PerBodyIdentifierTest, WholeRobotSystemAgreesWithPerBodySolves) {
     for (int k = 0; k < 4; ++k) {
       const ParameterResult& p = Param(per_body, b, names[k]);
       ASSERT_EQ(whole.identifiable[static_cast<size_t>(4 * b + k)], p.identifiable) << b << names[k];
-      if (p.identifiable) EXPECT_NEAR(whole.x[4 * b + k], p.identified, 1e-10 * std::abs(p.identified));
+      if (p.identifiable) {
+        EXPECT_NEAR(whole.x[4 * b + k], p.identified, 1e-10 * std::abs(p.identified));
+      }
     }
   }
 }

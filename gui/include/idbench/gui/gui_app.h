@@ -1,7 +1,7 @@
 // The workbench window's content: a 3D viewport with a timeline, and the
 // robot, design, experiment, compare and export panels over one Session. The
 // same code draws in a GLFW window and headless (OSMesa); the platform layer
-// (gui_platform.h) owns the GL context, ImGui's context and its renderer,
+// (gui_window.cc, headless_gui.cc) owns the GL context, ImGui's context and its renderer,
 // feeds input, and calls Frame between ImGui::NewFrame and ImGui::Render.
 #pragma once
 

@@ -1,0 +1,91 @@
+// GuiApp's state, shared by the files that draw its panels (gui_app.cc for the
+// frame, one file per panel). Internal: not installed.
+#pragma once
+
+#include <imgui.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "idbench/gui/gui_app.h"
+#include "idbench/gui/session.h"
+#include "idbench/gui/widget_registry.h"
+#include "idbench/render/camera.h"
+#include "idbench/render/robot_scene.h"
+#include "idbench/render/scene_renderer.h"
+#include "widgets.h"
+
+namespace idbench::gui {
+
+struct GuiApp::Impl {
+  Impl(const SessionOptions& options, GlProcLoader loader) : session(options), renderer(loader), widgets(&registry) {}
+
+  Session session;
+  SceneRenderer renderer;
+  WidgetRegistry registry;
+  internal::Widgets widgets;
+  GuiLayout layout;
+
+  // Robot panel
+  std::string robot_choice;   // the built-in picked in the combo
+  std::string urdf_path;
+  std::optional<std::string> pending_robot;  // to load at the end of the frame
+
+  // Viewport and timeline
+  double t = 0.0;             // [s]
+  bool playing = false;
+  double speed = 1.0;
+  CameraView view;
+  double zoom = 1.0;          // eye distance scale
+  Eigen::Vector3d pan_W = Eigen::Vector3d::Zero();  // [m]
+  bool show_com = false;      // centres of mass
+  bool show_frames = false;   // link frames (x red, y green, z blue), at the hinge points
+  double robot_size = 1.0;    // [m] diagonal of the robot's extent over the motion (marker sizes)
+  int fitted_motion_version = -1;
+  std::vector<Eigen::Vector3d> motion_points_W;  // the robot's extent over the motion
+  Floor floor;
+  std::string shown_motion_key;
+  // What the texture shows (redrawn only when it changes).
+  Eigen::VectorXd drawn_q;
+  Eigen::Vector3d drawn_eye_W = Eigen::Vector3d::Zero(), drawn_target_W = Eigen::Vector3d::Zero();
+  int drawn_w = 0, drawn_h = 0;
+  int drawn_overlays = 0;
+  bool drawn_once = false;
+
+  std::optional<std::string> screenshot_request;
+  size_t shown_messages = 0;  // the messages panel scrolls to a new one
+
+  Eigen::VectorXd CurrentQ() const {
+    const Trajectory* motion = session.current_motion();
+    if (!motion) return Eigen::VectorXd::Zero(session.model().n_dof());
+    return motion->At(std::clamp(t, 0.0, motion->duration())).q;
+  }
+
+  // A button that starts a job, with what the job is doing beside it while it runs.
+  bool JobButton(const std::string& name, const char* label, bool enabled, bool running, const char* doing) {
+    const bool pressed = widgets.Button(name, label, enabled);
+    if (running) {
+      ImGui::SameLine();
+      ImGui::TextUnformatted(doing);
+    }
+    return pressed;
+  }
+
+  void SyncMotion();
+  void FitView();
+  void AddOverlays(const RobotModel& model, const RobotData& data, Scene* scene) const;
+  void DrawViewport();
+  void DrawRobotPanel();
+  void DrawDesignTab();
+  void DrawExperimentTab();
+  void DrawPerBodyExperiment(bool busy);
+  void DrawCompareTab();
+  void DrawExportTab();
+  void DrawMessages();
+};
+
+}  // namespace idbench::gui

@@ -1,0 +1,32 @@
+// Small helpers the GUI's panels share: the panels' window flags, the colours
+// for errors and dim hints, and text cells for numbers in tables. Internal:
+// not installed.
+#pragma once
+
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace idbench::gui {
+
+inline constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                                ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
+inline const ImVec4 kErrorColor(0.80f, 0.10f, 0.10f, 1.0f);
+inline const ImVec4 kDimColor(0.45f, 0.45f, 0.45f, 1.0f);
+
+// "1.23e+04", "inf" (limits), "-" (NaN).
+inline std::string Number(double v, const char* format = "%.4g") {
+  if (std::isnan(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+inline void TextCell(const std::string& text, const ImVec4* color = nullptr) {
+  if (color) ImGui::TextColored(*color, "%s", text.c_str());
+  else ImGui::TextUnformatted(text.c_str());
+}
+
+}  // namespace idbench::gui
