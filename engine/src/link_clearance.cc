@@ -58,10 +58,12 @@ struct ClearanceModel::Impl {
     return c;
   }
 
-  // Lowest point of a placed shape: its support point along −z.
+  // Lowest point of a placed shape: the support point of its core along −z,
+  // lowered by the margin (the rounded shell GJK sees, also for boxes, whose
+  // own support point with margin is a larger box).
   static Clearance Ground(const btConvexShape* a, const btTransform& X_WA) {
     const btVector3 down_A = X_WA.getBasis().transpose() * btVector3(0, 0, -1);
-    const btVector3 lowest = X_WA * a->localGetSupportingVertex(down_A);
+    const btVector3 lowest = X_WA * (a->localGetSupportingVertexWithoutMargin(down_A) + a->getMargin() * down_A);
     Clearance c;
     c.p_a_W = FromBt(lowest);
     c.distance = lowest.z();
@@ -114,9 +116,12 @@ struct ClearanceModel::Impl {
 ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
     : impl_(std::make_unique<Impl>()), min_clearance_(min_clearance) {
   if (!(min_clearance >= 0.0)) throw std::invalid_argument("clearance must be >= 0 m");
-  // Bullet keeps a margin around convex shapes; a small one inside the
-  // cylinders and boxes (it is subtracted from their extents) keeps the
-  // geometry exact and GJK robust.
+  // Bullet keeps a margin around convex shapes (GJK works on the core and
+  // rounds it by the margin). Every shape but a sphere gets a 1 mm margin
+  // outside its true surface: boxes and cylinders are built 1 mm larger (Bullet
+  // takes the margin off their extents), mesh hulls are rounded by it. So each
+  // is its Minkowski sum with a 1 mm ball: never smaller than the shape, every
+  // distance at most 1 mm short per shape (conservative), corners included.
   constexpr double kMargin = 1e-3;
   impl_->shapes.resize(static_cast<size_t>(model.n_links()));
   for (int i = 0; i < model.n_links(); ++i) {
@@ -124,17 +129,17 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
       std::unique_ptr<btConvexShape> shape;
       switch (s.kind) {
         case Shape::Kind::kCylinder:
-          shape = std::make_unique<btCylinderShapeZ>(btVector3(s.size.x(), s.size.y(), 0.5 * s.size.z()));
+          shape = std::make_unique<btCylinderShapeZ>(
+              btVector3(s.size.x() + kMargin, s.size.y() + kMargin, 0.5 * s.size.z() + kMargin));
           break;
         case Shape::Kind::kBox:
-          shape = std::make_unique<btBoxShape>(ToBt(0.5 * s.size));
+          shape = std::make_unique<btBoxShape>(ToBt(0.5 * s.size + Eigen::Vector3d::Constant(kMargin)));
           break;
         case Shape::Kind::kSphere:
           shape = std::make_unique<btSphereShape>(s.size.x());
           break;
         case Shape::Kind::kMesh: {
-          // Its convex hull: never smaller than the mesh, so the clearance
-          // is conservative (a hull's margin lies outside it, 1 mm more).
+          // Its convex hull: never smaller than the mesh.
           auto hull = std::make_unique<btConvexHullShape>();
           for (const Eigen::Vector3d& v : s.mesh->vertices) hull->addPoint(ToBt(v), false);
           hull->recalcLocalAabb();
@@ -145,8 +150,8 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
       }
       if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin);
       double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
-                      : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm()
-                                                     : std::hypot(s.size.x(), 0.5 * s.size.z());
+                      : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm() + kMargin
+                                                     : std::hypot(s.size.x(), 0.5 * s.size.z()) + kMargin;
       if (s.kind == Shape::Kind::kMesh) {
         radius = kMargin;
         for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm() + kMargin);
