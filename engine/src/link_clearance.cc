@@ -125,7 +125,7 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
   constexpr double kMargin = 1e-3;
   impl_->shapes.resize(static_cast<size_t>(model.n_links()));
   for (int i = 0; i < model.n_links(); ++i) {
-    for (const Shape& s : model.link(i).shapes) {
+    for (const Shape& s : model.link(i).CollisionShapes()) {
       std::unique_ptr<btConvexShape> shape;
       switch (s.kind) {
         case Shape::Kind::kCylinder:

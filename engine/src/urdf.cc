@@ -286,40 +286,15 @@ class Loader {
       }
       for (const urdf::VisualSharedPtr& visual : Visuals(*member)) {
         if (visual->geometry == nullptr) continue;
-        Shape shape;
-        shape.X_BG = X_BL * ToIsometry(visual->origin);
-        switch (visual->geometry->type) {
-          case urdf::Geometry::BOX: {
-            const urdf::Vector3& dim = static_cast<const urdf::Box&>(*visual->geometry).dim;
-            shape.kind = Shape::Kind::kBox;
-            shape.size = Eigen::Vector3d(dim.x, dim.y, dim.z);
-            break;
-          }
-          case urdf::Geometry::CYLINDER: {
-            const auto& cylinder = static_cast<const urdf::Cylinder&>(*visual->geometry);
-            shape.kind = Shape::Kind::kCylinder;
-            shape.size = Eigen::Vector3d(cylinder.radius, cylinder.radius, cylinder.length);
-            break;
-          }
-          case urdf::Geometry::SPHERE: {
-            const double radius = static_cast<const urdf::Sphere&>(*visual->geometry).radius;
-            shape.kind = Shape::Kind::kSphere;
-            shape.size = Eigen::Vector3d::Constant(radius);
-            break;
-          }
-          case urdf::Geometry::MESH: {
-            const auto& mesh = static_cast<const urdf::Mesh&>(*visual->geometry);
-            shape.kind = Shape::Kind::kMesh;
-            shape.size = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-            shape.mesh_uri = mesh.filename;
-            shape.mesh = Mesh(mesh.filename, shape.size, where, &shape.mesh_uri);
-            if (shape.mesh == nullptr) continue;
-            break;
-          }
-          default:
-            continue;
+        if (auto shape = ReadShape(*visual->geometry, X_BL * ToIsometry(visual->origin), where)) {
+          link->shapes.push_back(std::move(*shape));
         }
-        link->shapes.push_back(shape);
+      }
+      for (const urdf::CollisionSharedPtr& collision : Collisions(*member)) {
+        if (collision->geometry == nullptr) continue;
+        if (auto shape = ReadShape(*collision->geometry, X_BL * ToIsometry(collision->origin), where)) {
+          link->collision_shapes.push_back(std::move(*shape));
+        }
       }
     }
 
@@ -340,6 +315,51 @@ class Loader {
     if (!link.visual_array.empty()) return link.visual_array;
     if (link.visual != nullptr) return {link.visual};
     return {};
+  }
+  static std::vector<urdf::CollisionSharedPtr> Collisions(const urdf::Link& link) {
+    if (!link.collision_array.empty()) return link.collision_array;
+    if (link.collision != nullptr) return {link.collision};
+    return {};
+  }
+
+  // A <visual> or <collision> geometry placed at X_BG; nullopt (with a
+  // warning) for a mesh that cannot be found or read.
+  std::optional<Shape> ReadShape(const urdf::Geometry& geometry, const Eigen::Isometry3d& X_BG,
+                                 const std::string& where) {
+    Shape shape;
+    shape.X_BG = X_BG;
+    switch (geometry.type) {
+      case urdf::Geometry::BOX: {
+        const urdf::Vector3& dim = static_cast<const urdf::Box&>(geometry).dim;
+        shape.kind = Shape::Kind::kBox;
+        shape.size = Eigen::Vector3d(dim.x, dim.y, dim.z);
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+        shape.kind = Shape::Kind::kCylinder;
+        shape.size = Eigen::Vector3d(cylinder.radius, cylinder.radius, cylinder.length);
+        break;
+      }
+      case urdf::Geometry::SPHERE: {
+        const double radius = static_cast<const urdf::Sphere&>(geometry).radius;
+        shape.kind = Shape::Kind::kSphere;
+        shape.size = Eigen::Vector3d::Constant(radius);
+        break;
+      }
+      case urdf::Geometry::MESH: {
+        const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+        shape.kind = Shape::Kind::kMesh;
+        shape.size = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+        shape.mesh_uri = mesh.filename;
+        shape.mesh = Mesh(mesh.filename, shape.size, where, &shape.mesh_uri);
+        if (shape.mesh == nullptr) return std::nullopt;
+        break;
+      }
+      default:
+        return std::nullopt;
+    }
+    return shape;
   }
 
   // The mesh a <mesh filename> names, read once per file and scale; null with
@@ -408,6 +428,28 @@ std::string UniqueName(const std::string& base, const std::set<std::string>& tak
     const std::string name = base + "_" + std::to_string(k);
     if (!taken.contains(name)) return name;
   }
+}
+
+// <visual> or <collision> with the shape's origin and geometry.
+std::string ShapeElement(const std::string& tag, const Shape& shape) {
+  std::ostringstream out;
+  out << "    <" << tag << ">\n"
+      << "      " << Origin(shape.X_BG) << "\n"
+      << "      <geometry>";
+  switch (shape.kind) {
+    case Shape::Kind::kBox: out << "<box" << Attribute("size", Numbers(shape.size)) << "/>"; break;
+    case Shape::Kind::kCylinder:
+      out << "<cylinder" << Attribute("radius", Number(shape.size.x())) << Attribute("length", Number(shape.size.z()))
+          << "/>";
+      break;
+    case Shape::Kind::kSphere: out << "<sphere" << Attribute("radius", Number(shape.size.x())) << "/>"; break;
+    case Shape::Kind::kMesh:
+      out << "<mesh" << Attribute("filename", shape.mesh_uri) << Attribute("scale", Numbers(shape.size)) << "/>";
+      break;
+  }
+  out << "</geometry>\n"
+      << "    </" << tag << ">\n";
+  return out.str();
 }
 
 }  // namespace
@@ -517,25 +559,8 @@ std::string WriteUrdf(const RobotModel& model) {
         << Attribute("ixz", Number(I(0, 2))) << Attribute("iyy", Number(I(1, 1)))
         << Attribute("iyz", Number(I(1, 2))) << Attribute("izz", Number(I(2, 2))) << "/>\n"
         << "    </inertial>\n";
-    for (const Shape& shape : link.shapes) {
-      out << "    <visual>\n"
-          << "      " << Origin(shape.X_BG) << "\n"
-          << "      <geometry>";
-      switch (shape.kind) {
-        case Shape::Kind::kBox: out << "<box" << Attribute("size", Numbers(shape.size)) << "/>"; break;
-        case Shape::Kind::kCylinder:
-          out << "<cylinder" << Attribute("radius", Number(shape.size.x()))
-              << Attribute("length", Number(shape.size.z())) << "/>";
-          break;
-        case Shape::Kind::kSphere: out << "<sphere" << Attribute("radius", Number(shape.size.x())) << "/>"; break;
-        case Shape::Kind::kMesh:
-          out << "<mesh" << Attribute("filename", shape.mesh_uri) << Attribute("scale", Numbers(shape.size))
-              << "/>";
-          break;
-      }
-      out << "</geometry>\n"
-          << "    </visual>\n";
-    }
+    for (const Shape& shape : link.shapes) out << ShapeElement("visual", shape);
+    for (const Shape& shape : link.collision_shapes) out << ShapeElement("collision", shape);
     out << "  </link>\n";
 
     // Its inboard joint. Infinite velocity/effort are written as 0, which the

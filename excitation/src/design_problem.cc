@@ -40,7 +40,7 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
   limit_stride_ = std::max(1, static_cast<int>(times_.size() / std::ceil(25.0 * top_periods)));
   BuildLinearRows();
   if (options.clearance >= 0.0 && std::any_of(regressor.model().links().begin(), regressor.model().links().end(),
-                                              [](const Link& l) { return !l.shapes.empty(); })) {
+                                              [](const Link& l) { return !l.CollisionShapes().empty(); })) {
     clearance_.emplace(regressor.model(), options.clearance);
     clearance_stride_ = (options.samples + 99) / 100;
   }

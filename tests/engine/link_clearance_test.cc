@@ -183,5 +183,29 @@ TEST(LinkClearanceTest, BoxMeshesAndBoxesGiveTheSameConservativeDistances) {
   }
 }
 
+// Clearance checks a link's collision shapes when it has any, its drawn
+// shapes otherwise.
+TEST(LinkClearanceTest, CollisionShapesReplaceTheDrawnOnes) {
+  const RobotModel spheres = MakeSphereRobot(0.1);
+  std::vector<Link> links = spheres.links();
+  for (Link& l : links) {
+    l.collision_shapes = l.shapes;
+    l.collision_shapes[0].size.setConstant(0.05);  // drawn 0.1, checked 0.05
+  }
+  const RobotModel model("collisions", std::move(links));
+  const ClearanceModel drawn(spheres, 0.0), checked(model, 0.0);
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(3, 0.4), zero = Eigen::VectorXd::Zero(3);
+  ComputeKinematicsT<double>(model, q, zero, zero, &k);
+  std::vector<Clearance> d_drawn, d_checked;
+  drawn.Compute(k, &d_drawn);
+  checked.Compute(k, &d_checked);
+  ASSERT_EQ(d_drawn.size(), d_checked.size());
+  for (size_t i = 0; i < d_drawn.size(); ++i) {
+    const double gained = checked.pairs()[i].link_b < 0 ? 0.05 : 0.1;  // the smaller radius, once or twice
+    EXPECT_NEAR(d_checked[i].distance, d_drawn[i].distance + gained, 1e-9) << checked.pairs()[i].Name(model);
+  }
+}
+
 }  // namespace
 }  // namespace idbench

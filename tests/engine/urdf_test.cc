@@ -646,5 +646,32 @@ TEST(UrdfTest, MeshesResolveLikeRosPackagesAndRoundTrip) {
   fs::remove_all(root);
 }
 
+// <collision> geometry is kept apart from <visual>: drawn shapes from the
+// visuals, clearance from the collisions, both written back.
+TEST(UrdfTest, CollisionGeometryIsKeptApartFromVisuals) {
+  const std::string xml =
+      "<robot name=\"c\"><link name=\"base\"/><link name=\"L1\"><inertial><mass value=\"1\"/><inertia "
+      "ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial>"
+      "<visual><geometry><sphere radius=\"0.3\"/></geometry></visual>"
+      "<collision><origin xyz=\"0 0 0.1\"/><geometry><box size=\"0.1 0.2 0.3\"/></geometry></collision>"
+      "<collision><geometry><cylinder radius=\"0.05\" length=\"0.4\"/></geometry></collision></link>"
+      "<joint name=\"j\" type=\"continuous\"><parent link=\"base\"/><child link=\"L1\"/>"
+      "<axis xyz=\"0 0 1\"/></joint></robot>";
+  const RobotModel m = LoadUrdfString(xml).model;
+  const Link& l = m.link(0);
+  ASSERT_EQ(l.shapes.size(), 1u);
+  EXPECT_EQ(l.shapes[0].kind, Shape::Kind::kSphere);
+  ASSERT_EQ(l.collision_shapes.size(), 2u);
+  EXPECT_EQ(l.collision_shapes[0].kind, Shape::Kind::kBox);
+  ExpectNear(l.collision_shapes[0].size, Eigen::Vector3d(0.1, 0.2, 0.3), 0.0, "box");
+  ExpectNear(l.collision_shapes[0].X_BG.translation(), Eigen::Vector3d(0, 0, 0.1), 0.0, "box origin");
+  EXPECT_EQ(l.collision_shapes[1].kind, Shape::Kind::kCylinder);
+  EXPECT_EQ(&l.CollisionShapes(), &l.collision_shapes);
+  const RobotModel again = LoadUrdfString(WriteUrdf(m)).model;
+  ASSERT_EQ(again.link(0).shapes.size(), 1u);
+  ASSERT_EQ(again.link(0).collision_shapes.size(), 2u);
+  ExpectNear(again.link(0).collision_shapes[1].size, l.collision_shapes[1].size, 0.0, "cylinder after the round trip");
+}
+
 }  // namespace
 }  // namespace idbench

@@ -88,7 +88,7 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   if (design.clearance >= 0.0) {  // said even when quiet: the design is not protected there
     std::string bare;
     for (const Link& link : model.links()) {
-      if (link.shapes.empty()) bare += (bare.empty() ? "" : ", ") + link.name;
+      if (link.CollisionShapes().empty()) bare += (bare.empty() ? "" : ", ") + link.name;
     }
     if (!bare.empty()) {
       std::fprintf(stderr, "idbench: warning: clearance is not checked for links without shapes: %s\n", bare.c_str());

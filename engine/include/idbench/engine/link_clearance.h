@@ -1,7 +1,11 @@
 // Clearance of a robot's links: the distance between the shapes of two links
 // that no joint connects, and from each link to the ground (the plane z = 0
 // of W), by Bullet's GJK (and EPA when shapes overlap: negative distance) on
-// the links' convex shapes (cylinder, box, sphere).
+// each link's collision shapes (Link::CollisionShapes: its <collision>
+// geometry, else what is drawn): cylinders, boxes, spheres, and meshes as
+// their convex hulls. Every shape but a sphere is checked 1 mm inflated (its
+// Minkowski sum with a 1 mm ball), so distances are up to 1 mm short per
+// shape: conservative.
 //
 // Pairs that touch by construction are left out: parent and child, and pairs
 // already closer than `min_clearance` at the home pose q = 0 (a base resting

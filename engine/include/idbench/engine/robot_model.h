@@ -68,7 +68,10 @@ struct Link {
   JointLimits limits;
   JointDynamics dynamics;
   LinkInertia inertia;
-  std::vector<Shape> shapes;
+  std::vector<Shape> shapes;            // what is drawn (URDF <visual>)
+  std::vector<Shape> collision_shapes;  // what clearance checks (URDF <collision>); empty: `shapes`
+
+  const std::vector<Shape>& CollisionShapes() const { return collision_shapes.empty() ? shapes : collision_shapes; }
 };
 
 class RobotModel {

@@ -47,7 +47,9 @@ struct UrdfLoadResult {
 // mesh (read with assimp: STL, COLLADA, OBJ, …; scale applied; the file found
 // as ResolveMeshUri in urdf.cc says: package:// names through
 // ROS_PACKAGE_PATH or a directory of that name above the URDF, relative paths
-// against `base_directory`, the current directory when empty). A mesh that cannot be found or read is skipped
+// against `base_directory`, the current directory when empty). <collision>
+// geometry, the same kinds, goes to Link::collision_shapes (what clearance
+// checks). A mesh that cannot be found or read is skipped
 // with a warning naming the link and the file.
 //
 // Throws std::invalid_argument with one message that starts with the source
@@ -68,7 +70,8 @@ UrdfLoadResult LoadUrdfFile(const std::string& path);
 
 // URDF text of a model: a root link for the ground (named "base", or another
 // name no link uses), then per idbench link a <link> with <inertial> (origin
-// at the COM, rpy 0, the full inertia tensor) and one <visual> per shape, and
+// at the COM, rpy 0, the full inertia tensor), one <visual> per shape and one
+// <collision> per collision shape, and
 // a <joint> with origin X_PJ, axis, <limit> and <dynamics> (when friction is
 // nonzero). Joints with infinite q limits are written as continuous; an
 // infinite velocity or effort is written as 0 (= not given). An empty
