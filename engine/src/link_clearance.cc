@@ -126,6 +126,7 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
   impl_->shapes.resize(static_cast<size_t>(model.n_links()));
   for (int i = 0; i < model.n_links(); ++i) {
     for (const Shape& s : model.link(i).CollisionShapes()) {
+      if (s.kind == Shape::Kind::kMesh && (s.mesh == nullptr || s.mesh->vertices.empty())) continue;
       std::unique_ptr<btConvexShape> shape;
       switch (s.kind) {
         case Shape::Kind::kCylinder:

@@ -17,7 +17,7 @@ double LinkRadius(const Link& link, double fallback) {
   if (link.shapes.empty()) return fallback;
   const Shape& s = link.shapes.front();
   if (s.kind == Shape::Kind::kBox) return 0.5 * s.size.minCoeff();
-  if (s.kind == Shape::Kind::kMesh) {
+  if (s.kind == Shape::Kind::kMesh && s.mesh != nullptr) {
     Eigen::Vector3d edges = s.mesh->hi_G - s.mesh->lo_G;
     std::sort(edges.data(), edges.data() + 3);
     return 0.5 * edges[1];
@@ -87,6 +87,7 @@ Scene BuildRobotScene(const RobotModel& model, const RobotData& data) {
     X_WB.translation() = data.p_WBo_W[static_cast<size_t>(i)];
     // The link's own shapes.
     for (const Shape& shape : link.shapes) {
+      if (shape.kind == Shape::Kind::kMesh && shape.mesh == nullptr) continue;
       ScenePrimitive p{shape.kind, shape.kind == Shape::Kind::kMesh ? Eigen::Vector3d::Ones() : shape.size,
                        shape.mesh, X_WB * shape.X_BG, LinkColor(i)};
       scene.primitives.push_back(p);
