@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace idbench {
@@ -56,6 +57,38 @@ struct ClearanceModel::Impl {
     c.n_W = FromBt(out.m_normalOnBInWorld);  // from B towards A
     c.p_a_W = FromBt(out.m_pointInWorld) + c.n_W * c.distance;  // m_pointInWorld is on B
     return c;
+  }
+
+  // A mesh's convex hull for GJK, whose cost grows with the hull's points:
+  // above kMaxHullPoints, the hull's support points in kHullDirections
+  // directions (a Fibonacci sphere) instead — an inner hull — and *gap gets
+  // how far the full hull reaches beyond it (GJK from each of its points), so
+  // that the inner hull grown by *gap still holds the mesh.
+  static std::unique_ptr<btConvexHullShape> MeshHull(const TriangleMesh& mesh, double* gap) {
+    constexpr int kMaxHullPoints = 256, kHullDirections = 256;
+    auto full = std::make_unique<btConvexHullShape>();
+    for (const Eigen::Vector3d& v : mesh.vertices) full->addPoint(ToBt(v), false);
+    full->recalcLocalAabb();
+    full->optimizeConvexHull();
+    *gap = 0.0;
+    if (full->getNumPoints() <= kMaxHullPoints) return full;
+    auto inner = std::make_unique<btConvexHullShape>();
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < kHullDirections; ++k) {
+      const double z = 1.0 - 2.0 * (k + 0.5) / kHullDirections, r = std::sqrt(1.0 - z * z);
+      const btVector3 d(r * std::cos(golden * k), r * std::sin(golden * k), z);
+      inner->addPoint(full->localGetSupportingVertexWithoutMargin(d), false);
+    }
+    inner->recalcLocalAabb();
+    inner->optimizeConvexHull();
+    inner->setMargin(0.0);
+    const btSphereShape point(0.0);
+    btTransform X_WP = btTransform::getIdentity();
+    for (int k = 0; k < full->getNumPoints(); ++k) {
+      X_WP.setOrigin(full->getPoints()[k]);
+      *gap = std::max(*gap, Pair(&point, X_WP, inner.get(), btTransform::getIdentity()).distance);
+    }
+    return inner;
   }
 
   // Lowest point of a placed shape: the support point of its core along −z,
@@ -128,6 +161,7 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
     for (const Shape& s : model.link(i).CollisionShapes()) {
       if (s.kind == Shape::Kind::kMesh && (s.mesh == nullptr || s.mesh->vertices.empty())) continue;
       std::unique_ptr<btConvexShape> shape;
+      double gap = 0.0;  // a reduced mesh hull's extra margin
       switch (s.kind) {
         case Shape::Kind::kCylinder:
           shape = std::make_unique<btCylinderShapeZ>(
@@ -139,23 +173,18 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
         case Shape::Kind::kSphere:
           shape = std::make_unique<btSphereShape>(s.size.x());
           break;
-        case Shape::Kind::kMesh: {
-          // Its convex hull: never smaller than the mesh.
-          auto hull = std::make_unique<btConvexHullShape>();
-          for (const Eigen::Vector3d& v : s.mesh->vertices) hull->addPoint(ToBt(v), false);
-          hull->recalcLocalAabb();
-          hull->optimizeConvexHull();
-          shape = std::move(hull);
+        case Shape::Kind::kMesh:  // its convex hull (reduced, with the gap added to the margin)
+          shape = Impl::MeshHull(*s.mesh, &gap);
           break;
-        }
       }
-      if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin);
+      if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin + gap);
       double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
                       : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm() + kMargin
                                                      : std::hypot(s.size.x(), 0.5 * s.size.z()) + kMargin;
       if (s.kind == Shape::Kind::kMesh) {
-        radius = kMargin;
-        for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm() + kMargin);
+        radius = 0.0;
+        for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm());
+        radius += kMargin + gap;  // the inner hull's points are vertices of the mesh
       }
       impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG, radius});
     }

@@ -207,5 +207,58 @@ TEST(LinkClearanceTest, CollisionShapesReplaceTheDrawnOnes) {
   }
 }
 
+// A mesh with many hull points (a 642-vertex sphere) is checked through a
+// reduced inner hull grown by how far the full hull reaches beyond it: still
+// conservative, and not much more. Bounds from the mesh itself: its lowest
+// vertex (ground), and its inscribed and circumscribed spheres (r_in, r).
+TEST(LinkClearanceTest, LargeMeshHullsAreReducedAndStayConservative) {
+  constexpr double r = 0.1;
+  const TriangleMesh sphere_mesh = testing::IcosphereMesh(r, 3);
+  ASSERT_EQ(sphere_mesh.vertices.size(), 642u);
+  double r_in = r;  // distance from the centre to the nearest face plane
+  for (const Eigen::Vector3i& t : sphere_mesh.triangles) {
+    const Eigen::Vector3d &a = sphere_mesh.vertices[t[0]], &b = sphere_mesh.vertices[t[1]],
+                          &c = sphere_mesh.vertices[t[2]];
+    r_in = std::min(r_in, std::abs(a.dot((b - a).cross(c - a).normalized())));
+  }
+  const RobotModel spheres = MakeSphereRobot(r);
+  std::vector<Link> links = spheres.links();
+  const auto mesh = std::make_shared<const TriangleMesh>(sphere_mesh);
+  for (Link& l : links) {
+    l.shapes[0].kind = Shape::Kind::kMesh;
+    l.shapes[0].size = Eigen::Vector3d::Ones();
+    l.shapes[0].mesh = mesh;
+  }
+  const RobotModel model("sphere meshes", std::move(links));
+  const ClearanceModel clearance(model, 0.0);
+  constexpr double kMargin = 1e-3, kGapAllowed = 2e-3;
+  KinematicsData<double> k(model);
+  std::vector<Clearance> out;
+  std::mt19937 rng(6);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd q = RandomVector(3, 1.2, &rng), zero = Eigen::VectorXd::Zero(3);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    clearance.Compute(k, &out);
+    for (size_t i = 0; i < out.size(); ++i) {
+      const ClearancePair& p = clearance.pairs()[i];
+      const auto placed = [&](int link) {
+        const size_t b = static_cast<size_t>(link);
+        return Eigen::Vector3d(k.p_WBo_W[b] + k.R_WB[b] * model.link(link).shapes[0].X_BG.translation());
+      };
+      if (p.link_b < 0) {
+        double lowest = INFINITY;
+        const Eigen::Matrix3d R = k.R_WB[static_cast<size_t>(p.link_a)];
+        for (const Eigen::Vector3d& v : sphere_mesh.vertices) lowest = std::min(lowest, (placed(p.link_a) + R * v).z());
+        EXPECT_LE(out[i].distance, lowest - kMargin + 1e-9) << p.Name(model) << " trial " << trial;
+        EXPECT_GE(out[i].distance, lowest - kMargin - kGapAllowed) << p.Name(model) << " trial " << trial;
+      } else {
+        const double centres = (placed(p.link_a) - placed(p.link_b)).norm();
+        EXPECT_LE(out[i].distance, centres - 2 * r_in - 2 * kMargin + 1e-9) << p.Name(model) << " trial " << trial;
+        EXPECT_GE(out[i].distance, centres - 2 * r - 2 * (kMargin + kGapAllowed)) << p.Name(model) << " trial " << trial;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace idbench
