@@ -374,7 +374,7 @@ class Loader {
       std::string places;
       for (const std::string& p : looked) places += (places.empty() ? "" : ", ") + p;
       warnings_.push_back(where + "mesh " + Quote(uri) + " not found (looked in " + places +
-                          "; set ROS_PACKAGE_PATH for package:// names); visual skipped");
+                          "; set ROS_PACKAGE_PATH for package:// names); shape skipped");
       return nullptr;
     }
     if (uri.find("://") == std::string::npos && std::filesystem::path(uri).is_relative()) *written_uri = path->string();
@@ -386,7 +386,7 @@ class Loader {
       meshes_[key] = mesh;
       return mesh;
     } catch (const std::runtime_error& e) {
-      warnings_.push_back(where + e.what() + "; visual skipped");
+      warnings_.push_back(where + e.what() + "; shape skipped");
       return nullptr;
     }
   }
