@@ -40,6 +40,15 @@ RobotModel MakeSphereRobot(double r) {
   return RobotModel("spheres", std::move(links));
 }
 
+// Pose of a link's first shape at the kinematics in k: R_WG and p_WGo_W.
+Eigen::Matrix3d ShapeRotation_W(const RobotModel& model, const KinematicsData<double>& k, int link) {
+  return k.R_WB[static_cast<size_t>(link)] * model.link(link).shapes[0].X_BG.linear();
+}
+Eigen::Vector3d ShapeCentre_W(const RobotModel& model, const KinematicsData<double>& k, int link) {
+  const size_t b = static_cast<size_t>(link);
+  return k.p_WBo_W[b] + k.R_WB[b] * model.link(link).shapes[0].X_BG.translation();
+}
+
 TEST(LinkClearanceTest, SpheresMatchTheAnalyticDistances) {
   const double r = 0.1;
   const RobotModel model = MakeSphereRobot(r);
@@ -55,10 +64,7 @@ TEST(LinkClearanceTest, SpheresMatchTheAnalyticDistances) {
     clearance.Compute(k, &out);
     for (size_t i = 0; i < out.size(); ++i) {
       const ClearancePair& p = clearance.pairs()[i];
-      const auto centre = [&](int link) {
-        return Eigen::Vector3d(k.p_WBo_W[static_cast<size_t>(link)] +
-                               k.R_WB[static_cast<size_t>(link)] * model.link(link).shapes[0].X_BG.translation());
-      };
+      const auto centre = [&](int link) { return ShapeCentre_W(model, k, link); };
       const double expected = p.link_b < 0 ? centre(p.link_a).z() - r : (centre(p.link_a) - centre(p.link_b)).norm() - 2 * r;
       EXPECT_NEAR(out[i].distance, expected, 1e-6) << p.Name(model) << " trial " << trial;
     }
@@ -173,9 +179,8 @@ TEST(LinkClearanceTest, BoxMeshesAndBoxesGiveTheSameConservativeDistances) {
       const ClearancePair& p = box_clearance.pairs()[i];
       EXPECT_NEAR(d_mesh[i].distance, d_box[i].distance, 1e-9) << p.Name(boxes) << " trial " << trial;
       if (p.link_b < 0) {  // exact: the lowest corner of the box
-        const Eigen::Matrix3d R_WG = k.R_WB[static_cast<size_t>(p.link_a)] * boxes.link(p.link_a).shapes[0].X_BG.linear();
-        const Eigen::Vector3d c_W = k.p_WBo_W[static_cast<size_t>(p.link_a)] +
-                                    k.R_WB[static_cast<size_t>(p.link_a)] * boxes.link(p.link_a).shapes[0].X_BG.translation();
+        const Eigen::Matrix3d R_WG = ShapeRotation_W(boxes, k, p.link_a);
+        const Eigen::Vector3d c_W = ShapeCentre_W(boxes, k, p.link_a);
         const double lowest = c_W.z() - 0.5 * (R_WG.row(2).cwiseAbs() * Eigen::Vector3d(0.3, 0.12, 0.2))(0);
         EXPECT_NEAR(d_box[i].distance, lowest - 1e-3, 1e-9) << p.Name(boxes) << " trial " << trial;
       }
@@ -241,14 +246,11 @@ TEST(LinkClearanceTest, LargeMeshHullsAreReducedAndStayConservative) {
     clearance.Compute(k, &out);
     for (size_t i = 0; i < out.size(); ++i) {
       const ClearancePair& p = clearance.pairs()[i];
-      const auto placed = [&](int link) {
-        const size_t b = static_cast<size_t>(link);
-        return Eigen::Vector3d(k.p_WBo_W[b] + k.R_WB[b] * model.link(link).shapes[0].X_BG.translation());
-      };
+      const auto placed = [&](int link) { return ShapeCentre_W(model, k, link); };
       if (p.link_b < 0) {
         double lowest = INFINITY;
-        const Eigen::Matrix3d R = k.R_WB[static_cast<size_t>(p.link_a)];
-        for (const Eigen::Vector3d& v : sphere_mesh.vertices) lowest = std::min(lowest, (placed(p.link_a) + R * v).z());
+        const Eigen::Matrix3d R_WG = ShapeRotation_W(model, k, p.link_a);
+        for (const Eigen::Vector3d& v : sphere_mesh.vertices) lowest = std::min(lowest, (placed(p.link_a) + R_WG * v).z());
         EXPECT_LE(out[i].distance, lowest - kMargin + 1e-9) << p.Name(model) << " trial " << trial;
         EXPECT_GE(out[i].distance, lowest - kMargin - kGapAllowed) << p.Name(model) << " trial " << trial;
       } else {
