@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "idbench/engine/link_bounding_box.h"
+
 namespace idbench {
 
 namespace {
@@ -243,6 +245,65 @@ void StackEquations(const RobotModel& model, const FrictionModel& friction, cons
   *tau = std::move(tau_kept);
 }
 
+bool PlausibilitySettings::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!(mass_factor_min >= 0.0) || !(mass_factor_max >= 1.0) || !(mass_factor_min <= 1.0) || !(mass_factor_max <= 1e6))
+    return fail("--mass-range: expected 0 <= LO <= 1 <= HI <= 1e6 (factors of each link's robot-file mass), got " +
+                std::to_string(mass_factor_min) + "," + std::to_string(mass_factor_max));
+  if (!(total_mass >= 0.0) || !(total_mass <= 1e6))
+    return fail("--total-mass: expected 0 (none) to 1e6 kg, got " + std::to_string(total_mass));
+  if (!(total_mass_tolerance >= 0.0) || !(total_mass_tolerance <= 1.0))
+    return fail("--total-mass-tolerance: expected a fraction in [0, 1], got " + std::to_string(total_mass_tolerance));
+  if (!(prior_weight >= 0.0) || !(prior_weight <= 1e6))
+    return fail("--prior-weight: expected 0 to 1e6, got " + std::to_string(prior_weight));
+  return true;
+}
+
+PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const FrictionModel& friction,
+                                            const PlausibilitySettings& settings) {
+  const Eigen::VectorXd pi = StandardParameters(model, friction);
+  const std::vector<std::string> names = StandardParameterNames(model, friction);
+  PlausibleFitOptions options;
+  options.prior_weight = settings.prior_weight;
+  options.scale.resize(pi.size());
+  for (int l = 0; l < model.n_links(); ++l) {
+    const LinkInertia& inertia = model.link(l).inertia;
+    const std::optional<Eigen::AlignedBox3d> box_B = LinkBoundingBox_B(model.link(l));
+    // The link's size: half its box's diagonal, at least |c| and 5 cm.
+    double length = std::max(0.05, inertia.p_BoBcm_B.norm());
+    if (box_B) length = std::max(length, 0.5 * box_B->diagonal().norm());
+    const int o = kInertialParametersPerLink * l;
+    const double m = inertia.mass;
+    options.scale[o] = m;
+    options.scale.segment(o + 1, 3).setConstant(m * length);
+    options.scale.segment(o + 4, 6).setConstant(m * length * length);
+    LinkPlausibilityBounds bounds;
+    bounds.mass_min = settings.mass_factor_min * m;
+    bounds.mass_max = settings.mass_factor_max * m;
+    if (settings.com_in_geometry && box_B) {
+      bounds.bound_com = true;
+      bounds.com_min_B = box_B->min();
+      bounds.com_max_B = box_B->max();
+    }
+    options.links.push_back(bounds);
+  }
+  if (settings.total_mass > 0.0) {
+    options.total_mass_min = settings.total_mass * (1.0 - settings.total_mass_tolerance);
+    options.total_mass_max = settings.total_mass * (1.0 + settings.total_mass_tolerance);
+  }
+  // Friction and rotor inertia are physical only when >= 0 (offsets are signed).
+  for (Eigen::Index k = kInertialParametersPerLink * model.n_links(); k < pi.size(); ++k) {
+    options.scale[k] = std::max(std::abs(pi[k]), 1.0);
+    const std::string& name = names[static_cast<size_t>(k)];
+    if (name.rfind("Fv", 0) == 0 || name.rfind("Fc", 0) == 0 || name.rfind("Ia", 0) == 0)
+      options.nonnegative.push_back(static_cast<int>(k));
+  }
+  return options;
+}
+
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
   JointTorqueIdentification out;
@@ -253,19 +314,11 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   const StackedFactors factors = FactorEquations(model, options.friction, out.base, log, options.parallel_filter);
   out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(factors) : SolveOls(factors);
   out.beta = out.linear.beta;
-  // Friction and rotor inertia are physical only when >= 0 (offsets are signed).
-  PhysicallyConsistentOptions consistent = options.consistent;
-  for (size_t c = 0; c < out.standard_names.size(); ++c) {
-    const std::string& name = out.standard_names[c];
-    if (name.rfind("Fv", 0) == 0 || name.rfind("Fc", 0) == 0 || name.rfind("Ia", 0) == 0) {
-      consistent.nonnegative.push_back(static_cast<int>(c));
-    }
-  }
-  // It starts from the least-squares solution near the robot file: the
-  // directions a log does not or hardly excites keep the file's values.
+  // The plausible fit keeps the robot file's values in the directions the
+  // log does not determine.
   const Eigen::MatrixXd factor = CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof()));
-  out.consistent = SolvePhysicallyConsistent(factor, out.base, model.n_links(),
-                                             SolutionNearPrior(factor, out.beta_model), pi_model, consistent);
+  out.consistent = SolvePlausibleFit(factor, out.base, model.n_links(), pi_model,
+                                     MakePlausibleFitOptions(model, options.friction, options.plausibility));
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
   out.fit = Predict(factors, out.beta);
   out.model_fit = Predict(factors, out.beta_model);

@@ -61,6 +61,8 @@ bool IdentifyOptions::IsValid(std::string* why) const {
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
+  std::string plausibility_why;
+  if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
   if (out_dir.empty()) return fail("--out: empty path");
   std::error_code ec;
   if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
@@ -73,6 +75,7 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
   id_options.estimator = *ParseTorqueEstimator(options.estimator);
+  id_options.plausibility = options.plausibility;
   report.log = ReadForIdentification(options.data, model, options.filter, &id_options.parallel_filter);
   report.filtered = id_options.parallel_filter.has_value();
   try {
@@ -145,10 +148,16 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
                 report.validation ? (", validation " + Shortest(report.validation->relative_error)).c_str() : "");
   out += line;
   const PhysicallyConsistentFit& pc = id.consistent;
-  std::snprintf(line, sizeof(line), "Physically consistent fit: cost %.6g vs OLS %.6g (+%.3g %%), min pseudo-inertia "
-                "eigenvalue %.3g, %s\n", pc.cost, pc.ols_cost, 100.0 * (pc.cost - pc.ols_cost) / pc.ols_cost,
+  std::snprintf(line, sizeof(line), "Physically consistent fit (SDP): cost %.6g vs OLS %.6g (the unconstrained "
+                "optimum; +%.3g %%) and robot file %.6g; prior term %.3g; min pseudo-inertia eigenvalue %.3g; %s\n",
+                pc.cost, pc.ols_cost, 100.0 * (pc.cost - pc.ols_cost) / pc.ols_cost, pc.start_cost, pc.prior_cost,
                 pc.min_pseudo_inertia_eigenvalue.minCoeff(), pc.status.c_str());
   out += line;
+  if (!pc.active_bounds.empty()) {
+    out += "  on its bounds:";
+    for (size_t k = 0; k < pc.active_bounds.size(); ++k) out += (k ? "; " : " ") + pc.active_bounds[k];
+    out += '\n';
+  }
   return out;
 }
 
@@ -195,8 +204,18 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
         {"ols_cost", id.consistent.ols_cost},
         {"start_cost", id.consistent.start_cost},
         {"min_pseudo_inertia_eigenvalue", ToStdVector(id.consistent.min_pseudo_inertia_eigenvalue)},
+        {"prior_cost", id.consistent.prior_cost},
+        {"duality_gap", id.consistent.duality_gap},
+        {"converged", id.consistent.converged},
         {"status", id.consistent.status},
-        {"evaluations", id.consistent.evaluations},
+        {"iterations", id.consistent.evaluations},
+        {"active_bounds", id.consistent.active_bounds},
+        {"settings",
+         {{"mass_range", {options.plausibility.mass_factor_min, options.plausibility.mass_factor_max}},
+          {"total_mass", options.plausibility.total_mass > 0.0 ? json(options.plausibility.total_mass) : json(nullptr)},
+          {"total_mass_tolerance", options.plausibility.total_mass_tolerance},
+          {"com_bound", options.plausibility.com_in_geometry ? "geometry" : "none"},
+          {"prior_weight", options.plausibility.prior_weight}}},
         {"standard_parameters", standard}}},
   };
   if (report.validation) {

@@ -20,6 +20,7 @@ struct IdentifyOptions {
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
   LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
+  PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
   std::string validate;            // held-out joint log (optional)
   std::string out_dir = "out/identify";
   std::string command_line;        // recorded in identified.json

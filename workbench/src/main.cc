@@ -280,6 +280,21 @@ int main(int argc, char** argv) {
   identify_cmd->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   identify_cmd->add_option("--validate", identify.validate, "Held-out joint log to validate on");
+  std::vector<double> identify_mass_range{identify.plausibility.mass_factor_min, identify.plausibility.mass_factor_max};
+  identify_cmd->add_option("--mass-range", identify_mass_range,
+                           "Physically consistent estimate: each link's mass within LO,HI x the robot file's")
+      ->delimiter(',')->expected(2)->capture_default_str();
+  identify_cmd->add_option("--total-mass", identify.plausibility.total_mass,
+                           "Total mass of the moving links [kg]; 0: no bound beyond the links'")->capture_default_str();
+  identify_cmd->add_option("--total-mass-tolerance", identify.plausibility.total_mass_tolerance,
+                           "Fraction the total mass may differ from --total-mass")->capture_default_str();
+  std::string identify_com_bound = "geometry";
+  identify_cmd->add_option("--com-bound", identify_com_bound,
+                           "geometry: each centre of mass inside the box around its link's shapes; none")
+      ->capture_default_str();
+  identify_cmd->add_option("--prior-weight", identify.plausibility.prior_weight,
+                           "Weight of the robot file's values as a prior (fraction of the OLS residual)")
+      ->capture_default_str();
   identify_cmd->add_option("--out", identify.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
   bool identify_report = false;
@@ -421,7 +436,14 @@ int main(int argc, char** argv) {
       simulate.sensors.record_derivatives = !no_derivatives;
       return SimulateCommand(simulate);
     }
-    if (identify_cmd->parsed()) return IdentifyCommand(identify, identify_report);
+    if (identify_cmd->parsed()) {
+      identify.plausibility.mass_factor_min = identify_mass_range[0];
+      identify.plausibility.mass_factor_max = identify_mass_range[1];
+      if (identify_com_bound != "geometry" && identify_com_bound != "none")
+        return UsageError("--com-bound: expected geometry or none, got '" + identify_com_bound + "'");
+      identify.plausibility.com_in_geometry = identify_com_bound == "geometry";
+      return IdentifyCommand(identify, identify_report);
+    }
     if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo);
     if (render_cmd->parsed()) return RenderCommand(render);
     if (report_cmd->parsed()) return ReportCommand(report_dir);

@@ -11,6 +11,7 @@
 #include "idbench/ident/base_parameters.h"
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/physically_consistent.h"
+#include "idbench/ident/plausible_fit.h"
 #include "idbench/ident/signal_filter.h"
 
 namespace idbench {
@@ -30,13 +31,36 @@ struct ParallelFilter {
   double sample_rate_hz = 0; // of the log
 };
 
+// What makes the physically consistent estimate a robot description one can
+// load, relative to the robot file (plausible_fit.h): bounds and the weight of
+// the prior.
+struct PlausibilitySettings {
+  // Each link's mass within [mass_factor_min, mass_factor_max] × the file's.
+  double mass_factor_min = 0.5;
+  double mass_factor_max = 1.5;
+  double total_mass = 0.0;              // [kg] of the moving links; 0: no bound beyond the links'
+  double total_mass_tolerance = 0.1;    // Σ m within total_mass × (1 ± this)
+  bool com_in_geometry = true;          // centre of mass in the box around the link's shapes
+  double prior_weight = 1e-4;           // γ (plausible_fit.h)
+
+  bool IsValid(std::string* why) const;
+};
+
 struct JointTorqueOptions {
   FrictionModel friction{.viscous = true, .coulomb = true};
   std::optional<ParallelFilter> parallel_filter;
   TorqueEstimator estimator = TorqueEstimator::kOls;
   BaseParameterOptions base;
-  PhysicallyConsistentOptions consistent;
+  PlausibilitySettings plausibility;
 };
+
+// The bounds and scales of the plausible fit for a robot file (the prior):
+// per link, mass in the settings' range, centre of mass in LinkBoundingBox_B
+// (links without shapes: unbounded), scales D_m = m, D_h = m L, D_I = m L²
+// with L the link's size (half the box diagonal, at least |c| and 5 cm),
+// friction scales max(|value|, 1); Fv, Fc, Ia ≥ 0.
+PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const FrictionModel& friction,
+                                            const PlausibilitySettings& settings);
 
 // How well base parameters predict a log's torques.
 struct TorquePrediction {

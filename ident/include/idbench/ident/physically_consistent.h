@@ -30,6 +30,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,10 @@ struct PhysicallyConsistentFit {
   int rounds = 0;         // NLopt runs (each re-preconditioned)
   std::string status;     // the last round's NLopt result, e.g. "FTOL_REACHED"
   bool converged = false; // stopped on a tolerance or by rounding, not on max_evaluations
+  // SolvePlausibleFit (plausible_fit.h) only:
+  double prior_cost = 0.0;   // the prior term λ‖x‖² at the optimum [N² m²]
+  double duality_gap = std::numeric_limits<double>::quiet_NaN();  // relative, certifies the optimum
+  std::vector<std::string> active_bounds;  // e.g. "B2.m at its upper bound 3.1 kg"
 };
 
 // f(x) = ‖W_b C π(x) − τ‖² and its gradient, over x = (factor of link 1, …,

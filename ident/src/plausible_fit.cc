@@ -1,0 +1,232 @@
+#include "idbench/ident/plausible_fit.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "plausible_program.h"
+#include "idbench/ident/joint_torque_regressor.h"
+
+namespace idbench {
+namespace {
+
+constexpr int kP = kInertialParametersPerLink;
+// Entries of π within a link's 10: m, then h = m c (x, y, z).
+constexpr int kMass = 0;
+constexpr int kFirstMoment = 1;
+constexpr double kPriorFloor = 1e-10;
+
+std::string Number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g", v);
+  return text;
+}
+
+// ‖W_b β − τ‖² = ‖R β − z‖² + ρ² from the factor [R z; 0 ρ] of [W_b τ].
+double DataCost(const Eigen::MatrixXd& factor, const Eigen::VectorXd& beta) {
+  const Eigen::Index p = beta.size();
+  const double rho = factor(p, p);
+  return (factor.topLeftCorner(p, p).triangularView<Eigen::Upper>() * beta - factor.col(p).head(p)).squaredNorm() +
+         rho * rho;
+}
+
+// J(e_k): the pseudo-inertia of the k-th unit parameter vector of one link.
+Eigen::Matrix4d UnitPseudoInertia(int k) {
+  InertialParameters e = InertialParameters::Zero();
+  e[k] = 1.0;
+  return PseudoInertia(e);
+}
+
+}  // namespace
+
+bool PlausibleFitOptions::IsValid(int n_links, int n_standard, std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!links.empty() && static_cast<int>(links.size()) != n_links)
+    return fail("expected bounds for " + std::to_string(n_links) + " links, got " + std::to_string(links.size()));
+  for (size_t l = 0; l < links.size(); ++l) {
+    const LinkPlausibilityBounds& b = links[l];
+    const std::string where = "link " + std::to_string(l + 1) + ": ";
+    if (!(b.mass_min >= 0.0) || !(b.mass_max >= b.mass_min) || std::isnan(b.mass_max))
+      return fail(where + "mass bounds must satisfy 0 <= min <= max, got [" + Number(b.mass_min) + ", " + Number(b.mass_max) + "]");
+    if (b.bound_com && (!b.com_min_B.allFinite() || !b.com_max_B.allFinite() || (b.com_max_B - b.com_min_B).minCoeff() < 0.0))
+      return fail(where + "centre-of-mass box must be finite with min <= max");
+  }
+  if (!(total_mass_min >= 0.0) || !(total_mass_max >= total_mass_min) || std::isnan(total_mass_max))
+    return fail("total mass bounds must satisfy 0 <= min <= max, got [" + Number(total_mass_min) + ", " + Number(total_mass_max) + "]");
+  for (int k : nonnegative)
+    if (k < kP * n_links || k >= n_standard) return fail("nonnegative index " + std::to_string(k) + " is not a friction entry");
+  if (scale.size() != n_standard || !scale.allFinite() || !(scale.minCoeff() > 0.0))
+    return fail("expected " + std::to_string(n_standard) + " positive finite parameter scales");
+  if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) return fail("prior weight must be finite and >= 0");
+  if (!(pseudo_inertia_margin >= 0.0) || !(pseudo_inertia_margin < 1.0)) return fail("pseudo-inertia margin must be in [0, 1)");
+  if (!(gap_tolerance > 0.0) || max_iterations < 1) return fail("gap tolerance must be > 0 and iterations >= 1");
+  return true;
+}
+
+namespace internal {
+
+PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseParameters& base, int n_links,
+                                      const Eigen::VectorXd& pi_prior, const PlausibleFitOptions& options) {
+  const Eigen::MatrixXd& C = base.combination;
+  const Eigen::Index p = C.rows();
+  const int n = static_cast<int>(C.cols());
+  if (factor.rows() != p + 1 || factor.cols() != p + 1 || !factor.allFinite())
+    throw std::invalid_argument("plausible fit: expected a finite " + std::to_string(p + 1) + "x" + std::to_string(p + 1) + " factor");
+  if (n < kP * n_links || pi_prior.size() != n || !pi_prior.allFinite())
+    throw std::invalid_argument("plausible fit: expected a finite prior of " + std::to_string(n) + " parameters for " +
+                                std::to_string(n_links) + " links");
+  std::string why;
+  if (!options.IsValid(n_links, n, &why)) throw std::invalid_argument("plausible fit: " + why);
+  PlausibleProgram program;
+
+  // Normalised least squares in x = D⁻¹(π − π_prior): the data rows
+  // (R C D x − (z − R C π_prior))/s and the prior rows, with s² the cost of
+  // the prior, so that the objective is O(1) whatever the robot's size.
+  const Eigen::MatrixXd R = factor.topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  const Eigen::VectorXd z = factor.col(p).head(p);
+  program.rho2 = factor(p, p) * factor(p, p);
+  program.start_cost = DataCost(factor, C * pi_prior);
+  program.s2 = std::max(program.start_cost, 1e-300);
+  const double s = std::sqrt(program.s2);
+  // λ = γ ρ² / n, with ρ² floored so that noise-free data keep a prior term.
+  const double lambda = options.prior_weight * std::max(program.rho2, 1e-12 * program.start_cost) / n;
+  Eigen::MatrixXd M(p + n, n);
+  M.topRows(p) = (R * C * options.scale.asDiagonal()) / s;
+  // Prior weights λ_k = max(λ, κ ‖data column k‖²): where the data are 10⁵
+  // times (in singular value) stronger than the prior, as on a nearly
+  // noise-free log, the floor κ = 10⁻¹⁰ keeps the Newton systems within what
+  // double precision resolves, at a relative bias of κ/(curvature) in the
+  // directions the data determine.
+  program.prior_weights = (kPriorFloor * M.topRows(p).colwise().squaredNorm().transpose()).cwiseMax(lambda / program.s2);
+  M.bottomRows(n) = program.prior_weights.cwiseSqrt().asDiagonal();
+  // Variables u = x ∘ ‖M_k‖ (unit-norm columns): the same problem, better
+  // conditioned. π = π_prior + D ∘ u, D the scale over the column norms.
+  program.column_norms = M.colwise().norm().transpose();
+  program.D = options.scale.cwiseQuotient(program.column_norms);
+  const Eigen::VectorXd& D = program.D;
+  M = M * program.column_norms.cwiseInverse().asDiagonal();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(p + n);
+  rhs.head(p) = (z - R * (C * pi_prior)) / s;
+  // QR to n rows: ‖M u − rhs‖² = ‖R1 u − z1‖² + rest.
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(M);
+  program.sdp.R = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
+  const Eigen::VectorXd qt_rhs = qr.householderQ().transpose() * rhs;
+  program.sdp.z = qt_rhs.head(n);
+  program.rest = qt_rhs.tail(p).squaredNorm();
+
+  // Per link: J(π_prior + D u) − ε diag(D_I, D_I, D_I, D_m) ⪰ 0, J linear in π.
+  for (int l = 0; l < n_links; ++l) {
+    const int o = kP * l;
+    const double inertia_scale = options.scale.segment(o + 4, 6).maxCoeff();
+    const Eigen::Vector4d margin(inertia_scale, inertia_scale, inertia_scale, options.scale[o + kMass]);
+    LmiBlock block;
+    block.C = PseudoInertia(pi_prior.segment(o, kP)) - Eigen::Matrix4d(options.pseudo_inertia_margin * margin.asDiagonal());
+    for (int k = 0; k < kP; ++k) {
+      block.variables.push_back(o + k);
+      block.B.push_back(D[o + k] * UnitPseudoInertia(k));
+    }
+    program.sdp.blocks.push_back(std::move(block));
+  }
+  // Linear rows c + aᵀu ≥ 0. The mass of link l is m_prior + D_m u_m.
+  auto add_row = [&](double c, std::vector<std::pair<int, double>> a) {
+    program.sdp.rows.push_back(LinearInequality{c, std::move(a)});
+  };
+  auto mass_term = [&](int l, double factor_of_mass) {
+    return std::make_pair(kP * l + kMass, factor_of_mass * D[kP * l + kMass]);
+  };
+  for (size_t l = 0; l < options.links.size(); ++l) {
+    const LinkPlausibilityBounds& bounds = options.links[l];
+    const int o = kP * static_cast<int>(l);
+    const double m0 = pi_prior[o + kMass];
+    if (std::isfinite(bounds.mass_max)) add_row(bounds.mass_max - m0, {mass_term(static_cast<int>(l), -1.0)});
+    if (bounds.mass_min > 0.0) add_row(m0 - bounds.mass_min, {mass_term(static_cast<int>(l), 1.0)});
+    if (!bounds.bound_com) continue;
+    // m c_min ≤ h ≤ m c_max, h = h_prior + D_h u_h.
+    for (int a = 0; a < 3; ++a) {
+      const int h = o + kFirstMoment + a;
+      const double h0 = pi_prior[h];
+      add_row(h0 - bounds.com_min_B[a] * m0, {{h, D[h]}, mass_term(static_cast<int>(l), -bounds.com_min_B[a])});
+      add_row(bounds.com_max_B[a] * m0 - h0, {{h, -D[h]}, mass_term(static_cast<int>(l), bounds.com_max_B[a])});
+    }
+  }
+  double total0 = 0.0;
+  std::vector<std::pair<int, double>> total_up, total_down;
+  for (int l = 0; l < n_links; ++l) {
+    total0 += pi_prior[kP * l + kMass];
+    total_up.push_back(mass_term(l, -1.0));
+    total_down.push_back(mass_term(l, 1.0));
+  }
+  if (std::isfinite(options.total_mass_max)) add_row(options.total_mass_max - total0, total_up);
+  if (options.total_mass_min > 0.0) add_row(total0 - options.total_mass_min, total_down);
+  for (int k : options.nonnegative) add_row(pi_prior[k], {{k, D[k]}});
+
+  // Start at the prior with the nonnegative terms raised off zero (a robot
+  // file without friction would start on the boundary).
+  program.start = Eigen::VectorXd::Zero(n);
+  for (int k : options.nonnegative) {
+    const double floor = 1e-3 * options.scale[k];
+    if (pi_prior[k] < floor) program.start[k] = (floor - pi_prior[k]) / D[k];
+  }
+  return program;
+}
+
+}  // namespace internal
+
+PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const BaseParameters& base, int n_links,
+                                          const Eigen::VectorXd& pi_prior, const PlausibleFitOptions& options) {
+  const internal::PlausibleProgram program = internal::MakePlausibleProgram(factor, base, n_links, pi_prior, options);
+  internal::QuadraticSdpOptions solver;
+  solver.relative_gap = options.gap_tolerance;
+  solver.objective_offset = program.rest + program.rho2 / program.s2;
+  solver.max_newton_steps = options.max_iterations;
+  solver.start = program.start;
+  const internal::QuadraticSdpSolution solution = internal::SolveQuadraticSdp(program.sdp, solver);
+  const Eigen::VectorXd& u = solution.u;
+
+  PhysicallyConsistentFit fit;
+  fit.pi = pi_prior + program.D.cwiseProduct(u);
+  fit.beta = base.combination * fit.pi;
+  fit.cost = DataCost(factor, fit.beta);
+  fit.ols_cost = program.rho2;
+  fit.start_cost = program.start_cost;
+  fit.prior_cost = program.s2 * program.prior_weights.dot(u.cwiseQuotient(program.column_norms).cwiseAbs2());
+  fit.min_pseudo_inertia_eigenvalue = MinPseudoInertiaEigenvalues(fit.pi, n_links);
+  fit.evaluations = solution.newton_steps;
+  fit.rounds = 1;
+  fit.duality_gap = solution.relative_gap;
+  fit.converged = solution.converged;
+  char status[200];
+  std::snprintf(status, sizeof(status), "%s: relative duality gap %.2g", solution.status.c_str(), fit.duality_gap);
+  fit.status = solution.feasible ? status : solution.status;
+
+  // The bounds the optimum lies on (within 1e-6 of the scale).
+  for (size_t l = 0; l < options.links.size(); ++l) {
+    const LinkPlausibilityBounds& bounds = options.links[l];
+    const int o = kP * static_cast<int>(l);
+    const double m = fit.pi[o + kMass];
+    const double tolerance = 1e-6 * options.scale[o + kMass];
+    const std::string link = "B" + std::to_string(l + 1);
+    if (std::isfinite(bounds.mass_max) && m >= bounds.mass_max - tolerance)
+      fit.active_bounds.push_back(link + ".m at its upper bound " + Number(bounds.mass_max) + " kg");
+    if (bounds.mass_min > 0.0 && m <= bounds.mass_min + tolerance)
+      fit.active_bounds.push_back(link + ".m at its lower bound " + Number(bounds.mass_min) + " kg");
+    if (!bounds.bound_com || !(m > 0.0)) continue;
+    for (int a = 0; a < 3; ++a) {
+      const double c = fit.pi[o + kFirstMoment + a] / m;
+      const double length_tolerance = 1e-6 * options.scale[o + kFirstMoment + a] / options.scale[o + kMass];
+      const char axis = static_cast<char>('x' + a);
+      if (c <= bounds.com_min_B[a] + length_tolerance)
+        fit.active_bounds.push_back(link + ".c" + axis + " on its box's lower face " + Number(bounds.com_min_B[a]) + " m");
+      if (c >= bounds.com_max_B[a] - length_tolerance)
+        fit.active_bounds.push_back(link + ".c" + axis + " on its box's upper face " + Number(bounds.com_max_B[a]) + " m");
+    }
+  }
+  return fit;
+}
+
+}  // namespace idbench

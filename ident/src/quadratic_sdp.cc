@@ -1,0 +1,288 @@
+#include "quadratic_sdp.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace idbench::internal {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kBarrierGrowth = 20.0;     // τ ← 20 τ after each centring
+constexpr double kCentringTolerance = 1e-9; // Newton decrement² / 2 that ends a centring
+constexpr double kArmijo = 0.25;
+constexpr int kMaxStepsPerCentring = 100;
+
+// A barrier problem over w: minimise τ (½ wᵀPw + qᵀw) − Σ log det S_j(w) − Σ log r_k(w).
+struct BarrierProblem {
+  Eigen::MatrixXd P;
+  Eigen::VectorXd q;
+  const std::vector<LmiBlock>* blocks = nullptr;
+  const std::vector<LinearInequality>* rows = nullptr;
+  int extra = -1;  // phase I: the variable s added to every block (s 𝟙) and row (+s); −1: none
+
+  int n() const { return static_cast<int>(q.size()); }
+  int degree() const {  // Σ dim S_j + number of rows: the gap of a centred point is degree/τ
+    int m = static_cast<int>(rows->size());
+    for (const LmiBlock& b : *blocks) m += static_cast<int>(b.C.rows());
+    return m;
+  }
+  double Objective(const Eigen::VectorXd& w) const { return 0.5 * w.dot(P * w) + q.dot(w); }
+  Eigen::MatrixXd S(int j, const Eigen::VectorXd& w) const {
+    const LmiBlock& b = (*blocks)[static_cast<size_t>(j)];
+    Eigen::MatrixXd S = b.C;
+    for (size_t i = 0; i < b.variables.size(); ++i) S += w[b.variables[i]] * b.B[i];
+    if (extra >= 0) S.diagonal().array() += w[extra];
+    return S;
+  }
+  double r(int k, const Eigen::VectorXd& w) const {
+    const LinearInequality& row = (*rows)[static_cast<size_t>(k)];
+    double value = row.c;
+    for (const auto& [i, a] : row.a) value += a * w[i];
+    return extra >= 0 ? value + w[extra] : value;
+  }
+  // The barrier function at w, +∞ outside the strict interior.
+  double Phi(const Eigen::VectorXd& w, double tau) const {
+    double phi = tau * Objective(w);
+    for (int j = 0; j < static_cast<int>(blocks->size()); ++j) {
+      const Eigen::LLT<Eigen::MatrixXd> llt(S(j, w));
+      if (llt.info() != Eigen::Success) return kInf;
+      const Eigen::VectorXd d = llt.matrixL().toDenseMatrix().diagonal();
+      if (!(d.minCoeff() > 0.0)) return kInf;
+      phi -= 2.0 * d.array().log().sum();
+    }
+    for (int k = 0; k < static_cast<int>(rows->size()); ++k) {
+      const double value = r(k, w);
+      if (!(value > 0.0)) return kInf;
+      phi -= std::log(value);
+    }
+    return std::isfinite(phi) ? phi : kInf;
+  }
+  // Phi(w + d) − Phi(w) for a strictly feasible w, computed from the
+  // differences themselves (the quadratic's increment, log det(𝟙 + L⁻¹ΔS L⁻ᵀ),
+  // log1p of the slacks) so that it stays accurate where τ f(w) is 10¹⁰
+  // times larger; +∞ if w + d leaves the strict interior.
+  double PhiChange(const Eigen::VectorXd& w, const Eigen::VectorXd& d, double tau) const {
+    double change = tau * ((P * w + q).dot(d) + 0.5 * d.dot(P * d));
+    for (int j = 0; j < static_cast<int>(blocks->size()); ++j) {
+      const Eigen::LLT<Eigen::MatrixXd> llt(S(j, w));
+      Eigen::MatrixXd dS = S(j, d) - (*blocks)[static_cast<size_t>(j)].C;  // linear part at d
+      const Eigen::MatrixXd Linv_dS = llt.matrixL().solve(dS);
+      Eigen::MatrixXd M = llt.matrixL().solve(Linv_dS.transpose());  // L⁻¹ ΔS L⁻ᵀ
+      M.diagonal().array() += 1.0;
+      const Eigen::LLT<Eigen::MatrixXd> step(M);
+      if (step.info() != Eigen::Success) return kInf;
+      const Eigen::VectorXd diagonal = step.matrixL().toDenseMatrix().diagonal();
+      if (!(diagonal.minCoeff() > 0.0)) return kInf;
+      change -= 2.0 * diagonal.array().log().sum();
+    }
+    for (int k = 0; k < static_cast<int>(rows->size()); ++k) {
+      const double value = r(k, w), delta = r(k, d) - (*rows)[static_cast<size_t>(k)].c;
+      if (!(value + delta > 0.0)) return kInf;
+      change -= std::log1p(delta / value);
+    }
+    return std::isfinite(change) ? change : kInf;
+  }
+  // Gradient and Hessian of Phi at a strictly feasible w.
+  void Derivatives(const Eigen::VectorXd& w, double tau, Eigen::VectorXd* grad, Eigen::MatrixXd* hess) const {
+    *grad = tau * (P * w + q);
+    *hess = tau * P;
+    for (int j = 0; j < static_cast<int>(blocks->size()); ++j) {
+      const LmiBlock& b = (*blocks)[static_cast<size_t>(j)];
+      const Eigen::MatrixXd S_inv = S(j, w).llt().solve(Eigen::MatrixXd::Identity(b.C.rows(), b.C.rows()));
+      std::vector<Eigen::MatrixXd> Y;  // S⁻¹ B_i
+      std::vector<int> index;
+      for (size_t i = 0; i < b.variables.size(); ++i) {
+        Y.push_back(S_inv * b.B[i]);
+        index.push_back(b.variables[i]);
+      }
+      if (extra >= 0) {
+        Y.push_back(S_inv);
+        index.push_back(extra);
+      }
+      for (size_t i = 0; i < Y.size(); ++i) {
+        (*grad)[index[i]] -= Y[i].trace();
+        for (size_t l = 0; l <= i; ++l) {
+          const double h = Y[i].cwiseProduct(Y[l].transpose()).sum();  // tr(Y_i Y_l)
+          (*hess)(index[i], index[l]) += h;
+          if (l != i) (*hess)(index[l], index[i]) += h;
+        }
+      }
+    }
+    for (int k = 0; k < static_cast<int>(rows->size()); ++k) {
+      const LinearInequality& row = (*rows)[static_cast<size_t>(k)];
+      const double value = r(k, w);
+      std::vector<std::pair<int, double>> a = row.a;
+      if (extra >= 0) a.emplace_back(extra, 1.0);
+      for (const auto& [i, ai] : a) {
+        (*grad)[i] -= ai / value;
+        for (const auto& [l, al] : a) (*hess)(i, l) += ai * al / (value * value);
+      }
+    }
+  }
+};
+
+// Minimises Phi(·, τ) from a strictly feasible w by damped Newton steps;
+// returns false if a step could not lower it (stalled). `stop` ends early.
+template <typename Stop>
+bool Centre(const BarrierProblem& problem, double tau, Eigen::VectorXd* w, int* steps, int max_steps, Stop stop) {
+  Eigen::VectorXd grad;
+  Eigen::MatrixXd hess;
+  while (*steps < max_steps) {
+    problem.Derivatives(*w, tau, &grad, &hess);
+    // Newton direction from the symmetrically scaled system E H E (E H E)
+    // unit diagonal: the barrier's curvature grows as 1/slack² near active
+    // constraints, and the scaling keeps the factorisation accurate), with a
+    // tiny diagonal shift where rounding makes it semidefinite.
+    const Eigen::VectorXd E = hess.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    Eigen::MatrixXd scaled = E.asDiagonal() * hess * E.asDiagonal();
+    Eigen::VectorXd step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
+    if (!step.allFinite() || !(grad.dot(step) < 0.0)) {
+      scaled.diagonal().array() += 1e-12;
+      step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
+      if (!step.allFinite() || !(grad.dot(step) < 0.0)) return false;
+    }
+    const double decrement2 = -grad.dot(step);
+    if (decrement2 / 2.0 <= kCentringTolerance) return true;
+    // Backtracking line search inside the domain. Within the region of
+    // quadratic convergence (decrement < 1/4 for the self-concordant barrier,
+    // Boyd & Vandenberghe §9.6.4) the full step is taken when it stays
+    // feasible: there, Armijo's test would compare differences that rounding
+    // has already swamped.
+    const bool quadratic_region = decrement2 < 1.0 / 16.0;
+    double alpha = 1.0;
+    while (quadratic_region ? !std::isfinite(problem.PhiChange(*w, alpha * step, tau))
+                            : problem.PhiChange(*w, alpha * step, tau) > -kArmijo * alpha * decrement2) {
+      alpha *= 0.5;
+      if (alpha < 1e-14) return decrement2 < 1e-6;  // rounding floor near the centre
+    }
+    *w += alpha * step;
+    ++*steps;
+    if (stop(*w)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const QuadraticSdpOptions& options) {
+  const int n = problem.n_variables();
+  if (problem.R.rows() != n || problem.z.size() != n || n < 1)
+    throw std::invalid_argument("SolveQuadraticSdp: expected a square R and z of its size");
+  for (const LmiBlock& b : problem.blocks) {
+    if (b.C.rows() != b.C.cols() || b.variables.size() != b.B.size())
+      throw std::invalid_argument("SolveQuadraticSdp: malformed block");
+    for (size_t i = 0; i < b.variables.size(); ++i)
+      if (b.variables[i] < 0 || b.variables[i] >= n || b.B[i].rows() != b.C.rows() || b.B[i].cols() != b.C.cols())
+        throw std::invalid_argument("SolveQuadraticSdp: block variable or size out of range");
+  }
+  for (const LinearInequality& row : problem.rows)
+    for (const auto& [i, a] : row.a)
+      if (i < 0 || i >= n) throw std::invalid_argument("SolveQuadraticSdp: row variable out of range");
+
+  QuadraticSdpSolution solution;
+  Eigen::VectorXd u = options.start.size() == n ? options.start : Eigen::VectorXd::Zero(n);
+
+  // Phase I, when the start is not strictly feasible: minimise s over (u, s)
+  // with S_j(u) + s 𝟙 ⪰ 0 and r_k(u) + s ≥ 0 (plus ε/2 ‖u − u₀‖², which keeps
+  // the Newton system regular for variables no constraint holds) until s < 0.
+  BarrierProblem phase1;
+  phase1.blocks = &problem.blocks;
+  phase1.rows = &problem.rows;
+  {
+    double worst = kInf;  // the least eigenvalue or slack at u
+    BarrierProblem plain = phase1;
+    plain.q = Eigen::VectorXd::Zero(n);
+    for (int j = 0; j < static_cast<int>(problem.blocks.size()); ++j)
+      worst = std::min(worst, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plain.S(j, u), Eigen::EigenvaluesOnly)
+                                  .eigenvalues()[0]);
+    for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) worst = std::min(worst, plain.r(k, u));
+    if (!(worst > 0.0)) {
+      const Eigen::VectorXd u0 = u;
+      phase1.extra = n;
+      phase1.P = Eigen::MatrixXd::Zero(n + 1, n + 1);
+      phase1.P.topLeftCorner(n, n).diagonal().setConstant(1e-8);
+      phase1.q = Eigen::VectorXd::Zero(n + 1);
+      phase1.q.head(n) = -1e-8 * u0;
+      phase1.q[n] = 1.0;
+      Eigen::VectorXd w(n + 1);
+      w << u, 1.0 - worst;
+      bool found = false;
+      for (double tau = 1.0; tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps; tau *= kBarrierGrowth) {
+        Centre(phase1, tau, &w, &solution.newton_steps, options.max_newton_steps,
+               [&](const Eigen::VectorXd& v) { return found = v[n] < 0.0; });
+        found = found || w[n] < 0.0;
+      }
+      if (!found) {
+        solution.u = w.head(n);
+        solution.status = "infeasible: no parameters satisfy every constraint (the least violation is " +
+                          std::to_string(w[n]) + ")";
+        return solution;
+      }
+      u = w.head(n);
+    }
+  }
+
+  // Phase II: f(u) = ‖R u − z‖² = ½ uᵀ(2RᵀR)u − 2(Rᵀz)ᵀu + zᵀz.
+  BarrierProblem phase2;
+  phase2.blocks = &problem.blocks;
+  phase2.rows = &problem.rows;
+  phase2.P = 2.0 * problem.R.transpose() * problem.R;
+  phase2.q = -2.0 * problem.R.transpose() * problem.z;
+  const Eigen::LDLT<Eigen::MatrixXd> P_ldlt(phase2.P);
+  auto f = [&](const Eigen::VectorXd& v) { return (problem.R * v - problem.z).squaredNorm(); };
+  // The dual function at Z_j = S_j⁻¹/τ, λ_k = 1/(τ r_k): a lower bound on f*.
+  auto lower_bound = [&](const Eigen::VectorXd& v, double tau) {
+    Eigen::VectorXd g_dual = Eigen::VectorXd::Zero(n);  // Σ tr(Z_j B_ij) + Σ λ_k a_k
+    double constant = 0.0;                               // Σ tr(Z_j C_j) + Σ λ_k c_k
+    for (int j = 0; j < static_cast<int>(problem.blocks.size()); ++j) {
+      const LmiBlock& b = problem.blocks[static_cast<size_t>(j)];
+      const Eigen::MatrixXd Z = phase2.S(j, v).llt().solve(Eigen::MatrixXd::Identity(b.C.rows(), b.C.rows())) / tau;
+      constant += Z.cwiseProduct(b.C).sum();
+      for (size_t i = 0; i < b.variables.size(); ++i) g_dual[b.variables[i]] += Z.cwiseProduct(b.B[i]).sum();
+    }
+    for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) {
+      const LinearInequality& row = problem.rows[static_cast<size_t>(k)];
+      const double lambda = 1.0 / (tau * phase2.r(k, v));
+      constant += lambda * row.c;
+      for (const auto& [i, a] : row.a) g_dual[i] += lambda * a;
+    }
+    const Eigen::VectorXd v_star = P_ldlt.solve(g_dual - phase2.q);
+    return f(v_star) - constant - g_dual.dot(v_star);
+  };
+  // Outer iterations: centre, certify, raise τ. Rounding ends the progress
+  // once τ f is ~10¹³ times the Newton decrement; the best certified point
+  // is kept.
+  const int degree = phase2.degree();
+  double tau = degree / std::max(f(u) + options.objective_offset, 1e-300);
+  bool stalled = false;
+  double best_gap = kInf;
+  Eigen::VectorXd best_u = u;
+  while (solution.newton_steps < options.max_newton_steps) {
+    const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
+    stalled = !Centre(phase2, tau, &u, &solution.newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
+    const double objective = f(u), bound = lower_bound(u, tau);
+    const double gap = (objective - bound) / std::max(objective + options.objective_offset, 1e-300);
+    if (gap < best_gap) {
+      best_gap = gap;
+      best_u = u;
+      solution.objective = objective;
+      solution.lower_bound = bound;
+    }
+    if (best_gap <= options.relative_gap || gap > 10.0 * best_gap) break;
+    tau *= kBarrierGrowth;
+  }
+  solution.u = best_u;
+  solution.relative_gap = best_gap;
+  solution.feasible = std::isfinite(phase2.Phi(best_u, 1.0));
+  solution.converged = solution.feasible && best_gap <= options.relative_gap;
+  solution.status = solution.converged ? "converged"
+                    : stalled ? "stopped where rounding ends the progress"
+                              : "stopped: Newton step limit reached";
+  return solution;
+}
+
+}  // namespace idbench::internal
