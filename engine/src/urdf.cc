@@ -123,6 +123,13 @@ std::string Format(double value) {
   return out.str();
 }
 
+// What --lock takes for a joint: "NAME=VALUE", or "NAME=0" for a floating or
+// planar joint (only its <origin> can be held).
+std::string LockArgument(const urdf::Joint& joint) {
+  const bool origin_only = joint.type == urdf::Joint::FLOATING || joint.type == urdf::Joint::PLANAR;
+  return joint.name + (origin_only ? "=0" : "=VALUE");
+}
+
 // Names quoted and separated by ", ".
 std::string QuotedList(const std::vector<std::string>& names) {
   std::string list;
@@ -311,7 +318,7 @@ class Loader {
       const urdf::Joint& joint = *blocked.front();
       Fail("joint " + Quote(joint.name) + " (" + TypeName(joint) +
            ") carries revolute joints; idbench identifies revolute chains and cannot tell whether this joint "
-           "belongs to the arm: pass --lock " + joint.name + "=VALUE to hold it (the chain then continues "
+           "belongs to the arm: pass --lock " + LockArgument(joint) + " to hold it (the chain then continues "
            "through it), or --tip LINK to end the chain above it");
     }
     if (ends.empty()) {
@@ -359,7 +366,7 @@ class Loader {
         case Role::kOther:
           Fail("joint " + Quote(joint.name) + ": " + TypeName(joint) + " joint on the chain from the root link " +
                Quote(root.name) + " to " + Quote(tip->name) + "; idbench identifies revolute chains: pass --lock " +
-               joint.name + "=VALUE to hold it, or a --tip above it");
+               LockArgument(joint) + " to hold it, or a --tip above it");
       }
     }
     if (chain_.empty()) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -130,6 +131,13 @@ std::string Joint(const std::string& name, const std::string& type, const std::s
                   const std::string& child, const std::string& extra = kLimit) {
   return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
          "\"/><child link=\"" + child + "\"/>" + extra + "</joint>\n";
+}
+
+UrdfLoadOptions Options(std::map<std::string, double> locked_joints, std::string tip_link = "") {
+  UrdfLoadOptions options;
+  options.locked_joints = std::move(locked_joints);
+  options.tip_link = std::move(tip_link);
+  return options;
 }
 
 // Loading `xml` must throw std::invalid_argument whose message contains
@@ -480,18 +488,27 @@ TEST(UrdfTest, RejectsUnsupportedJointTypesNamingTheJoint) {
   ExpectRejected(rail, {"joint 'rail'", "prismatic", "--lock rail=VALUE"});
   // A --tip below it does not make it a revolute joint.
   try {
-    LoadUrdfString(rail, "<string>", "", UrdfLoadOptions{.tip_link = "b"});
+    LoadUrdfString(rail, "<string>", "", Options({}, "b"));
     ADD_FAILURE() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("joint 'rail': prismatic joint on the chain"), std::string::npos) << e.what();
   }
   // Locked, it holds the arm 0.3 m along x: the carriage joins the ground.
-  const UrdfLoadResult locked = LoadUrdfString(rail, "<string>", "", UrdfLoadOptions{.locked_joints = {{"rail", 0.3}}});
+  const UrdfLoadResult locked = LoadUrdfString(rail, "<string>", "", Options({{"rail", 0.3}}));
   ASSERT_EQ(locked.model.n_dof(), 2);
   ExpectNear(locked.model.link(0).X_PJ.translation(), Eigen::Vector3d(0.3, 0, 0), 1e-15, "j1 on the locked rail");
   ASSERT_EQ(locked.warnings.size(), 1u);
   EXPECT_NE(locked.warnings[0].find("'rail' (prismatic, at 0.3 m by --lock, into the ground)"), std::string::npos)
       << locked.warnings[0];
+
+  // A floating base (a mobile robot's file) can only be held at its origin.
+  const std::string floating = Robot(BareLink("world") + MassLink("base") + MassLink("a") +
+                                     Joint("base_joint", "floating", "world", "base", "<origin xyz=\"0 0 0.4\"/>") +
+                                     Joint("j1", "revolute", "base", "a"));
+  ExpectRejected(floating, {"joint 'base_joint' (floating)", "--lock base_joint=0 "});
+  const UrdfLoadResult held =
+      LoadUrdfString(floating, "<string>", "", Options({{"base_joint", 0.0}}));
+  ExpectNear(held.model.link(0).X_PJ.translation(), Eigen::Vector3d(0, 0, 0.4), 0.0, "j1 on the held base");
 }
 
 TEST(UrdfTest, RejectsBranchingNamingTheLink) {
@@ -760,15 +777,15 @@ TEST(UrdfTest, TipAndLockShortenTheChain) {
 
 TEST(UrdfTest, OptionsThatDoNotFitTheFileAreRefusedNamingWhatToChange) {
   const std::string panda = testing::PandaLikeUrdf();
-  ExpectRejectedWith(panda, {.locked_joints = {{"panda_finger_joint1", 0.05}}},
+  ExpectRejectedWith(panda, Options({{"panda_finger_joint1", 0.05}}),
                      {"--lock panda_finger_joint1=0.05", "outside the <limit>", "[0, 0.04] m"});
-  ExpectRejectedWith(panda, {.locked_joints = {{"wrist", 0.0}}},
+  ExpectRejectedWith(panda, Options({{"wrist", 0.0}}),
                      {"no joint 'wrist'", "joints that can be locked: 'panda_finger_joint1', 'panda_finger_joint2', "
                                           "'panda_joint1'"});
-  ExpectRejectedWith(panda, {.locked_joints = {{"panda_hand_joint", 0.0}}}, {"'panda_hand_joint' is fixed already"});
-  ExpectRejectedWith(panda, {.tip_link = "flange"}, {"--tip flange: no link 'flange'", "'panda_hand'"});
-  ExpectRejectedWith(panda, {.tip_link = "panda_link0"}, {"root link"});
-  ExpectRejectedWith(panda, {.tip_link = "panda_leftfinger"},
+  ExpectRejectedWith(panda, Options({{"panda_hand_joint", 0.0}}), {"'panda_hand_joint' is fixed already"});
+  ExpectRejectedWith(panda, Options({}, "flange"), {"--tip flange: no link 'flange'", "'panda_hand'"});
+  ExpectRejectedWith(panda, Options({}, "panda_link0"), {"root link"});
+  ExpectRejectedWith(panda, Options({}, "panda_leftfinger"),
                      {"joint 'panda_finger_joint1': prismatic joint on the chain", "--lock panda_finger_joint1=VALUE"});
 
   // AddJointLock parses JOINT=VALUE.
@@ -794,7 +811,7 @@ TEST(UrdfTest, BranchesAskForATipAndTheOtherBranchIsMerged) {
             Joint("j4", "revolute", "a", "c", "<origin xyz=\"0.3 0 0\"/><axis xyz=\"1 0 0\"/>" + kLimit));
   ExpectRejectedWith(xml, {}, {"link 'a': the robot branches into 2 chains", "'b2' (joint 'j3')", "'c' (joint 'j4')",
                                "--tip LINK"});
-  const UrdfLoadResult loaded = LoadUrdfString(xml, "vendor.urdf", "", {.tip_link = "b2"});
+  const UrdfLoadResult loaded = LoadUrdfString(xml, "vendor.urdf", "", Options({}, "b2"));
   ASSERT_EQ(loaded.model.n_dof(), 3);
   // a (1 kg at 0) with c (0.5 kg at (0.3, 0.2, 0)): COM (0.1, 0.2/3, 0).
   const LinkInertia expected = LumpByHand({{1.0, Eigen::Vector3d::Zero(), 0.1 * Eigen::Matrix3d::Identity()},
@@ -805,7 +822,7 @@ TEST(UrdfTest, BranchesAskForATipAndTheOtherBranchIsMerged) {
   ExpectContains(loaded.warnings[0], {"'j4' (revolute, at 0 rad, into link 'a')"});
   // The other end, with a --lock turning c by 1 rad about x: (0.3, 0.2 cos 1, 0.2 sin 1).
   const UrdfLoadResult other =
-      LoadUrdfString(xml, "vendor.urdf", "", {.locked_joints = {{"j4", 1.0}}, .tip_link = "a"});
+      LoadUrdfString(xml, "vendor.urdf", "", Options({{"j4", 1.0}}, "a"));
   ASSERT_EQ(other.model.n_dof(), 1);
   ExpectNear(other.model.link(0).inertia.mass, 1 + 1 + 1 + 0.5, 1e-15, "a with b, b2 and c");
   ExpectContains(other.warnings.at(0), {"locked 3 joints"});
