@@ -61,7 +61,8 @@ void AddRobotLoadOptions(CLI::App* command, idbench::UrdfLoadOptions* options) {
       ->delimiter(',')
       ->type_name("JOINT=VALUE");
   command->add_option("--tip", options->tip_link,
-                      "URDF: the arm's last link, when the file branches (default: the end of its one revolute chain)");
+                      "URDF: the arm's last link, when the file branches (default: the end of its one revolute chain)")
+      ->type_name("LINK");
 }
 
 int RunCommand(const idbench::RunOptions& options) {
