@@ -104,21 +104,59 @@ std::optional<std::filesystem::path> ResolveMeshUri(const std::string& uri, cons
   return std::nullopt;
 }
 
-// Walks a urdfdom tree from its root along the one chain of moving joints,
-// merging fixed subtrees into the link above them.
+const char* TypeName(const urdf::Joint& joint) {
+  switch (joint.type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown-type";
+  }
+}
+
+// A number as a message shows it (6 significant digits).
+std::string Format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// What --lock takes for a joint: "NAME=VALUE", or "NAME=0" for a floating or
+// planar joint (only its <origin> can be held).
+std::string LockArgument(const urdf::Joint& joint) {
+  const bool origin_only = joint.type == urdf::Joint::FLOATING || joint.type == urdf::Joint::PLANAR;
+  return joint.name + (origin_only ? "=0" : "=VALUE");
+}
+
+// Names quoted and separated by ", ".
+std::string QuotedList(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + Quote(name);
+  return list;
+}
+
+// Chooses the chain of a urdfdom tree (the joints that become the model's
+// degrees of freedom), then walks it from the root, merging every link held
+// rigidly (fixed or locked joints) into the chain link above it.
 class Loader {
  public:
-  Loader(const urdf::ModelInterface& urdf, std::string source, std::filesystem::path base_directory)
-      : urdf_(urdf), source_(std::move(source)), base_directory_(std::move(base_directory)) {}
+  Loader(const urdf::ModelInterface& urdf, std::string source, std::filesystem::path base_directory,
+         const UrdfLoadOptions& options)
+      : urdf_(urdf), source_(std::move(source)), base_directory_(std::move(base_directory)), options_(options) {}
 
   UrdfLoadResult Load() {
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
-    CheckJointTypes(*root);
+    CheckOptions(*root);
+    const urdf::LinkConstSharedPtr tip =
+        options_.tip_link.empty() ? AutomaticTip(root) : urdf_.getLink(options_.tip_link);
+    ChooseChain(*root, tip);
 
-    // The ground group (root and all fixed to it), then one group per moving
+    // The ground group (root and all held to it), then one group per chain
     // joint, each hanging from the previous one.
     std::vector<Link> links;
-    Group group = CollectGroup(root);
+    Group group = CollectGroup(root, "");
     while (group.next_joint != nullptr) {
       const urdf::Joint& joint = *group.next_joint;
       const urdf::LinkConstSharedPtr child = urdf_.getLink(joint.child_link_name);
@@ -129,14 +167,11 @@ class Loader {
       link.X_PJ = group.next_joint_X_BL * ToIsometry(joint.parent_to_joint_origin_transform);
       ReadJoint(joint, &link);
 
-      group = CollectGroup(child);
+      group = CollectGroup(child, child->name);
       ReadBody(*child, group, &link);
       links.push_back(std::move(link));
     }
-    if (links.empty()) {
-      Fail("no revolute or continuous joint below the root link " + Quote(root->name) +
-           "; nothing to identify");
-    }
+    if (!locked_.empty()) warnings_.push_back(source_ + ": " + LockedWarning(root->name, tip->name));
 
     try {
       RobotModel model(urdf_.getName(), std::move(links));
@@ -148,87 +183,298 @@ class Loader {
   }
 
  private:
-  // A URDF link and everything fixed to it, with their poses in the frame B
-  // of the first one, and the moving joint leaving the group (if any).
+  // What a joint is to the chain: a degree of freedom (revolute, continuous),
+  // rigid (fixed or locked) or another kind (prismatic, floating, planar).
+  enum class Role { kDof, kRigid, kOther };
+
+  // A URDF link and everything held rigidly to it, with their poses in the
+  // frame B of the first one, and the chain joint leaving the group (if any).
   struct Group {
     std::vector<std::pair<urdf::LinkConstSharedPtr, Eigen::Isometry3d>> members;  // (L, X_BL)
     const urdf::Joint* next_joint = nullptr;
     Eigen::Isometry3d next_joint_X_BL = Eigen::Isometry3d::Identity();  // its parent L in B
   };
 
+  // A joint off the chain (or locked on it), held at `value`.
+  struct Locked {
+    const urdf::Joint* joint;
+    double value;      // [rad] or [m]
+    std::string into;  // the chain link it is merged into; empty: the ground
+  };
+
   [[noreturn]] void Fail(const std::string& what) const {
     throw std::invalid_argument(source_ + ": " + what);
   }
 
-  void CheckJointTypes(const urdf::Link& link) const {
-    for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      const char* kind = nullptr;
-      switch (joint->type) {
-        case urdf::Joint::PRISMATIC: kind = "prismatic"; break;
-        case urdf::Joint::FLOATING: kind = "floating"; break;
-        case urdf::Joint::PLANAR: kind = "planar"; break;
-        case urdf::Joint::UNKNOWN: kind = "unknown-type"; break;
-        default: break;
-      }
-      if (kind != nullptr) {
-        Fail("joint " + Quote(joint->name) + ": " + kind +
-             " joints are not supported; idbench handles revolute chains");
-      }
-    }
-    for (const urdf::LinkSharedPtr& child : link.child_links) CheckJointTypes(*child);
+  Role RoleOf(const urdf::Joint& joint) const {
+    if (joint.type == urdf::Joint::FIXED || options_.locked_joints.contains(joint.name)) return Role::kRigid;
+    return IsMoving(joint) ? Role::kDof : Role::kOther;
   }
 
-  bool SubtreeHasMovingJoint(const urdf::Link& link) const {
+  // Names of the joints that --lock can take (every joint but fixed ones).
+  std::string LockableJoints() const {
+    std::vector<std::string> names;
+    for (const auto& [name, joint] : urdf_.joints_) {
+      if (joint->type != urdf::Joint::FIXED) names.push_back(name);
+    }
+    return names.empty() ? "none" : QuotedList(names);
+  }
+
+  // --lock names joints of the file at values within their limits; --tip
+  // names a link other than the root.
+  void CheckOptions(const urdf::Link& root) const {
+    std::string why;
+    if (!options_.IsValid(&why)) Fail(why);
+    for (const auto& [name, value] : options_.locked_joints) {
+      const std::string where = "--lock " + name + "=" + Format(value) + ": ";
+      const urdf::JointConstSharedPtr joint = urdf_.getJoint(name);
+      if (joint == nullptr) {
+        Fail(where + "no joint " + Quote(name) + " in the file; joints that can be locked: " + LockableJoints());
+      }
+      const std::string type = TypeName(*joint);
+      if (joint->type == urdf::Joint::FIXED) {
+        Fail(where + "joint " + Quote(name) + " is fixed already; joints that can be locked: " + LockableJoints());
+      }
+      if ((joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR) && value != 0.0) {
+        Fail(where + "joint " + Quote(name) + " is " + type + "; it can only be locked at 0 (its <origin>)");
+      }
+      const bool limited = (joint->type == urdf::Joint::REVOLUTE || joint->type == urdf::Joint::PRISMATIC) &&
+                           joint->limits != nullptr && joint->limits->lower < joint->limits->upper;
+      if (limited && !(value >= joint->limits->lower && value <= joint->limits->upper)) {
+        const char* unit = joint->type == urdf::Joint::PRISMATIC ? " m" : " rad";
+        Fail(where + "outside the <limit> of " + type + " joint " + Quote(name) + ", [" +
+             Format(joint->limits->lower) + ", " + Format(joint->limits->upper) + "]" + unit +
+             "; pass a value within it");
+      }
+    }
+    const std::string& tip = options_.tip_link;
+    if (!tip.empty()) {
+      if (urdf_.getLink(tip) == nullptr) {
+        std::vector<std::string> names;
+        for (const auto& [name, link] : urdf_.links_) names.push_back(name);
+        Fail("--tip " + tip + ": no link " + Quote(tip) + " in the file; links: " + QuotedList(names));
+      }
+      if (tip == root.name) {
+        Fail("--tip " + tip + ": " + Quote(tip) + " is the root link (the ground); pass the arm's last link");
+      }
+    }
+  }
+
+  bool HasDofBelow(const urdf::Link& link) const {
     for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      if (IsMoving(*joint)) return true;
+      if (RoleOf(*joint) == Role::kDof) return true;
     }
     for (const urdf::LinkSharedPtr& child : link.child_links) {
-      if (SubtreeHasMovingJoint(*child)) return true;
+      if (HasDofBelow(*child)) return true;
     }
     return false;
   }
 
-  Group CollectGroup(const urdf::LinkConstSharedPtr& first) const {
-    Group group;
-    std::vector<std::pair<urdf::LinkConstSharedPtr, Eigen::Isometry3d>> stack{
-        {first, Eigen::Isometry3d::Identity()}};
-    while (!stack.empty()) {
-      auto [link, X_BL] = stack.back();
-      stack.pop_back();
-      group.members.emplace_back(link, X_BL);
-      // At most one child chain of a link may carry moving joints.
-      std::string moving_chain;
-      for (const urdf::JointSharedPtr& joint : link->child_joints) {
-        const urdf::LinkConstSharedPtr child = urdf_.getLink(joint->child_link_name);
-        if (!IsMoving(*joint) && !SubtreeHasMovingJoint(*child)) continue;
-        if (!moving_chain.empty()) {
-          Fail("link " + Quote(link->name) + ": the chains through joints " + Quote(moving_chain) +
-               " and " + Quote(joint->name) +
-               " both have moving joints; idbench handles serial chains only");
-        }
-        moving_chain = joint->name;
+  // Depth first from `link` through degree-of-freedom and rigid joints:
+  // appends the degree-of-freedom joints with none below them to *ends, and
+  // the other-kind joints with a degree of freedom below them to *blocked.
+  // Returns whether a degree-of-freedom joint was reached.
+  bool FindEnds(const urdf::Link& link, std::vector<const urdf::Joint*>* ends,
+                std::vector<const urdf::Joint*>* blocked) const {
+    bool reached = false;
+    for (const urdf::JointSharedPtr& joint : link.child_joints) {
+      const urdf::Link& child = *urdf_.getLink(joint->child_link_name);
+      const Role role = RoleOf(*joint);
+      if (role == Role::kOther) {
+        if (HasDofBelow(child)) blocked->push_back(joint.get());
+        continue;
       }
-      // Fixed children join the group (depth first, in urdfdom's child order);
-      // the moving joint ends it.
-      for (auto it = link->child_joints.rbegin(); it != link->child_joints.rend(); ++it) {
+      const bool below = FindEnds(child, ends, blocked);
+      if (role == Role::kDof && !below) ends->push_back(joint.get());
+      reached = reached || below || role == Role::kDof;
+    }
+    return reached;
+  }
+
+  // The first other-kind joint below `link` (null if none).
+  const urdf::Joint* FindOtherJoint(const urdf::Link& link) const {
+    for (const urdf::JointSharedPtr& joint : link.child_joints) {
+      if (RoleOf(*joint) == Role::kOther) return joint.get();
+    }
+    for (const urdf::LinkSharedPtr& child : link.child_links) {
+      if (const urdf::Joint* joint = FindOtherJoint(*child)) return joint;
+    }
+    return nullptr;
+  }
+
+  // The links from the root (first) to `link` (last).
+  static std::vector<urdf::LinkConstSharedPtr> PathFromRoot(urdf::LinkConstSharedPtr link) {
+    std::vector<urdf::LinkConstSharedPtr> path;
+    for (; link != nullptr; link = link->getParent()) path.push_back(link);
+    return {path.rbegin(), path.rend()};
+  }
+
+  // The end of the chain without --tip: the child link of the one
+  // degree-of-freedom joint that has no other below it (see urdf.h).
+  urdf::LinkConstSharedPtr AutomaticTip(const urdf::LinkConstSharedPtr& root) const {
+    std::vector<const urdf::Joint*> ends, blocked;
+    FindEnds(*root, &ends, &blocked);
+    if (!blocked.empty()) {
+      const urdf::Joint& joint = *blocked.front();
+      Fail("joint " + Quote(joint.name) + " (" + TypeName(joint) +
+           ") carries revolute joints; idbench identifies revolute chains and cannot tell whether this joint "
+           "belongs to the arm: pass --lock " + LockArgument(joint) + " to hold it (the chain then continues "
+           "through it), or --tip LINK to end the chain above it");
+    }
+    if (ends.empty()) {
+      std::string message =
+          "no revolute or continuous joint below the root link " + Quote(root->name) + "; nothing to identify";
+      if (const urdf::Joint* other = FindOtherJoint(*root)) {
+        message += " (joint " + Quote(other->name) + ": " + TypeName(*other) +
+                   " joints are not supported; idbench identifies revolute chains)";
+      }
+      Fail(message);
+    }
+    if (ends.size() > 1) {
+      // Where the ends' paths from the root diverge: their last common link.
+      std::vector<std::vector<urdf::LinkConstSharedPtr>> paths;
+      for (const urdf::Joint* end : ends) paths.push_back(PathFromRoot(urdf_.getLink(end->child_link_name)));
+      urdf::LinkConstSharedPtr fork = root;
+      for (size_t k = 0;; ++k) {
+        bool common = true;
+        for (const auto& path : paths) common = common && k < path.size() && path[k] == paths[0][k];
+        if (!common) break;
+        fork = paths[0][k];
+      }
+      std::string candidates;
+      for (const urdf::Joint* end : ends) {
+        candidates += (candidates.empty() ? "" : ", ") + Quote(end->child_link_name) + " (joint " +
+                      Quote(end->name) + ")";
+      }
+      Fail("link " + Quote(fork->name) + ": the robot branches into " + std::to_string(ends.size()) +
+           " chains of revolute joints, ending at links " + candidates +
+           "; pass --tip LINK with the arm's last link (one of these, or " + Quote(fork->name) +
+           " to hold every branch below it); the joints off the chain are then locked at 0 (or at --lock "
+           "JOINT=VALUE) and their links merged into the chain");
+    }
+    return urdf_.getLink(ends.front()->child_link_name);
+  }
+
+  // The degrees of freedom on the path from the root to `tip`, into chain_.
+  void ChooseChain(const urdf::Link& root, const urdf::LinkConstSharedPtr& tip) {
+    const std::vector<urdf::LinkConstSharedPtr> path = PathFromRoot(tip);
+    for (size_t k = 1; k < path.size(); ++k) {
+      const urdf::Joint& joint = *path[k]->parent_joint;
+      switch (RoleOf(joint)) {
+        case Role::kDof: chain_.insert(joint.name); break;
+        case Role::kRigid: break;
+        case Role::kOther:
+          Fail("joint " + Quote(joint.name) + ": " + TypeName(joint) + " joint on the chain from the root link " +
+               Quote(root.name) + " to " + Quote(tip->name) + "; idbench identifies revolute chains: pass --lock " +
+               LockArgument(joint) + " to hold it, or a --tip above it");
+      }
+    }
+    if (chain_.empty()) {
+      Fail("no revolute or continuous joint between the root link " + Quote(root.name) + " and " +
+           Quote(tip->name) + " (--tip); nothing to identify: pass the arm's last link");
+    }
+  }
+
+  // The value a joint off the chain is held at: --lock's, else for a <mimic>
+  // joint multiplier·(leader's value) + offset (a chain joint's value is 0),
+  // else 0.
+  double LockValue(const urdf::Joint& joint, int depth = 0) const {
+    if (const auto it = options_.locked_joints.find(joint.name); it != options_.locked_joints.end()) {
+      return it->second;
+    }
+    if (joint.mimic != nullptr && depth < 32) {
+      const urdf::JointConstSharedPtr leader = urdf_.getJoint(joint.mimic->joint_name);
+      const double leader_value =
+          leader == nullptr || chain_.contains(leader->name) ? 0.0 : LockValue(*leader, depth + 1);
+      return joint.mimic->multiplier * leader_value + joint.mimic->offset;
+    }
+    return 0.0;
+  }
+
+  // X_JC of a joint held at `value`: a turn about (revolute, continuous) or a
+  // shift along (prismatic) its axis; floating and planar joints stay at 0.
+  Eigen::Isometry3d LockedMotion(const urdf::Joint& joint, double value) const {
+    Eigen::Isometry3d X_JC = Eigen::Isometry3d::Identity();
+    const bool turns = IsMoving(joint), shifts = joint.type == urdf::Joint::PRISMATIC;
+    if (value == 0.0 || !(turns || shifts)) return X_JC;
+    const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
+    if (!axis.allFinite() || !(axis.norm() > 1e-12)) {
+      Fail("joint " + Quote(joint.name) + ": <axis> must be nonzero to lock the joint at " + Format(value) +
+           "; give its direction, e.g. <axis xyz=\"0 0 1\"/>");
+    }
+    if (turns) X_JC.linear() = Eigen::AngleAxisd(value, axis.normalized()).toRotationMatrix();
+    if (shifts) X_JC.translation() = value * axis.normalized();
+    return X_JC;
+  }
+
+  // The group of `first`: every link reached through joints that are not on
+  // the chain (fixed ones, and the others locked, recorded in locked_ as
+  // merged `into`), in depth-first, urdfdom child order; the chain joint
+  // leaving it ends it.
+  Group CollectGroup(const urdf::LinkConstSharedPtr& first, const std::string& into) {
+    struct Visit {
+      urdf::LinkConstSharedPtr link;
+      Eigen::Isometry3d X_BL;
+      const urdf::Joint* locked = nullptr;  // the joint it hangs from, when locked
+      double value = 0.0;
+    };
+    Group group;
+    std::vector<Visit> stack{{first, Eigen::Isometry3d::Identity()}};
+    while (!stack.empty()) {
+      const Visit visit = stack.back();
+      stack.pop_back();
+      group.members.emplace_back(visit.link, visit.X_BL);
+      if (visit.locked != nullptr) locked_.push_back({visit.locked, visit.value, into});
+      for (auto it = visit.link->child_joints.rbegin(); it != visit.link->child_joints.rend(); ++it) {
         const urdf::Joint& joint = **it;
-        if (IsMoving(joint)) {
+        if (chain_.contains(joint.name)) {
           group.next_joint = &joint;
-          group.next_joint_X_BL = X_BL;
-        } else {
-          stack.emplace_back(urdf_.getLink(joint.child_link_name),
-                             X_BL * ToIsometry(joint.parent_to_joint_origin_transform));
+          group.next_joint_X_BL = visit.X_BL;
+          continue;
         }
+        Visit child{urdf_.getLink(joint.child_link_name), visit.X_BL * ToIsometry(joint.parent_to_joint_origin_transform)};
+        if (joint.type != urdf::Joint::FIXED) {
+          child.locked = &joint;
+          child.value = LockValue(joint);
+          child.X_BL = child.X_BL * LockedMotion(joint, child.value);
+        }
+        stack.push_back(child);
       }
     }
     return group;
+  }
+
+  // One line for every locked joint: type, value, where its links went.
+  std::string LockedWarning(const std::string& root, const std::string& tip) const {
+    std::ostringstream out;
+    out << "locked " << locked_.size() << (locked_.size() == 1 ? " joint" : " joints")
+        << " and merged the links they carry into the chain " << Quote(root) << " → " << Quote(tip) << ": ";
+    for (size_t k = 0; k < locked_.size(); ++k) {
+      const Locked& locked = locked_[k];
+      const urdf::Joint& joint = *locked.joint;
+      out << (k > 0 ? ", " : "") << Quote(joint.name) << " (" << TypeName(joint);
+      if (joint.mimic != nullptr) out << ", mimics " << Quote(joint.mimic->joint_name);
+      if (IsMoving(joint)) {
+        out << ", at " << locked.value << " rad";
+      } else if (joint.type == urdf::Joint::PRISMATIC) {
+        out << ", at " << locked.value << " m";
+      } else {
+        out << ", at its <origin>";
+      }
+      if (options_.locked_joints.contains(joint.name)) out << " by --lock";
+      out << ", into " << (locked.into.empty() ? "the ground" : "link " + Quote(locked.into)) << ")";
+    }
+    out << "; --lock JOINT=VALUE holds a joint at another value, --tip LINK chooses another end of the chain";
+    return out.str();
   }
 
   // Axis, limits and friction of a revolute or continuous joint.
   void ReadJoint(const urdf::Joint& joint, Link* link) {
     const std::string where = "joint " + Quote(joint.name) + ": ";
     const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
-    if (!axis.allFinite() || !(axis.norm() > 1e-12)) Fail(where + "joint axis must be nonzero");
+    if (!axis.allFinite() || !(axis.norm() > 1e-12)) {
+      Fail(where + "<axis> must be nonzero; give the axis direction, e.g. <axis xyz=\"0 0 1\"/>");
+    }
     link->axis_J = axis.normalized();
 
     if (joint.limits != nullptr) {
@@ -236,8 +482,8 @@ class Loader {
       if (joint.type == urdf::Joint::REVOLUTE) {
         if (!(limits.lower < limits.upper)) {
           std::ostringstream message;
-          message << where << "limits need lower < upper, got lower = " << limits.lower
-                  << ", upper = " << limits.upper;
+          message << where << "<limit> needs lower < upper, got lower = " << limits.lower
+                  << ", upper = " << limits.upper << "; correct them (or make the joint continuous)";
           Fail(message.str());
         }
         link->limits.q_min = limits.lower;
@@ -248,7 +494,8 @@ class Loader {
     }
     if (joint.dynamics != nullptr) {
       if (!(joint.dynamics->damping >= 0.0 && joint.dynamics->friction >= 0.0)) {
-        Fail(where + "damping and friction must be >= 0");
+        Fail(where + "<dynamics> damping and friction must be >= 0, got damping = " +
+             Format(joint.dynamics->damping) + ", friction = " + Format(joint.dynamics->friction));
       }
       link->dynamics.viscous = joint.dynamics->damping;
       link->dynamics.coulomb = joint.dynamics->friction;
@@ -270,11 +517,15 @@ class Loader {
             inertial.ixy, inertial.iyy, inertial.iyz,         //
             inertial.ixz, inertial.iyz, inertial.izz;
         if (!(std::isfinite(inertial.mass) && inertial.mass >= 0.0)) {
-          Fail(where + "mass must be >= 0, got " + std::to_string(inertial.mass));
+          Fail(where + "<inertial>/<mass> must be >= 0, got " + Format(inertial.mass) + "; correct it in the file");
         }
-        const double min_moment = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I_Lcm_I).eigenvalues().minCoeff();
-        if (!I_Lcm_I.allFinite() || min_moment < -1e-12 * I_Lcm_I.norm()) {
-          Fail(where + "inertia tensor must be positive semidefinite");
+        if (!I_Lcm_I.allFinite()) Fail(where + "<inertial>/<inertia> has an entry that is not a finite number");
+        const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I_Lcm_I).eigenvalues();
+        if (moments.minCoeff() < -1e-12 * I_Lcm_I.norm()) {
+          Fail(where + "<inertial>/<inertia> is not positive semidefinite: principal moments " + Format(moments[0]) +
+               ", " + Format(moments[1]) + ", " + Format(moments[2]) +
+               " kg m², and no body has a negative one; correct ixx..izz (all zero loads as a point mass, with a "
+               "warning)");
         }
         // X_BI: the inertial frame I (origin at the COM) in B.
         const Eigen::Isometry3d X_BI = X_BL * ToIsometry(inertial.origin);
@@ -298,17 +549,38 @@ class Loader {
       }
     }
 
-    // The lumped body must be a proper rigid body.
+    // The lumped body needs a mass.
     const std::string where = "link " + Quote(moving.name) + ": ";
-    if (parts.empty()) Fail(where + "a moving link needs an <inertial> with mass > 0");
     link->inertia = Lump(parts);
     if (!(link->inertia.mass > 0.0)) {
-      Fail(where + "mass must be > 0, got " + std::to_string(link->inertia.mass));
+      Fail(where + "mass must be > 0, got " + Format(link->inertia.mass) + " (" +
+           (parts.empty() ? "no <inertial>" : "the <inertial> <mass>") + " on it and the links held to it); give " +
+           "it an <inertial> with an estimate of its mass (a prior that identification replaces), or hold joint " +
+           Quote(link->joint_name) + " with --lock " + link->joint_name + "=VALUE");
     }
+
+    // An inertia that is not positive definite (a point mass, a rod) is only
+    // a prior: its principal moments are raised to those of a 1 cm sphere.
     Eigen::Matrix3d& I = link->inertia.I_Bcm_B;
     I = 0.5 * (I + I.transpose()).eval();
-    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
-    if (!(moments.minCoeff() > 0.0)) Fail(where + "inertia tensor must be positive definite");
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(I);
+    const Eigen::Vector3d moments = eigen.eigenvalues();  // ascending
+    if (!(moments[0] > 1e-12 * moments[2])) {
+      constexpr double kRadius = 0.01;  // [m]
+      const double floor = 0.4 * link->inertia.mass * kRadius * kRadius;
+      const Eigen::Vector3d raised = moments.cwiseMax(floor);
+      I = eigen.eigenvectors() * raised.asDiagonal() * eigen.eigenvectors().transpose();
+      I = 0.5 * (I + I.transpose()).eval();
+      std::ostringstream message;
+      message << source_ << ": " << where << "mass " << link->inertia.mass
+              << " kg with an inertia that is not positive definite (principal moments about its centre of mass "
+              << moments[0] << ", " << moments[1] << ", " << moments[2]
+              << " kg m², from <inertial>/<inertia> of it and the links held to it); the file's values are only a "
+              << "prior, which identification replaces: loaded with the moments below " << floor
+              << " kg m² (a uniform 1 cm sphere of this mass) raised to it: " << raised[0] << ", " << raised[1] << ", "
+              << raised[2] << " kg m²";
+      warnings_.push_back(message.str());
+    }
   }
 
   static std::vector<urdf::VisualSharedPtr> Visuals(const urdf::Link& link) {
@@ -394,6 +666,9 @@ class Loader {
   const urdf::ModelInterface& urdf_;
   std::string source_;
   std::filesystem::path base_directory_;  // relative mesh paths start here
+  const UrdfLoadOptions& options_;
+  std::set<std::string> chain_;           // names of the joints that are the model's degrees of freedom
+  std::vector<Locked> locked_;            // joints held still, in the order they were merged
   std::vector<std::string> warnings_;
   std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;  // by path and scale
 };
@@ -475,8 +750,41 @@ Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R) {
   return Eigen::Vector3d(roll, pitch, yaw);
 }
 
+bool UrdfLoadOptions::IsValid(std::string* why) const {
+  for (const auto& [name, value] : locked_joints) {
+    if (name.empty()) {
+      *why = "--lock: a joint name is empty";
+      return false;
+    }
+    if (!std::isfinite(value)) {
+      *why = "--lock " + name + ": expected a finite value, got " + Format(value);
+      return false;
+    }
+  }
+  return true;
+}
+
+bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string* why) {
+  const auto fail = [&](const std::string& what) {
+    *why = "--lock '" + text + "': " + what;
+    return false;
+  };
+  const size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    return fail("expected JOINT=VALUE (VALUE in rad, or in m for a prismatic joint)");
+  }
+  const std::string name = text.substr(0, equals), number = text.substr(equals + 1);
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value)) {
+    return fail("expected a finite number after '=', got '" + number + "'");
+  }
+  if (!options->locked_joints.emplace(name, value).second) return fail("joint " + Quote(name) + " is locked twice");
+  return true;
+}
+
 UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name,
-                               const std::string& base_directory) {
+                               const std::string& base_directory, const UrdfLoadOptions& options) {
   // urdfdom reports why a file is invalid through console_bridge: keep the
   // first error for our one message instead of letting it print.
   struct FirstError : console_bridge::OutputHandler {
@@ -498,10 +806,11 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
     throw std::invalid_argument(source_name + ": not a valid URDF" +
                                 (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
   }
-  return Loader(*urdf, source_name, std::filesystem::path(base_directory.empty() ? "." : base_directory)).Load();
+  return Loader(*urdf, source_name, std::filesystem::path(base_directory.empty() ? "." : base_directory), options)
+      .Load();
 }
 
-UrdfLoadResult LoadUrdfFile(const std::string& path) {
+UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& options) {
   std::error_code error;
   std::ifstream file(path, std::ios::binary);
   if (!file || !std::filesystem::is_regular_file(path, error)) {
@@ -510,7 +819,7 @@ UrdfLoadResult LoadUrdfFile(const std::string& path) {
   std::ostringstream text;
   text << file.rdbuf();
   if (file.bad()) throw std::invalid_argument(path + ": error while reading the file");
-  return LoadUrdfString(text.str(), path, std::filesystem::path(path).parent_path().string());
+  return LoadUrdfString(text.str(), path, std::filesystem::path(path).parent_path().string(), options);
 }
 
 std::string WriteUrdf(const RobotModel& model) {

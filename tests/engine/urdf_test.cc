@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -18,6 +19,8 @@
 #include "engine/test_meshes.h"
 #include "engine/test_robots.h"
 #include "engine/test_util.h"
+#include "idbench/engine/bullet_simulation.h"
+#include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/paper6r.h"
 
 namespace idbench {
@@ -128,6 +131,13 @@ std::string Joint(const std::string& name, const std::string& type, const std::s
                   const std::string& child, const std::string& extra = kLimit) {
   return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent +
          "\"/><child link=\"" + child + "\"/>" + extra + "</joint>\n";
+}
+
+UrdfLoadOptions Options(std::map<std::string, double> locked_joints, std::string tip_link = "") {
+  UrdfLoadOptions options;
+  options.locked_joints = std::move(locked_joints);
+  options.tip_link = std::move(tip_link);
+  return options;
 }
 
 // Loading `xml` must throw std::invalid_argument whose message contains
@@ -470,11 +480,35 @@ TEST(UrdfTest, RejectsUnsupportedJointTypesNamingTheJoint) {
     ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("slider", type, "base", "a")),
                    {"joint 'slider'", type + " joints are not supported"});
   }
-  // Also when hanging off a merged fixed link, below a revolute joint.
-  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + MassLink("c") +
-                       Joint("j1", "revolute", "base", "a") + Joint("mount", "fixed", "a", "b", "") +
-                       Joint("rail", "prismatic", "b", "c")),
-                 {"joint 'rail'", "prismatic"});
+  // A linear axis carrying the arm: whether it belongs to the arm is not
+  // clear, so the message asks for --lock (or --tip).
+  const std::string rail = Robot(BareLink("base") + MassLink("carriage") + MassLink("a") + MassLink("b") +
+                                 Joint("rail", "prismatic", "base", "carriage", "<axis xyz=\"1 0 0\"/>" + kLimit) +
+                                 Joint("j1", "revolute", "carriage", "a") + Joint("j2", "revolute", "a", "b"));
+  ExpectRejected(rail, {"joint 'rail'", "prismatic", "--lock rail=VALUE"});
+  // A --tip below it does not make it a revolute joint.
+  try {
+    LoadUrdfString(rail, "<string>", "", Options({}, "b"));
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'rail': prismatic joint on the chain"), std::string::npos) << e.what();
+  }
+  // Locked, it holds the arm 0.3 m along x: the carriage joins the ground.
+  const UrdfLoadResult locked = LoadUrdfString(rail, "<string>", "", Options({{"rail", 0.3}}));
+  ASSERT_EQ(locked.model.n_dof(), 2);
+  ExpectNear(locked.model.link(0).X_PJ.translation(), Eigen::Vector3d(0.3, 0, 0), 1e-15, "j1 on the locked rail");
+  ASSERT_EQ(locked.warnings.size(), 1u);
+  EXPECT_NE(locked.warnings[0].find("'rail' (prismatic, at 0.3 m by --lock, into the ground)"), std::string::npos)
+      << locked.warnings[0];
+
+  // A floating base (a mobile robot's file) can only be held at its origin.
+  const std::string floating = Robot(BareLink("world") + MassLink("base") + MassLink("a") +
+                                     Joint("base_joint", "floating", "world", "base", "<origin xyz=\"0 0 0.4\"/>") +
+                                     Joint("j1", "revolute", "base", "a"));
+  ExpectRejected(floating, {"joint 'base_joint' (floating)", "--lock base_joint=0 "});
+  const UrdfLoadResult held =
+      LoadUrdfString(floating, "<string>", "", Options({{"base_joint", 0.0}}));
+  ExpectNear(held.model.link(0).X_PJ.translation(), Eigen::Vector3d(0, 0, 0.4), 0.0, "j1 on the held base");
 }
 
 TEST(UrdfTest, RejectsBranchingNamingTheLink) {
@@ -506,9 +540,7 @@ TEST(UrdfTest, RejectsMissingMassOrBadInertiaNamingTheLink) {
   ExpectRejected(Robot(chain + BareLink("b")), {"link 'b'", "<inertial>"});
   ExpectRejected(Robot(chain + MassLink("b", "0")), {"link 'b'", "mass must be > 0"});
   ExpectRejected(Robot(chain + MassLink("b", "-2")), {"link 'b'", "mass"});
-  ExpectRejected(Robot(chain + MassLink("b", "1", "-1 0 0 0.1 0 0.1")), {"link 'b'", "inertia"});
-  // A point mass alone has no positive definite inertia.
-  ExpectRejected(Robot(chain + MassLink("b", "1", "0 0 0 0 0 0")), {"link 'b'", "positive definite"});
+  ExpectRejected(Robot(chain + MassLink("b", "1", "-1 0 0 0.1 0 0.1")), {"link 'b'", "<inertial>/<inertia>"});
   // A negative mass on a fixed attachment names the attachment.
   ExpectRejected(Robot(chain + MassLink("b") + MassLink("tool", "-1") + Joint("fix", "fixed", "b", "tool", "")),
                  {"link 'tool'", "mass"});
@@ -584,6 +616,288 @@ TEST(UrdfTest, WarnsAboutInertiasBreakingTheTriangleInequality) {
   EXPECT_TRUE(LoadUrdfString(rod).warnings.empty());
 }
 
+
+// ---- Vendor URDFs: the chain, locked joints, inertia priors ----
+
+// Parts held rigidly in a link frame B: mass, COM and inertia about it in B.
+struct Part {
+  double m;
+  Eigen::Vector3d c;
+  Eigen::Matrix3d I;
+};
+
+// Σ m, Σ m c / Σ m, Σ (I + m (|d|² 1 − d dᵀ)) with d = c − COM: the
+// parallel-axis theorem written out again for the tests.
+LinkInertia LumpByHand(const std::vector<Part>& parts) {
+  LinkInertia total;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  for (const Part& p : parts) {
+    total.mass += p.m;
+    moment += p.m * p.c;
+  }
+  total.p_BoBcm_B = moment / total.mass;
+  for (const Part& p : parts) {
+    const Eigen::Vector3d d = p.c - total.p_BoBcm_B;
+    Eigen::Matrix3d shift;
+    shift << d.y() * d.y() + d.z() * d.z(), -d.x() * d.y(), -d.x() * d.z(),  //
+        -d.x() * d.y(), d.x() * d.x() + d.z() * d.z(), -d.y() * d.z(),       //
+        -d.x() * d.z(), -d.y() * d.z(), d.x() * d.x() + d.y() * d.y();
+    total.I_Bcm_B += p.I + p.m * shift;
+  }
+  return total;
+}
+
+// Panda link 7 with panda_link8, the hand and both fingers (open by q each)
+// in link 7's frame, as testing::PandaLikeUrdf describes them.
+LinkInertia PandaLink7ByHand(double q) {
+  const Eigen::Matrix3d R = Rz(-kPi / 4);  // the hand in link 7
+  const Eigen::Vector3d p_hand(0, 0, 0.107), p_fingers = p_hand + R * Eigen::Vector3d(0, 0, 0.0584);
+  const auto rotated = [&R](double a, double b, double c) {
+    return (R * Eigen::Vector3d(a, b, c).asDiagonal() * R.transpose()).eval();
+  };
+  return LumpByHand({
+      {0.4, Eigen::Vector3d(0, 0, 0.05), Eigen::Vector3d(0.003, 0.003, 0.002).asDiagonal()},
+      {0.73, p_hand + R * Eigen::Vector3d(-0.01, 0, 0.03), rotated(0.001, 0.0025, 0.0017)},
+      {0.015, p_fingers + R * Eigen::Vector3d(0, q + 0.01, 0.02), rotated(2.375e-6, 2.375e-6, 7.5e-7)},
+      {0.015, p_fingers + R * Eigen::Vector3d(0, -q - 0.01, 0.02), rotated(2.375e-6, 2.375e-6, 7.5e-7)},
+  });
+}
+
+void ExpectContains(const std::string& text, const std::vector<std::string>& fragments) {
+  for (const std::string& fragment : fragments) {
+    EXPECT_NE(text.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << text;
+  }
+}
+
+// Loading with `options` must throw std::invalid_argument whose message
+// contains every fragment.
+void ExpectRejectedWith(const std::string& xml, const UrdfLoadOptions& options,
+                        const std::vector<std::string>& fragments) {
+  try {
+    LoadUrdfString(xml, "vendor.urdf", "", options);
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("vendor.urdf: ", 0), 0u) << e.what();
+    ExpectContains(e.what(), fragments);
+  }
+}
+
+// Issue 12: the Panda's prismatic fingers (one a <mimic>) are locked at 0 and
+// merged, with the hand and the fixed flange, into link 7: 7 joints, one
+// warning naming both fingers; link 7 is what the parts lumped by hand give,
+// and what the same file with the fingers on fixed joints gives.
+TEST(UrdfTest, PandaFingersAreLockedAndMergedIntoTheLastLink) {
+  const UrdfLoadResult loaded = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf");
+  const RobotModel& model = loaded.model;
+  ASSERT_EQ(model.n_dof(), 7);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(model.link(i).joint_name, "panda_joint" + std::to_string(i + 1));
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0],
+                 {"panda.urdf: locked 2 joints", "'panda_link0' → 'panda_link7'",
+                  "'panda_finger_joint1' (prismatic, at 0 m, into link 'panda_link7')",
+                  "'panda_finger_joint2' (prismatic, mimics 'panda_finger_joint1', at 0 m, into link 'panda_link7')"});
+
+  const LinkInertia expected = PandaLink7ByHand(0.0);
+  const Link& link7 = model.link(6);
+  ExpectNear(link7.inertia.mass, 1.16, 1e-15, "link 7 mass: 0.4 + 0.73 + 2 · 0.015 kg");
+  ExpectNear(link7.inertia.p_BoBcm_B, expected.p_BoBcm_B, 1e-14, "link 7 COM");
+  ExpectNear(link7.inertia.I_Bcm_B, expected.I_Bcm_B, 1e-12, "link 7 inertia");
+  EXPECT_EQ(link7.shapes.size(), 3u);  // the hand's box and both fingers'
+
+  const UrdfLoadResult fixed = LoadUrdfString(testing::PandaLikeUrdf(/*fingers_fixed=*/true, 0.0));
+  EXPECT_TRUE(fixed.warnings.empty());
+  ExpectModelsNear(model, fixed.model, 1e-12);
+}
+
+// --lock opens the fingers: finger 1 by the given 0.04 m along +y of the
+// hand, finger 2 along −y by its <mimic> (multiplier 1): the lumped COM moves
+// with them (by hand: 0.015 kg · 0.04 m · (±ŷ) cancel in the COM but not in
+// the inertia).
+TEST(UrdfTest, LockedFingersMoveToTheGivenOpening) {
+  UrdfLoadOptions options;
+  std::string why;
+  ASSERT_TRUE(AddJointLock("panda_finger_joint1=0.04", &options, &why)) << why;
+  const UrdfLoadResult loaded = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", options);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0], {"'panda_finger_joint1' (prismatic, at 0.04 m by --lock, into link 'panda_link7')",
+                                      "'panda_finger_joint2' (prismatic, mimics 'panda_finger_joint1', at 0.04 m"});
+  const LinkInertia open = PandaLink7ByHand(0.04), closed = PandaLink7ByHand(0.0);
+  const Link& link7 = loaded.model.link(6);
+  ExpectNear(link7.inertia.p_BoBcm_B, open.p_BoBcm_B, 1e-14, "link 7 COM, fingers open");
+  ExpectNear(link7.inertia.I_Bcm_B, open.I_Bcm_B, 1e-12, "link 7 inertia, fingers open");
+  // Opening both fingers by 0.04 m adds 2 · 0.015 · (0.05² − 0.01²) to the
+  // moments about the hand's x and z (Rz(−π/4) mixes x and y of link 7).
+  EXPECT_NEAR(link7.inertia.I_Bcm_B(2, 2) - LoadUrdfString(testing::PandaLikeUrdf()).model.link(6).inertia.I_Bcm_B(2, 2),
+              2 * 0.015 * (0.05 * 0.05 - 0.01 * 0.01), 1e-15);
+  ExpectNear(open.p_BoBcm_B, closed.p_BoBcm_B, 1e-14, "symmetric fingers keep the COM");
+  ExpectModelsNear(loaded.model, LoadUrdfString(testing::PandaLikeUrdf(true, 0.04)).model, 1e-12);
+
+  // Finger 1 alone (finger 2 held closed by its own --lock): the COM moves
+  // by 0.015 · 0.04 / 1.16 m along the hand's +y.
+  ASSERT_TRUE(AddJointLock("panda_finger_joint2=0", &options, &why)) << why;
+  const Link one = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", options).model.link(6);
+  ExpectNear(one.inertia.p_BoBcm_B, (closed.p_BoBcm_B + Rz(-kPi / 4) * Eigen::Vector3d(0, 0.015 * 0.04 / 1.16, 0)).eval(),
+             1e-14, "link 7 COM, finger 1 open");
+}
+
+// --tip ends the chain early and --lock holds a chain joint: everything
+// below is merged into the new last link.
+TEST(UrdfTest, TipAndLockShortenTheChain) {
+  const LinkInertia hand = PandaLink7ByHand(0.0);
+  UrdfLoadOptions tip5;
+  tip5.tip_link = "panda_link5";
+  const UrdfLoadResult short_arm = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", tip5);
+  ASSERT_EQ(short_arm.model.n_dof(), 5);
+  EXPECT_NEAR(short_arm.model.link(4).inertia.mass, 1 + 1 + hand.mass, 1e-14);  // links 5, 6, 7 and the hand
+  ASSERT_EQ(short_arm.warnings.size(), 1u);
+  ExpectContains(short_arm.warnings[0], {"locked 4 joints", "'panda_link0' → 'panda_link5'",
+                                         "'panda_joint6' (revolute, at 0 rad, into link 'panda_link5')",
+                                         "'panda_joint7' (revolute, at 0 rad, into link 'panda_link5')"});
+  // A tip among links held rigidly changes nothing but the warning's chain.
+  UrdfLoadOptions tip_hand;
+  tip_hand.tip_link = "panda_hand";
+  ExpectModelsNear(LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", tip_hand).model,
+                   LoadUrdfString(testing::PandaLikeUrdf()).model, 0.0);
+
+  // Joint 7 locked at 0.5 rad: link 6 carries link 7, turned about z.
+  UrdfLoadOptions lock7;
+  lock7.locked_joints["panda_joint7"] = 0.5;
+  const UrdfLoadResult six = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", lock7);
+  ASSERT_EQ(six.model.n_dof(), 6);
+  ExpectContains(six.warnings.at(0), {"'panda_joint7' (revolute, at 0.5 rad by --lock, into link 'panda_link6')"});
+  // Link 7's frame in link 6: (0.088, 0, 0), Rx(π/2)·Rz(0.5); link 6 is 1 kg at its origin.
+  const Eigen::Vector3d p_67(0.088, 0, 0);
+  const Eigen::Matrix3d R_67 = Rx(kPi / 2) * Rz(0.5);
+  const LinkInertia expected = LumpByHand({{1.0, Eigen::Vector3d::Zero(), 0.1 * Eigen::Matrix3d::Identity()},
+                                           {hand.mass, p_67 + R_67 * hand.p_BoBcm_B, R_67 * hand.I_Bcm_B * R_67.transpose()}});
+  ExpectNear(six.model.link(5).inertia.mass, expected.mass, 1e-15, "link 6 mass");
+  ExpectNear(six.model.link(5).inertia.p_BoBcm_B, expected.p_BoBcm_B, 1e-14, "link 6 COM");
+  ExpectNear(six.model.link(5).inertia.I_Bcm_B, expected.I_Bcm_B, 1e-12, "link 6 inertia");
+}
+
+TEST(UrdfTest, OptionsThatDoNotFitTheFileAreRefusedNamingWhatToChange) {
+  const std::string panda = testing::PandaLikeUrdf();
+  ExpectRejectedWith(panda, Options({{"panda_finger_joint1", 0.05}}),
+                     {"--lock panda_finger_joint1=0.05", "outside the <limit>", "[0, 0.04] m"});
+  ExpectRejectedWith(panda, Options({{"wrist", 0.0}}),
+                     {"no joint 'wrist'", "joints that can be locked: 'panda_finger_joint1', 'panda_finger_joint2', "
+                                          "'panda_joint1'"});
+  ExpectRejectedWith(panda, Options({{"panda_hand_joint", 0.0}}), {"'panda_hand_joint' is fixed already"});
+  ExpectRejectedWith(panda, Options({}, "flange"), {"--tip flange: no link 'flange'", "'panda_hand'"});
+  ExpectRejectedWith(panda, Options({}, "panda_link0"), {"root link"});
+  ExpectRejectedWith(panda, Options({}, "panda_leftfinger"),
+                     {"joint 'panda_finger_joint1': prismatic joint on the chain", "--lock panda_finger_joint1=VALUE"});
+
+  // AddJointLock parses JOINT=VALUE.
+  UrdfLoadOptions options;
+  std::string why;
+  EXPECT_TRUE(AddJointLock("j=-1.5e-1", &options, &why));
+  EXPECT_EQ(options.locked_joints.at("j"), -0.15);
+  for (const std::string bad : {"j", "=1", "k=", "k=1x", "k=inf", "j=2"}) {
+    EXPECT_FALSE(AddJointLock(bad, &options, &why)) << bad;
+    EXPECT_NE(why.find("'" + bad + "'"), std::string::npos) << why;
+  }
+}
+
+// Two revolute chains from one link: the message names the fork and both
+// ends; --tip picks one, and the other branch is locked into the fork.
+TEST(UrdfTest, BranchesAskForATipAndTheOtherBranchIsMerged) {
+  const std::string xml =
+      Robot(BareLink("base") + MassLink("a") + MassLink("b") + MassLink("b2") +
+            "<link name=\"c\"><inertial><origin xyz=\"0 0.2 0\"/><mass value=\"0.5\"/><inertia ixx=\"0.01\" "
+            "ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link>" +
+            Joint("j1", "revolute", "base", "a") + Joint("j2", "revolute", "a", "b") +
+            Joint("j3", "revolute", "b", "b2") +
+            Joint("j4", "revolute", "a", "c", "<origin xyz=\"0.3 0 0\"/><axis xyz=\"1 0 0\"/>" + kLimit));
+  ExpectRejectedWith(xml, {}, {"link 'a': the robot branches into 2 chains", "'b2' (joint 'j3')", "'c' (joint 'j4')",
+                               "--tip LINK"});
+  const UrdfLoadResult loaded = LoadUrdfString(xml, "vendor.urdf", "", Options({}, "b2"));
+  ASSERT_EQ(loaded.model.n_dof(), 3);
+  // a (1 kg at 0) with c (0.5 kg at (0.3, 0.2, 0)): COM (0.1, 0.2/3, 0).
+  const LinkInertia expected = LumpByHand({{1.0, Eigen::Vector3d::Zero(), 0.1 * Eigen::Matrix3d::Identity()},
+                                           {0.5, Eigen::Vector3d(0.3, 0.2, 0), 0.01 * Eigen::Matrix3d::Identity()}});
+  ExpectNear(loaded.model.link(0).inertia.p_BoBcm_B, Eigen::Vector3d(0.1, 0.2 / 3, 0), 1e-15, "a's COM");
+  ExpectNear(loaded.model.link(0).inertia.I_Bcm_B, expected.I_Bcm_B, 1e-14, "a's inertia");
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0], {"'j4' (revolute, at 0 rad, into link 'a')"});
+  // The other end, with a --lock turning c by 1 rad about x: (0.3, 0.2 cos 1, 0.2 sin 1).
+  const UrdfLoadResult other =
+      LoadUrdfString(xml, "vendor.urdf", "", Options({{"j4", 1.0}}, "a"));
+  ASSERT_EQ(other.model.n_dof(), 1);
+  ExpectNear(other.model.link(0).inertia.mass, 1 + 1 + 1 + 0.5, 1e-15, "a with b, b2 and c");
+  ExpectContains(other.warnings.at(0), {"locked 3 joints"});
+}
+
+// Issue 12: the TX40's link_6, 0.2 kg with an all-zero inertia (a point
+// mass), loads with one warning naming it: its moments become those of a
+// 1 cm uniform sphere of 0.2 kg, 0.4 · 0.2 · 0.01² = 8e-6 kg m², and Bullet
+// realises the commanded accelerations of the result.
+TEST(UrdfTest, PointMassInertiaLoadsWithAPriorAndSimulates) {
+  std::string body = BareLink("base_link");
+  for (int i = 1; i <= 6; ++i) {
+    const std::string parent = i == 1 ? "base_link" : "link_" + std::to_string(i - 1);
+    body += (i < 6 ? MassLink("link_" + std::to_string(i), "2", "0.02 0 0 0.03 0 0.025")
+                   : MassLink("link_6", "0.2", "0 0 0 0 0 0")) +
+            Joint("joint_" + std::to_string(i), "revolute", parent, "link_" + std::to_string(i),
+                  "<origin xyz=\"0 0.05 0.2\" rpy=\"" + std::to_string(i % 2 ? 1.5707963267948966 : 0.0) +
+                      " 0 0\"/>" + kLimit);
+  }
+  const UrdfLoadResult loaded = LoadUrdfString(Robot(body), "tx40.urdf");
+  ASSERT_EQ(loaded.model.n_dof(), 6);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0], {"tx40.urdf: link 'link_6': mass 0.2 kg", "not positive definite",
+                                      "principal moments about its centre of mass 0, 0, 0 kg m²", "only a prior",
+                                      "raised to it: 8e-06, 8e-06, 8e-06 kg m²"});
+  ExpectNear(loaded.model.link(5).inertia.I_Bcm_B, (8e-6 * Eigen::Matrix3d::Identity()).eval(), 1e-15, "link_6 prior");
+  ExpectNear(loaded.model.link(5).inertia.mass, 0.2, 0.0, "link_6 mass");
+
+  BulletSimulation sim(loaded.model);
+  RobotData data(loaded.model);
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::VectorXd q = testing::RandomVector(6, 1.0, &rng), qd = testing::RandomVector(6, 1.0, &rng),
+                          qdd = testing::RandomVector(6, 4.0, &rng);
+    sim.SetState(q, qd);
+    sim.Step(InverseDynamics(loaded.model, q, qd, qdd, &data), 1e-3);
+    Eigen::VectorXd q1, qd1;
+    sim.GetState(&q1, &qd1);
+    EXPECT_LT(testing::RelativeError((qd1 - qd) / 1e-3, qdd), 1e-8) << "trial " << trial;
+  }
+}
+
+// A rod (moments 0, I, I, turned) keeps its axes and its two moments; the
+// zero one is raised to the sphere's 0.4 m r².
+TEST(UrdfTest, SemidefiniteInertiaKeepsItsAxesAndLargeMoments) {
+  const Eigen::Matrix3d R = Rz(0.3) * Ry(0.7);
+  const Eigen::Matrix3d I_rod = R * Eigen::Vector3d(0, 0.02, 0.02).asDiagonal() * R.transpose();
+  std::ostringstream inertia;
+  inertia.precision(17);
+  inertia << I_rod(0, 0) << " " << I_rod(0, 1) << " " << I_rod(0, 2) << " " << I_rod(1, 1) << " " << I_rod(1, 2) << " "
+          << I_rod(2, 2);
+  const UrdfLoadResult loaded = LoadUrdfString(
+      Robot(BareLink("base") + MassLink("rod", "3", inertia.str()) + Joint("j", "revolute", "base", "rod")));
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0], {"link 'rod'", "raised to it: 0.00012, 0.02, 0.02 kg m²"});
+  const Eigen::Matrix3d expected = R * Eigen::Vector3d(0.4 * 3 * 1e-4, 0.02, 0.02).asDiagonal() * R.transpose();
+  ExpectNear(loaded.model.link(0).inertia.I_Bcm_B, expected, 1e-13, "rod prior");
+}
+
+// The KUKA LWR4+ file FloBaRoID ships (../shared/data): 7 joints with the
+// file's masses, nothing locked, one warning for its missing collision mesh.
+TEST(UrdfTest, KukaLwr4LoadsAsBefore) {
+  const std::filesystem::path path = std::filesystem::path(IDBENCH_SOURCE_DIR) /
+                                     "../shared/data/kuka_lwr4/lwr_description/urdf/kuka_lwr4.urdf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found (../shared is not beside the checkout)";
+  const UrdfLoadResult loaded = LoadUrdfFile(path.string());
+  ASSERT_EQ(loaded.model.n_dof(), 7);
+  const double masses[7] = {2.7, 2.7, 2.7, 2.7, 1.7, 1.6, 0.3};  // <mass> of lwr_1_link .. lwr_7_link
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_EQ(loaded.model.link(i).joint_name, "lwr_" + std::to_string(i) + "_joint");
+    EXPECT_EQ(loaded.model.link(i).inertia.mass, masses[i]) << i;
+  }
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  ExpectContains(loaded.warnings[0], {"arm_wrist_convex.stl", "shape skipped"});
+}
 
 // ---- Meshes ----
 

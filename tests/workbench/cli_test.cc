@@ -157,4 +157,79 @@ TEST_F(CliTest, OutputPathThatIsAFileIsRejectedWithoutTouchingIt) {
   EXPECT_EQ(Slurp(file), "precious");
 }
 
+// Issue 12: a vendor URDF with a two-finger prismatic gripper (one finger a
+// <mimic>) on the flange, and a link of 0.2 kg with an all-zero inertia:
+// simulate loads it with one warning for the fingers and one for that link; --lock and --tip
+// change the chain; options that do not fit are refused with the exit codes
+// of bad usage (2) and of a file that does not fit (1).
+TEST_F(CliTest, VendorUrdfWithGripperAndPointMassLinkLoads) {
+  const auto inertial = [](const std::string& mass, const std::string& i) {
+    return "<inertial><origin xyz=\"0 0 0.05\"/><mass value=\"" + mass + "\"/><inertia ixx=\"" + i +
+           "\" ixy=\"0\" ixz=\"0\" iyy=\"" + i + "\" iyz=\"0\" izz=\"" + i + "\"/></inertial>";
+  };
+  const auto joint = [](const std::string& name, const std::string& type, const std::string& parent,
+                        const std::string& child, const std::string& extra) {
+    return "<joint name=\"" + name + "\" type=\"" + type + "\"><parent link=\"" + parent + "\"/><child link=\"" +
+           child + "\"/><origin xyz=\"0 0 0.2\"/>" + extra + "</joint>";
+  };
+  const std::string limit = "<axis xyz=\"0 1 0\"/><limit lower=\"-2\" upper=\"2\" effort=\"50\" velocity=\"2\"/>";
+  const std::string finger = "<limit lower=\"0\" upper=\"0.04\" effort=\"20\" velocity=\"0.2\"/>";
+  const std::string urdf =
+      "<robot name=\"vendor\"><link name=\"base\"/>"
+      "<link name=\"l1\">" + inertial("3", "0.02") + "</link><link name=\"l2\">" + inertial("0.2", "0") +
+      "</link><link name=\"flange\">" + inertial("1", "0.005") + "</link><link name=\"hand\">" + inertial("0.5", "0.001") +
+      "</link><link name=\"left\">" + inertial("0.02", "1e-6") + "</link><link name=\"right\">" +
+      inertial("0.02", "1e-6") + "</link>" + joint("j1", "revolute", "base", "l1", limit) +
+      joint("j2", "revolute", "l1", "l2", limit) + joint("j3", "revolute", "l2", "flange", limit) +
+      "<joint name=\"tool\" type=\"fixed\"><parent link=\"flange\"/><child link=\"hand\"/></joint>" +
+      joint("finger1", "prismatic", "hand", "left", "<axis xyz=\"1 0 0\"/>" + finger) +
+      joint("finger2", "prismatic", "hand", "right",
+            "<axis xyz=\"-1 0 0\"/>" + finger + "<mimic joint=\"finger1\"/>") +
+      "</robot>";
+  const fs::path file = dir_ / "vendor.urdf";
+  std::ofstream(file) << urdf;
+  const std::string simulate = "simulate --robot " + file.string() + " --duration 0.2 --out " + (dir_ / "log.csv").string();
+
+  Result r = Run(simulate);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> warnings;
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("idbench: warning: ", 0) == 0) warnings.push_back(line);
+  }
+  ASSERT_EQ(warnings.size(), 2u) << r.err;
+  EXPECT_NE(warnings[0].find("link 'l2': mass 0.2 kg"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("raised to it: 8e-06, 8e-06, 8e-06 kg m²"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[1].find("locked 2 joints"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[1].find("'finger1' (prismatic, at 0 m, into link 'flange')"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[1].find("'finger2' (prismatic, mimics 'finger1', at 0 m, into link 'flange')"), std::string::npos)
+      << warnings[1];
+  std::string header;
+  std::getline(std::ifstream(dir_ / "log.csv") >> std::ws, header);
+  EXPECT_EQ(header.rfind("t,q1,q2,q3,qd1,", 0), 0u) << header;
+
+  // --tip l2: j3 is locked too, and the flange, hand and fingers join l2
+  // (whose inertia is then positive definite: no inertia warning).
+  r = Run(simulate + " --tip l2 --lock finger1=0.02");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("'j3' (revolute, at 0 rad, into link 'l2')"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'finger1' (prismatic, at 0.02 m by --lock, into link 'l2')"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("positive definite"), std::string::npos) << r.err;
+  std::getline(std::ifstream(dir_ / "log.csv") >> std::ws, header);
+  EXPECT_EQ(header.rfind("t,q1,q2,qd1,", 0), 0u) << header;
+
+  r = Run(simulate + " --lock finger1=0.05");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("vendor.urdf: --lock finger1=0.05: outside the <limit>"), std::string::npos) << r.err;
+  r = Run(simulate + " --lock wrist=0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("joints that can be locked: 'finger1', 'finger2', 'j1', 'j2', 'j3'"), std::string::npos) << r.err;
+  r = Run(simulate + " --lock finger1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("expected JOINT=VALUE"), std::string::npos) << r.err;
+  r = Run("simulate --robot puma560 --tip link6 --out " + (dir_ / "p.csv").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("built-in robot 'puma560'"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -1,12 +1,15 @@
 // idbench: design robot identification experiments, simulate them in Bullet,
 // identify dynamic parameters. Exit codes: 0 ok, 2 bad usage, 1 failure.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "atomic_file.h"
 #include "compare_command.h"
@@ -35,6 +38,33 @@ int UsageError(const std::string& message) {
   return kExitUsage;
 }
 
+// Thrown for a usage error found after parsing; main() exits with kExitUsage.
+struct UsageException : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// --lock JOINT=VALUE (repeatable, or comma-separated) and --tip LINK: how a
+// URDF robot file becomes a chain (see idbench/engine/urdf.h). For every
+// subcommand that takes --robot.
+void AddRobotLoadOptions(CLI::App* command, idbench::UrdfLoadOptions* options) {
+  command
+      ->add_option_function<std::vector<std::string>>(
+          "--lock",
+          [options](const std::vector<std::string>& locks) {
+            for (const std::string& lock : locks) {
+              std::string why;
+              if (!idbench::AddJointLock(lock, options, &why)) throw CLI::ValidationError(why);
+            }
+          },
+          "URDF: hold a joint at a value [rad, or m if prismatic], e.g. panda_finger_joint1=0.04; joints off the "
+          "chain are held at 0 by default")
+      ->delimiter(',')
+      ->type_name("JOINT=VALUE");
+  command->add_option("--tip", options->tip_link,
+                      "URDF: the arm's last link, when the file branches (default: the end of its one revolute chain)")
+      ->type_name("LINK");
+}
+
 int RunCommand(const idbench::RunOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
@@ -60,17 +90,22 @@ int RunCommand(const idbench::RunOptions& options) {
   return 0;
 }
 
-// A robot by name or path; warnings go to stderr.
-idbench::RobotModel LoadRobotOrThrow(const std::string& name_or_path) {
-  idbench::UrdfLoadResult loaded = idbench::LoadRobot(name_or_path);
+// A robot by name or path; warnings go to stderr. --lock/--tip with a
+// built-in robot is a usage error.
+idbench::RobotModel LoadRobotOrThrow(const std::string& name_or_path, const idbench::UrdfLoadOptions& load) {
+  const std::vector<std::string> builtins = idbench::BuiltinRobotNames();
+  if (!load.empty() && std::find(builtins.begin(), builtins.end(), name_or_path) != builtins.end()) {
+    throw UsageException("--lock and --tip apply to URDF files, not to the built-in robot '" + name_or_path + "'");
+  }
+  idbench::UrdfLoadResult loaded = idbench::LoadRobot(name_or_path, load);
   for (const std::string& w : loaded.warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
   return std::move(loaded.model);
 }
 
-int SimulateCommand(const idbench::SimulateOptions& options) {
+int SimulateCommand(const idbench::SimulateOptions& options, const idbench::UrdfLoadOptions& load) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) return UsageError(why);
   const idbench::JointLog log = idbench::SimulateJointLog(model, options);
   const std::filesystem::path path(options.out);
@@ -82,10 +117,10 @@ int SimulateCommand(const idbench::SimulateOptions& options) {
   return 0;
 }
 
-int IdentifyCommand(const idbench::IdentifyOptions& options, bool with_report) {
+int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   const idbench::IdentifyReport report = idbench::RunIdentify(model, options);
   std::fputs(idbench::FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
@@ -103,10 +138,10 @@ int IdentifyCommand(const idbench::IdentifyOptions& options, bool with_report) {
   return 0;
 }
 
-int MonteCarloCommand(const idbench::MonteCarloOptions& options) {
+int MonteCarloCommand(const idbench::MonteCarloOptions& options, const idbench::UrdfLoadOptions& load) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   const idbench::MonteCarloReport report = idbench::RunMonteCarlo(model, options);
   std::fputs(idbench::FormatMonteCarloTables(options, report).c_str(), stdout);
   if (!options.out_dir.empty()) {
@@ -118,10 +153,10 @@ int MonteCarloCommand(const idbench::MonteCarloOptions& options) {
   return 0;
 }
 
-int RenderCommand(const idbench::RenderOptions& options) {
+int RenderCommand(const idbench::RenderOptions& options, const idbench::UrdfLoadOptions& load) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   const std::unique_ptr<idbench::Trajectory> trajectory = idbench::MakeRenderTrajectory(model, options);
   const idbench::PoseFigureOptions figure = options.figure();
   if (!figure.IsValid(trajectory->duration(), &why)) return UsageError(why);
@@ -139,10 +174,10 @@ int RenderCommand(const idbench::RenderOptions& options) {
 std::atomic<bool> g_stop_requested{false};
 extern "C" void RequestStop(int) { g_stop_requested = true; }
 
-int DesignCommand(const idbench::DesignCommandOptions& options, bool with_report) {
+int DesignCommand(const idbench::DesignCommandOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   std::signal(SIGINT, RequestStop);
   const idbench::DesignCommandReport report = idbench::RunDesign(model, options, &g_stop_requested);
   std::signal(SIGINT, SIG_DFL);
@@ -163,10 +198,10 @@ int DesignCommand(const idbench::DesignCommandOptions& options, bool with_report
   return report.result.check.feasible() ? 0 : kExitFailure;
 }
 
-int CompareCommand(const idbench::CompareOptions& options, bool with_report) {
+int CompareCommand(const idbench::CompareOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
-  const idbench::RobotModel model = LoadRobotOrThrow(options.robot);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   const idbench::CompareReport report = idbench::RunCompare(model, options);
   std::fputs(idbench::FormatCompareTable(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
@@ -235,11 +270,15 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--report", run.report, "Also write report.html, report.pdf and the plots");
 
 
+  // --lock/--tip of whichever subcommand runs (AddRobotLoadOptions).
+  idbench::UrdfLoadOptions robot_load;
+
   idbench::SimulateOptions simulate;
   CLI::App* simulate_cmd =
       app.add_subcommand("simulate", "Simulate an experiment in Bullet and write the joint log (CSV)");
   simulate_cmd->add_option("--robot", simulate.robot, "Built-in robot (paper6r, puma560) or URDF file")
       ->capture_default_str();
+  AddRobotLoadOptions(simulate_cmd, &robot_load);
   simulate_cmd->add_option("--trajectory", simulate.trajectory,
                            "Built-in motion (paper, general, general-reversed) or trajectory file (.json, .csv)")
       ->capture_default_str();
@@ -265,6 +304,7 @@ int main(int argc, char** argv) {
   CLI::App* identify_cmd = app.add_subcommand("identify", "Identify base parameters from a joint log (CSV)");
   identify_cmd->add_option("--robot", identify.robot, "Built-in robot (paper6r, puma560) or URDF file")
       ->capture_default_str();
+  AddRobotLoadOptions(identify_cmd, &robot_load);
   identify_cmd->add_option("--data", identify.data, "Joint-log CSV (t, q*, [qd*, qdd*], tau*)")->required();
   identify_cmd->add_option("--model", identify.model, "torque (per-body needs hinge wrenches: idbench run)")
       ->capture_default_str();
@@ -305,6 +345,7 @@ int main(int argc, char** argv) {
   CLI::App* montecarlo_cmd = app.add_subcommand(
       "montecarlo", "Identification error under torque noise: seeded trials against the predicted covariance");
   montecarlo_cmd->add_option("--robot", montecarlo.robot, "Built-in robot or URDF file")->capture_default_str();
+  AddRobotLoadOptions(montecarlo_cmd, &robot_load);
   montecarlo_cmd->add_option("--trajectory", montecarlo.trajectory, "Identification motion: built-in or .json/.csv file")
       ->capture_default_str();
   montecarlo_cmd->add_option("--held-out", montecarlo.held_out, "Validation motion: built-in or .json/.csv file")
@@ -323,6 +364,7 @@ int main(int argc, char** argv) {
       app.add_subcommand("render", "Render the robot at chosen instants of a motion as one labelled PNG (headless)");
   render_cmd->add_option("--robot", render.robot, "Built-in robot (paper6r, puma560) or URDF file")
       ->capture_default_str();
+  AddRobotLoadOptions(render_cmd, &robot_load);
   render_cmd->add_option("--trajectory", render.trajectory,
                          "Built-in motion (paper, general, general-reversed) or trajectory file (.json, .csv)")
       ->capture_default_str();
@@ -341,6 +383,7 @@ int main(int argc, char** argv) {
       "design", "Optimise an excitation trajectory (Fourier series) for identification, within the joint limits");
   design_cmd->add_option("--robot", design.robot, "Built-in robot (paper6r, puma560) or URDF file")
       ->capture_default_str();
+  AddRobotLoadOptions(design_cmd, &robot_load);
   design_cmd->add_option("--model", design.model, "Identification model: torque (base parameters) or per-body")
       ->capture_default_str();
   design_cmd->add_option("--friction", design.friction, "Friction terms of the torque model")
@@ -384,6 +427,7 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("trajectories", compare.trajectories, "Motions: built-in names or .json/.csv files")
       ->required();
   compare_cmd->add_option("--robot", compare.robot, "Built-in robot or URDF file")->capture_default_str();
+  AddRobotLoadOptions(compare_cmd, &robot_load);
   compare_cmd->add_option("--model", compare.model, "torque or per-body")->capture_default_str();
   compare_cmd->add_option("--friction", compare.friction, "Friction terms of the torque model")
       ->delimiter(',')->capture_default_str();
@@ -434,7 +478,7 @@ int main(int argc, char** argv) {
     }
     if (simulate_cmd->parsed()) {
       simulate.sensors.record_derivatives = !no_derivatives;
-      return SimulateCommand(simulate);
+      return SimulateCommand(simulate, robot_load);
     }
     if (identify_cmd->parsed()) {
       identify.plausibility.mass_factor_min = identify_mass_range[0];
@@ -442,13 +486,13 @@ int main(int argc, char** argv) {
       if (identify_com_bound != "geometry" && identify_com_bound != "none")
         return UsageError("--com-bound: expected geometry or none, got '" + identify_com_bound + "'");
       identify.plausibility.com_in_geometry = identify_com_bound == "geometry";
-      return IdentifyCommand(identify, identify_report);
+      return IdentifyCommand(identify, robot_load, identify_report);
     }
-    if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo);
-    if (render_cmd->parsed()) return RenderCommand(render);
+    if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo, robot_load);
+    if (render_cmd->parsed()) return RenderCommand(render, robot_load);
     if (report_cmd->parsed()) return ReportCommand(report_dir);
-    if (design_cmd->parsed()) return DesignCommand(design, design_report);
-    if (compare_cmd->parsed()) return CompareCommand(compare, compare_report);
+    if (design_cmd->parsed()) return DesignCommand(design, robot_load, design_report);
+    if (compare_cmd->parsed()) return CompareCommand(compare, robot_load, compare_report);
     if (gui_cmd->parsed()) {
       if (std::sscanf(gui_size.c_str(), "%dx%d", &gui.width, &gui.height) != 2)
         return UsageError("--size: expected WxH, got '" + gui_size + "'");
@@ -456,6 +500,8 @@ int main(int argc, char** argv) {
       if (!gui.IsValid(&why)) return UsageError(why);
       return idbench::gui::RunGuiCommand(gui);
     }
+  } catch (const UsageException& e) {
+    return UsageError(e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;

@@ -10,10 +10,11 @@
 //
 // Not expressed in URDF, so neither read nor written: JointDynamics::
 // rotor_inertia, JointLimits::qdd_max, and gravity (a loaded model gets the
-// RobotModel default). Collision geometry and materials are ignored.
+// RobotModel default). Materials are ignored.
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,20 +25,73 @@ namespace idbench {
 struct UrdfLoadResult {
   RobotModel model;
   // What was accepted but not fully kept, one line each naming the link or
-  // joint: mesh visuals that could not be found or read, ignored <mimic>, inertias that break the
-  // triangle inequality (not physically realisable, still loaded).
+  // joint: mesh visuals that could not be found or read, ignored <mimic> on a
+  // chain joint, the joints locked off the chain (one line for all of them),
+  // inertias that are not positive definite (replaced, see LoadUrdfString) or
+  // break the triangle inequality (not physically realisable, still loaded).
   std::vector<std::string> warnings;
 };
 
-// Loads a serial revolute chain from URDF.
+// How a URDF becomes a chain: which link ends it, which joints are held still.
+struct UrdfLoadOptions {
+  // Joints fixed at a value: [rad] for revolute and continuous joints, [m]
+  // for prismatic ones; floating and planar joints only at 0 (their <origin>).
+  // A locked joint acts as a fixed joint. Any joint may be locked, also one on
+  // the chain (which then has one degree of freedom less).
+  std::map<std::string, double> locked_joints;
+  // The last link of the arm's chain; empty: chosen automatically (see
+  // LoadUrdfString).
+  std::string tip_link;
+
+  bool empty() const { return locked_joints.empty() && tip_link.empty(); }
+  // Names are not empty and values finite; *why says what is wrong.
+  bool IsValid(std::string* why) const;
+};
+
+// "JOINT=VALUE" (as --lock takes it) into *options->locked_joints. False with
+// *why (quoting the text) when there is no '=', no name, a value that is not
+// one finite number, or a joint given twice.
+bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string* why);
+
+// Loads the revolute chain of a URDF robot.
 //
-// The URDF root link, and every link fixed to it, is the ground: their
-// inertials and visuals are dropped. Each revolute or continuous joint becomes
+// The chain. Every joint is one of: a degree of freedom (revolute or
+// continuous, not locked), rigid (fixed, or locked by options.locked_joints),
+// or other (prismatic, floating, planar, not locked). With options.tip_link,
+// the chain is the path from the root link to that link: its degrees of
+// freedom become the model's joints; an "other" joint on it is refused. Without
+// a tip, the chain ends at the one revolute joint that can be reached from the
+// root through degree-of-freedom and rigid joints and has none of them below
+// it. Refused (naming the links and joints, saying to pass --tip LINK or
+// --lock JOINT=VALUE): two or more such ends (a branch: two arms, revolute
+// gripper fingers), and an "other" joint reachable that way with a revolute
+// joint below it (a linear axis carrying the arm: it is not clear whether it
+// belongs to the arm). So prismatic gripper fingers (Panda), any joint hanging
+// from the last link, and fixed side branches need no option.
+//
+// Every joint off the chain (any type, also one with <mimic>) is locked: at
+// options.locked_joints' value, else a <mimic> joint at multiplier·value +
+// offset of the joint it follows (a chain joint counts as 0), else at 0. The
+// links below it are merged into the chain link it hangs from, as links on
+// fixed joints are (below); one warning lists every locked joint, its value
+// and that link. A locked joint's value is checked against its <limit>.
+//
+// The URDF root link, and every link rigidly attached to it, is the ground:
+// their inertials and visuals are dropped. Each degree of freedom becomes
 // one idbench Link, named after the URDF child link, with joint_name the URDF
-// joint name. Links hanging from a moving link by fixed joints are merged into
+// joint name. Links hanging from a moving link by rigid joints are merged into
 // it: their masses are lumped (COM and inertia about the lumped COM by the
 // parallel-axis theorem), their visuals become its shapes, and moving joints
-// below them get X_PJ composed with the fixed offsets.
+// below them get X_PJ composed with the rigid offsets.
+//
+// Inertia. A chain link whose lumped inertia is not positive definite (all
+// zero: a point mass; semidefinite; smallest principal moment ≤ 10⁻¹² of the
+// largest) loads with a warning naming it: the file's values are a prior that
+// identification replaces. Its principal moments below m·(2/5)·(1 cm)², those
+// of a uniform sphere of 1 cm radius and the link's mass, are raised to that
+// value (the principal axes are kept), so the model is a valid rigid body
+// (Bullet, inverse dynamics). Moments that break the triangle inequality load
+// as they are, with a warning.
 //
 // Joint axes are normalised. Limits: revolute lower/upper → q_min/q_max
 // (continuous: none); velocity → qd_max and effort → tau_max, where a value
@@ -53,20 +107,22 @@ struct UrdfLoadResult {
 // with a warning naming the link and the file.
 //
 // Throws std::invalid_argument with one message that starts with the source
-// name and names the link or joint at fault, for: text urdfdom rejects ("not a
-// valid URDF"); floating, planar or prismatic joints; a link where two chains
-// with moving joints diverge; a moving link whose lumped mass is not > 0
-// (including no <inertial>) or whose lumped inertia is not positive definite;
-// a negative mass or an inertia that is not positive semidefinite on any
-// merged link; a zero joint axis; revolute limits with lower ≥ upper;
-// negative damping or friction; no moving joint at all.
+// name, names the link or joint at fault and the element, and says what to
+// change, for: text urdfdom rejects ("not a valid URDF"); options that do not
+// fit the file (an unknown joint or link, a locked value outside the joint's
+// limits, a fixed joint locked); a chain that cannot be chosen (above); a
+// moving link whose lumped mass is not > 0 (including no <inertial>); a
+// negative or non-finite mass, or an inertia with a negative principal
+// moment (beyond rounding) or non-finite entries, on any merged link; a zero
+// joint axis; revolute limits with lower ≥ upper; negative damping or
+// friction; no moving joint at all.
 UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name = "<string>",
-                               const std::string& base_directory = "");
+                               const std::string& base_directory = "", const UrdfLoadOptions& options = {});
 
 // As LoadUrdfString, with source_name = path and meshes looked up from the
 // file's directory. Also throws
 // std::invalid_argument naming the path when the file cannot be read.
-UrdfLoadResult LoadUrdfFile(const std::string& path);
+UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& options = {});
 
 // URDF text of a model: a root link for the ground (named "base", or another
 // name no link uses), then per idbench link a <link> with <inertial> (origin
