@@ -183,10 +183,28 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   internal::QuadraticSdpOptions solver;
   solver.relative_gap = options.gap_tolerance;
   solver.objective_offset = program.rest + program.rho2 / program.s2;
+  solver.objective_floor = 1e-12;  // of the robot file's cost, the unit of the objective
   solver.max_newton_steps = options.max_iterations;
   solver.start = program.start;
   const internal::QuadraticSdpSolution solution = internal::SolveQuadraticSdp(program.sdp, solver);
-  const Eigen::VectorXd& u = solution.u;
+  Eigen::VectorXd u = solution.u;
+  // The standard parameters no base parameter contains appear only in the
+  // prior term: at the optimum they equal the prior unless a constraint holds
+  // them. The barrier method leaves them within its tolerance, which the
+  // prior's small weight turns into visible drift; put each link's back
+  // where that keeps the point strictly feasible (the objective can only fall).
+  for (int l = 0; l < n_links; ++l) {
+    Eigen::VectorXd snapped = u;
+    for (int k : base.unexcited)
+      if (k / kP == l) snapped[k] = 0.0;
+    if (snapped != u && internal::IsStrictlyFeasible(program.sdp, snapped)) u = snapped;
+  }
+  for (int k : base.unexcited) {  // friction terms no data reach
+    if (k < kP * n_links) continue;
+    Eigen::VectorXd snapped = u;
+    snapped[k] = program.start[k];
+    if (internal::IsStrictlyFeasible(program.sdp, snapped)) u = snapped;
+  }
 
   PhysicallyConsistentFit fit;
   fit.pi = pi_prior + program.D.cwiseProduct(u);

@@ -23,6 +23,20 @@ struct BarrierProblem {
   const std::vector<LmiBlock>* blocks = nullptr;
   const std::vector<LinearInequality>* rows = nullptr;
   int extra = -1;  // phase I: the variable s added to every block (s 𝟙) and row (+s); −1: none
+  // Phase II: the objective is ‖R w − z‖² (P = 2RᵀR, q = −2Rᵀz), whose
+  // gradient and increments are taken from the residual, not from P and q,
+  // which lose the digits that matter near the optimum.
+  const Eigen::MatrixXd* R = nullptr;
+  const Eigen::VectorXd* z = nullptr;
+
+  Eigen::VectorXd ObjectiveGradient(const Eigen::VectorXd& w) const {
+    return R ? Eigen::VectorXd(2.0 * R->transpose() * (*R * w - *z)) : Eigen::VectorXd(P * w + q);
+  }
+  double ObjectiveChange(const Eigen::VectorXd& w, const Eigen::VectorXd& d) const {
+    if (!R) return (P * w + q).dot(d) + 0.5 * d.dot(P * d);
+    const Eigen::VectorXd Rd = *R * d;
+    return (2.0 * (*R * w - *z) + Rd).dot(Rd);
+  }
 
   int n() const { return static_cast<int>(q.size()); }
   int degree() const {  // Σ dim S_j + number of rows: the gap of a centred point is degree/τ
@@ -66,7 +80,7 @@ struct BarrierProblem {
   // log1p of the slacks) so that it stays accurate where τ f(w) is 10¹⁰
   // times larger; +∞ if w + d leaves the strict interior.
   double PhiChange(const Eigen::VectorXd& w, const Eigen::VectorXd& d, double tau) const {
-    double change = tau * ((P * w + q).dot(d) + 0.5 * d.dot(P * d));
+    double change = tau * ObjectiveChange(w, d);
     for (int j = 0; j < static_cast<int>(blocks->size()); ++j) {
       const Eigen::LLT<Eigen::MatrixXd> llt(S(j, w));
       Eigen::MatrixXd dS = S(j, d) - (*blocks)[static_cast<size_t>(j)].C;  // linear part at d
@@ -88,7 +102,7 @@ struct BarrierProblem {
   }
   // Gradient and Hessian of Phi at a strictly feasible w.
   void Derivatives(const Eigen::VectorXd& w, double tau, Eigen::VectorXd* grad, Eigen::MatrixXd* hess) const {
-    *grad = tau * (P * w + q);
+    *grad = tau * ObjectiveGradient(w);
     *hess = tau * P;
     for (int j = 0; j < static_cast<int>(blocks->size()); ++j) {
       const LmiBlock& b = (*blocks)[static_cast<size_t>(j)];
@@ -168,6 +182,15 @@ bool Centre(const BarrierProblem& problem, double tau, Eigen::VectorXd* w, int* 
 
 }  // namespace
 
+bool IsStrictlyFeasible(const QuadraticSdp& problem, const Eigen::VectorXd& u) {
+  BarrierProblem barrier;
+  barrier.blocks = &problem.blocks;
+  barrier.rows = &problem.rows;
+  barrier.P = Eigen::MatrixXd::Zero(u.size(), u.size());
+  barrier.q = Eigen::VectorXd::Zero(u.size());
+  return std::isfinite(barrier.Phi(u, 0.0));
+}
+
 QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const QuadraticSdpOptions& options) {
   const int n = problem.n_variables();
   if (problem.R.rows() != n || problem.z.size() != n || n < 1)
@@ -232,6 +255,8 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   phase2.rows = &problem.rows;
   phase2.P = 2.0 * problem.R.transpose() * problem.R;
   phase2.q = -2.0 * problem.R.transpose() * problem.z;
+  phase2.R = &problem.R;
+  phase2.z = &problem.z;
   const Eigen::LDLT<Eigen::MatrixXd> P_ldlt(phase2.P);
   auto f = [&](const Eigen::VectorXd& v) { return (problem.R * v - problem.z).squaredNorm(); };
   // The dual function at Z_j = S_j⁻¹/τ, λ_k = 1/(τ r_k): a lower bound on f*.
@@ -259,26 +284,28 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   const int degree = phase2.degree();
   double tau = degree / std::max(f(u) + options.objective_offset, 1e-300);
   bool stalled = false;
-  double best_gap = kInf;
+  double best_gap = kInf;  // absolute: f − g
   Eigen::VectorXd best_u = u;
+  auto relative = [&](double gap, double objective) {
+    return gap / std::max({objective + options.objective_offset, options.objective_floor, 1e-300});
+  };
   while (solution.newton_steps < options.max_newton_steps) {
     const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
     stalled = !Centre(phase2, tau, &u, &solution.newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
-    const double objective = f(u), bound = lower_bound(u, tau);
-    const double gap = (objective - bound) / std::max(objective + options.objective_offset, 1e-300);
+    const double objective = f(u), bound = lower_bound(u, tau), gap = objective - bound;
     if (gap < best_gap) {
       best_gap = gap;
       best_u = u;
       solution.objective = objective;
       solution.lower_bound = bound;
     }
-    if (best_gap <= options.relative_gap || gap > 10.0 * best_gap) break;
+    if (relative(best_gap, solution.objective) <= options.relative_gap || gap > 10.0 * best_gap) break;
     tau *= kBarrierGrowth;
   }
   solution.u = best_u;
-  solution.relative_gap = best_gap;
+  solution.relative_gap = relative(best_gap, solution.objective);
   solution.feasible = std::isfinite(phase2.Phi(best_u, 1.0));
-  solution.converged = solution.feasible && best_gap <= options.relative_gap;
+  solution.converged = solution.feasible && solution.relative_gap <= options.relative_gap;
   solution.status = solution.converged ? "converged"
                     : stalled ? "stopped where rounding ends the progress"
                               : "stopped: Newton step limit reached";

@@ -48,10 +48,13 @@ struct QuadraticSdp {
 };
 
 struct QuadraticSdpOptions {
-  // Stop when (f(u) − g) ≤ relative_gap · (f(u) + objective_offset): the
-  // offset is what the caller adds to f (e.g. the residual no u reaches).
-  double relative_gap = 1e-10;
+  // Stop when (f(u) − g) ≤ relative_gap · max(f(u) + objective_offset,
+  // objective_floor): the offset is what the caller adds to f (e.g. the
+  // residual no u reaches), the floor the scale below which the objective
+  // counts as zero (an optimum at f ≈ 0 has no relative precision).
+  double relative_gap = 1e-9;
   double objective_offset = 0.0;
+  double objective_floor = 0.0;
   int max_newton_steps = 2000;   // over both phases
   Eigen::VectorXd start;         // n (empty: u = 0); need not be feasible
 };
@@ -60,12 +63,15 @@ struct QuadraticSdpSolution {
   Eigen::VectorXd u;
   double objective = 0.0;     // f(u)
   double lower_bound = 0.0;   // g: f* ≥ g
-  double relative_gap = 0.0;  // (f(u) − g) / (f(u) + objective_offset)
+  double relative_gap = 0.0;  // (f(u) − g) / max(f(u) + objective_offset, objective_floor)
   int newton_steps = 0;
   bool feasible = false;      // u satisfies every constraint strictly
   bool converged = false;     // feasible and relative_gap ≤ the option's
   std::string status;         // "converged", "infeasible: …" or why it stopped
 };
+
+// Whether u satisfies every constraint strictly (S_j(u) ≻ 0, r_k(u) > 0).
+bool IsStrictlyFeasible(const QuadraticSdp& problem, const Eigen::VectorXd& u);
 
 // Throws std::invalid_argument on inconsistent sizes or indices.
 QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const QuadraticSdpOptions& options = {});
