@@ -1,7 +1,6 @@
 // Drive gains (torque per motor current) of every joint from two logs of the
 // same robot: one unloaded, one with a payload of known mass fixed to the
-// last link (centre of mass and inertia unknown). Gautier & Mamedov style,
-// total least squares of both logs at once:
+// last link (centre of mass and inertia unknown), both logs solved at once:
 //
 //   unloaded:  W_u β                 − diag(i_u) K = 0
 //   loaded:    W_l β + Y_l φ'         − diag(i_l) K = −M · y_l
@@ -16,9 +15,14 @@
 // The known mass fixes the scale that the unloaded log alone leaves free
 // (β and K can both be scaled); the payload's other parameters only take part
 // in the loaded log.
-// References: M. Gautier, B. Mamedov, ... drive gain identification with a
-// known payload (unloaded/loaded experiments); Gautier & Khalil (σ from the
-// residual).
+// The linear least-squares solution of these equations is the start: noise
+// in the currents sits in the K columns and shrinks K (errors in variables),
+// so the estimate is then refined by Gauss–Newton on the same model in
+// current units, e = (W β + Y φ' + M y)/K_j − i_j, where the noise is.
+// References: M. Gautier, S. Briot, "Global identification of joint drive
+// gains and dynamic parameters of robots", ASME J. Dyn. Syst. Meas. Control
+// 136(5), 2014 (unloaded and loaded experiments with a known payload mass);
+// Gautier & Khalil (σ from the residual).
 #pragma once
 
 #include <optional>
@@ -79,8 +83,8 @@ struct DriveGainEstimate {
 const std::vector<std::string>& PayloadParameterNames();
 
 // Estimates the drive gains. Both logs must carry qd, qdd and currents of the
-// robot's joints. σ² = ‖r‖²/(m − rank) times the diagonal of the (pseudo-)
-// inverse of AᵀA, the identifiable directions only. Gains that the logs do not
+// robot's joints. σ² = ‖e‖²/(m − rank) times the diagonal of (JᵀJ)⁺ (J the
+// Jacobian of the current residual e), the identifiable directions only. Gains that the logs do not
 // determine (a joint whose payload torque is not excited: the loaded motion
 // must move the payload so that its mass shows at every joint) give status
 // kNotIdentifiable with a message, not a throw. Throws std::invalid_argument
