@@ -214,35 +214,12 @@ void StackEquations(const RobotModel& model, const FrictionModel& friction, cons
   *W = StackBaseRegressor(model, friction, base, log);
   *tau = StackTorques(log);
   if (!filter) return;
-  const int n = model.n_dof();
-  const Eigen::Index n_samples = log.n_samples();
-  const LogFilterOptions& f = filter->filter;
-  const SosMatrix sos = DesignButterworthLowPass(f.order, f.cutoff_hz, filter->sample_rate_hz);
-  // Per joint: the samples of that joint's rows, every column and τ alike.
-  using Strided = Eigen::Map<Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
-  for (int j = 0; j < n; ++j) {
-    Strided Wj(W->data() + j, n_samples, W->cols(), Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(W->rows(), n));
-    Strided tj(tau->data() + j, n_samples, 1, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(tau->size(), n));
-    Wj = FiltFilt(sos, Wj);
-    tj = FiltFilt(sos, tj);
-  }
-  // Drop the transients at both ends, then keep every k-th sample.
-  const double trim_s = f.trim_s < 0.0 ? 5.0 / f.cutoff_hz : f.trim_s;
-  const Eigen::Index trim = static_cast<Eigen::Index>(std::ceil(trim_s * filter->sample_rate_hz - 1e-9));
-  if (n_samples - 2 * trim < 1) {
-    throw std::invalid_argument("joint log: " + std::to_string(n_samples) + " samples are too few to drop " +
-                                std::to_string(trim) + " filter-transient samples at both ends");
-  }
-  std::vector<Eigen::Index> kept;
-  for (Eigen::Index s = trim; s < n_samples - trim; s += f.decimation) kept.push_back(s);
-  Eigen::MatrixXd W_kept(static_cast<Eigen::Index>(kept.size()) * n, W->cols());
-  Eigen::VectorXd tau_kept(W_kept.rows());
-  for (size_t k = 0; k < kept.size(); ++k) {
-    W_kept.middleRows(static_cast<Eigen::Index>(k) * n, n) = W->middleRows(kept[k] * n, n);
-    tau_kept.segment(static_cast<Eigen::Index>(k) * n, n) = tau->segment(kept[k] * n, n);
-  }
-  *W = std::move(W_kept);
-  *tau = std::move(tau_kept);
+  // [W τ] filtered per joint, the transients dropped, every k-th sample kept.
+  Eigen::MatrixXd rows(W->rows(), W->cols() + 1);
+  rows << *W, *tau;
+  ParallelFilterStackedRows(filter->filter, filter->sample_rate_hz, model.n_dof(), &rows);
+  *W = rows.leftCols(rows.cols() - 1);
+  *tau = rows.col(rows.cols() - 1);
 }
 
 bool PlausibilitySettings::IsValid(std::string* why) const {

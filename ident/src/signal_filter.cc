@@ -230,8 +230,11 @@ bool LogFilterOptions::IsValid(std::string* why) const {
   return true;
 }
 
-JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
-                             const LogFilterOptions& options) {
+namespace {
+
+// ProcessJointLog on t, q, tau and, where recorded (non-empty), qd and qdd.
+JointLog ProcessRecordedLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
+                            const Eigen::MatrixXd& qdd, const Eigen::MatrixXd& tau, const LogFilterOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("log filter options: " + why);
 
@@ -243,8 +246,15 @@ JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, con
                                 std::to_string(q.rows()) + "x" + std::to_string(q.cols()) + ", tau " +
                                 std::to_string(tau.rows()) + "x" + std::to_string(tau.cols()));
   }
+  for (const Eigen::MatrixXd* recorded : {&qd, &qdd}) {
+    if (recorded->size() > 0 && (recorded->rows() != n || recorded->cols() != q.cols())) {
+      throw std::invalid_argument("joint log: expected a recorded " + std::string(recorded == &qd ? "qd" : "qdd") +
+                                  " of " + std::to_string(n) + "x" + std::to_string(q.cols()) + ", got " +
+                                  std::to_string(recorded->rows()) + "x" + std::to_string(recorded->cols()));
+    }
+  }
   if (n < 2) throw std::invalid_argument("joint log: expected at least 2 samples, got " + std::to_string(n));
-  if (!t.allFinite() || !q.allFinite() || !tau.allFinite()) {
+  if (!t.allFinite() || !q.allFinite() || !tau.allFinite() || !qd.allFinite() || !qdd.allFinite()) {
     throw std::invalid_argument("joint log: expected finite t, q and tau");
   }
 
@@ -273,11 +283,18 @@ JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, con
   }
   const SosMatrix sos = DesignButterworthLowPass(options.order, options.cutoff_hz, fs);
 
-  // Filter, differentiate the filtered positions, filter the torques alike.
+  // Filter, differentiate the filtered positions (or the filtered recorded
+  // velocities), filter the torques alike.
   const Eigen::MatrixXd q_f = FiltFilt(sos, q);
   JointLog out;
-  out.qd = Decimate(FirstDerivative(q_f, dt), options.decimation);
-  out.qdd = Decimate(SecondDerivative(q_f, dt), options.decimation);
+  if (qd.size() > 0) {
+    const Eigen::MatrixXd qd_f = FiltFilt(sos, qd);
+    out.qdd = Decimate(qdd.size() > 0 ? FiltFilt(sos, qdd) : FirstDerivative(qd_f, dt), options.decimation);
+    out.qd = Decimate(qd_f, options.decimation);
+  } else {
+    out.qd = Decimate(FirstDerivative(q_f, dt), options.decimation);
+    out.qdd = Decimate(qdd.size() > 0 ? FiltFilt(sos, qdd) : SecondDerivative(q_f, dt), options.decimation);
+  }
   out.q = Decimate(q_f, options.decimation);
   out.tau = Decimate(options.filter_tau ? FiltFilt(sos, tau) : tau, options.decimation);
   out.t = Decimate(t, options.decimation);
@@ -297,8 +314,48 @@ JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, con
   return out;
 }
 
+}  // namespace
+
+JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
+                         const LogFilterOptions& options) {
+  return ProcessRecordedLog(t, q, Eigen::MatrixXd(), Eigen::MatrixXd(), tau, options);
+}
+
 JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options) {
-  return ProcessJointLog(log.t, log.q, log.tau, options);
+  return ProcessRecordedLog(log.t, log.q, log.qd, log.qdd, log.tau, options);
+}
+
+void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_rate_hz, int n_channels,
+                               Eigen::MatrixXd* rows) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("parallel filter options: " + why);
+  if (n_channels < 1 || rows->rows() % n_channels != 0) {
+    throw std::invalid_argument("parallel filter: expected rows in whole samples of " + std::to_string(n_channels) +
+                                " channels, got " + std::to_string(rows->rows()) + " rows");
+  }
+  const Eigen::Index n_samples = rows->rows() / n_channels;
+  const SosMatrix sos = DesignButterworthLowPass(options.order, options.cutoff_hz, sample_rate_hz);
+  // Per channel: the samples of that channel's rows, every column alike.
+  using Strided = Eigen::Map<Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+  for (int j = 0; j < n_channels; ++j) {
+    Strided channel(rows->data() + j, n_samples, rows->cols(),
+                    Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(rows->rows(), n_channels));
+    channel = FiltFilt(sos, channel);
+  }
+  // Drop the transients at both ends, then keep every k-th sample.
+  const double trim_s = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;
+  const Eigen::Index trim = static_cast<Eigen::Index>(std::ceil(trim_s * sample_rate_hz - 1e-9));
+  if (n_samples - 2 * trim < 1) {
+    throw std::invalid_argument("joint log: " + std::to_string(n_samples) + " samples are too few to drop " +
+                                std::to_string(trim) + " filter-transient samples at both ends");
+  }
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index s = trim; s < n_samples - trim; s += options.decimation) kept.push_back(s);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(kept.size()) * n_channels, rows->cols());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    out.middleRows(static_cast<Eigen::Index>(k) * n_channels, n_channels) = rows->middleRows(kept[k] * n_channels, n_channels);
+  }
+  *rows = std::move(out);
 }
 
 }  // namespace idbench

@@ -14,33 +14,21 @@
 namespace idbench {
 namespace {
 
-// Reads a log and brings it to what the regressor needs: qd and qdd. A log
-// without them gets them from the zero-phase filtered q; its regressor and
-// torques are then filtered in parallel (*parallel is set).
-JointLog ReadForIdentification(const std::string& path, const RobotModel& model, const LogFilterOptions& filter,
-                               std::optional<ParallelFilter>* parallel) {
-  JointLog log = ReadJointLogCsv(path, model);
-  parallel->reset();
-  if (log.has_derivatives()) return log;
-  try {
-    LogFilterOptions derivatives = filter;
-    derivatives.decimation = 1;
-    derivatives.trim_s = 0.0;
-    derivatives.filter_tau = false;
-    log = ProcessJointLog(log, derivatives);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(path + ": " + e.what());
-  }
-  *parallel = ParallelFilter{filter, (log.n_samples() - 1) / (log.t[log.n_samples() - 1] - log.t[0])};
-  return log;
-}
-
 }  // namespace
 
 FrictionModel IdentifyOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
   return f;
+}
+
+LogPreparationOptions IdentifyOptions::preparation(bool with_window) const {
+  LogPreparationOptions out;
+  out.format = format;
+  out.filter = filter;
+  out.max_gap_s = max_gap_s;
+  if (with_window) out.time_window = time_window;
+  return out;
 }
 
 bool IdentifyOptions::IsValid(std::string* why) const {
@@ -61,6 +49,7 @@ bool IdentifyOptions::IsValid(std::string* why) const {
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
+  if (!preparation(true).IsValid(why)) return false;
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
   if (out_dir.empty()) return fail("--out: empty path");
@@ -76,8 +65,13 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   id_options.friction = options.friction_model();
   id_options.estimator = *ParseTorqueEstimator(options.estimator);
   id_options.plausibility = options.plausibility;
-  report.log = ReadForIdentification(options.data, model, options.filter, &id_options.parallel_filter);
+  PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
+  report.log = std::move(data.log);
+  id_options.parallel_filter = data.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
+  report.derivatives = data.derivatives;
+  report.notes = data.notes;
+  report.warnings = data.warnings;
   try {
     report.identification = IdentifyJointTorque(model, report.log, id_options);
   } catch (const std::invalid_argument& e) {
@@ -85,11 +79,13 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   }
   if (!options.validate.empty()) {
     JointTorqueOptions held_options = id_options;
-    const JointLog held_out = ReadForIdentification(options.validate, model, options.filter,
-                                                    &held_options.parallel_filter);
+    PreparedLog held_out = PrepareJointLog(options.validate, model, options.preparation(false));
+    held_options.parallel_filter = held_out.parallel_filter;
+    for (std::string& note : held_out.notes) report.notes.push_back(std::move(note));
+    for (std::string& warning : held_out.warnings) report.warnings.push_back(std::move(warning));
     try {
       report.validation = PredictTorques(model, held_options, report.identification.base,
-                                         report.identification.beta, held_out);
+                                         report.identification.beta, held_out.log);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(options.validate + ": " + e.what());
     }
@@ -101,10 +97,11 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
                                  const IdentifyReport& report) {
   const JointTorqueIdentification& id = report.identification;
   std::string out;
+  for (const std::string& note : report.notes) out += note + "\n";
   char line[512];
   std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
                 "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), report.log.n_samples(),
-                report.filtered ? " (qd, qdd from the filtered q)" : "", id.base.n_base(), options.estimator.c_str(),
+                report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), options.estimator.c_str(),
                 id.linear.cond);
   out += line;
   std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
@@ -188,7 +185,10 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"robot", model.name()},
       {"data", options.data},
       {"n_samples", report.log.n_samples()},
-      {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences" : "from the log"},
+      {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences (" + report.derivatives + ")"
+                                      : "from the log"},
+      {"log_preparation", report.notes},
+      {"time_window", options.time_window.empty() ? json(nullptr) : json(options.time_window)},
       {"model", options.model},
       {"estimator", options.estimator},
       {"friction", options.friction},

@@ -9,6 +9,8 @@
 #include "idbench/engine/measurements.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/signal_filter.h"
+#include "joint_log_csv.h"
+#include "log_preparation.h"
 
 namespace idbench {
 
@@ -22,17 +24,27 @@ struct IdentifyOptions {
   LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
   PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
   std::string validate;            // held-out joint log (optional)
+  // Reading the logs (README "Joint logs"): --columns, --angle-unit,
+  // --drive-gains for --data and --validate; --time-window for --data only.
+  JointLogFormat format;
+  std::vector<double> time_window;  // {T0, T1} [s]; empty: the whole log
+  double max_gap_s = 0.0;           // [s] longest step resampled; 0: 10 median steps
   std::string out_dir = "out/identify";
   std::string command_line;        // recorded in identified.json
 
   FrictionModel friction_model() const;
+  // How --data (with_window) or --validate is read.
+  LogPreparationOptions preparation(bool with_window) const;
   // Checks the options alone; *why names the bad one.
   bool IsValid(std::string* why) const;
 };
 
 struct IdentifyReport {
   JointLog log;                      // as identified (after filtering, if any)
-  bool filtered = false;             // qd/qdd were estimated from q
+  bool filtered = false;             // qd/qdd were estimated by filtering
+  std::string derivatives;           // where the identification log's qd, qdd come from
+  std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout
+  std::vector<std::string> warnings; // for stderr
   JointTorqueIdentification identification;
   std::optional<TorquePrediction> validation;  // on the held-out log
 };

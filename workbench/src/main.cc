@@ -15,6 +15,7 @@
 #include "compare_command.h"
 #include "design_command.h"
 #include "design_report.h"
+#include "gains_command.h"
 #include "idbench/gui/gui_command.h"
 #include "identify_command.h"
 #include "idbench/engine/paper6r.h"
@@ -117,11 +118,17 @@ int SimulateCommand(const idbench::SimulateOptions& options, const idbench::Urdf
   return 0;
 }
 
+void PrintWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
+}
+
 int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.format.IsValidFor(model.n_dof(), &why)) return UsageError(why);
   const idbench::IdentifyReport report = idbench::RunIdentify(model, options);
+  PrintWarnings(report.warnings);
   std::fputs(idbench::FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
@@ -135,6 +142,22 @@ int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::Urdf
   idbench::WriteFilesAtomically(files);
   std::printf("wrote %s and %s%s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str(),
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
+  return 0;
+}
+
+int GainsCommand(const idbench::GainsOptions& options, const idbench::UrdfLoadOptions& load) {
+  std::string why;
+  if (!options.IsValid(&why)) return UsageError(why);
+  const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.preparation().format.IsValidFor(model.n_dof(), &why)) return UsageError(why);
+  const idbench::GainsReport report = idbench::RunGains(model, options);
+  PrintWarnings(report.warnings);
+  std::fputs(idbench::FormatGainsTable(model, options, report).c_str(), stdout);
+  if (report.estimate.status != idbench::DriveGainStatus::kEstimated) return kExitFailure;  // message printed above
+  const std::filesystem::path dir(options.out_dir);
+  idbench::EnsureOutputDirectory(dir);
+  idbench::WriteFileAtomically(dir / "gains.json", idbench::FormatGainsJson(model, options, report));
+  std::printf("wrote %s\n", (dir / "gains.json").c_str());
   return 0;
 }
 
@@ -320,6 +343,18 @@ int main(int argc, char** argv) {
   identify_cmd->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   identify_cmd->add_option("--validate", identify.validate, "Held-out joint log to validate on");
+  // Reading real logs (README "Joint logs"): issue 12.
+  identify_cmd->add_option("--columns", identify.format.columns,
+                           "Column names in file order for a log without a header: t,q1..q6,qd1..qd6,i1..i6,_ ...")
+      ->delimiter(',');
+  identify_cmd->add_option("--angle-unit", identify.format.angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
+      ->capture_default_str();
+  identify_cmd->add_option("--drive-gains", identify.format.drive_gains,
+                           "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
+  identify_cmd->add_option("--time-window", identify.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
+      ->delimiter(',');
+  identify_cmd->add_option("--max-gap", identify.max_gap_s,
+                           "Longest time step resampled [s]; 0 = 10 median steps")->capture_default_str();
   std::vector<double> identify_mass_range{identify.plausibility.mass_factor_min, identify.plausibility.mass_factor_max};
   identify_cmd->add_option("--mass-range", identify_mass_range,
                            "Physically consistent estimate: each link's mass within LO,HI x the robot file's")
@@ -339,6 +374,31 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bool identify_report = false;
   identify_cmd->add_flag("--report", identify_report, "Also write report.html, report.pdf and the plots");
+
+  idbench::GainsOptions gains;
+  gains.command_line = command_line;
+  CLI::App* gains_cmd = app.add_subcommand(
+      "gains", "Drive gains (torque per motor current) from an unloaded log and one with a known payload mass");
+  gains_cmd->add_option("--robot", gains.robot, "Built-in robot (paper6r, puma560) or URDF file")->capture_default_str();
+  AddRobotLoadOptions(gains_cmd, &robot_load);
+  gains_cmd->add_option("--data", gains.data, "Unloaded log with motor currents i1..in")->required();
+  gains_cmd->add_option("--loaded", gains.loaded, "Log of the same robot with the payload on the last link")->required();
+  gains_cmd->add_option("--payload-mass", gains.payload_mass, "Known payload mass [kg]")->required();
+  gains_cmd->add_option("--columns", gains.columns, "Column names in file order for logs without a header")
+      ->delimiter(',');
+  gains_cmd->add_option("--angle-unit", gains.angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
+      ->capture_default_str();
+  gains_cmd->add_option("--friction", gains.friction, "Friction terms: none or viscous,coulomb,offset,rotor")
+      ->delimiter(',')->capture_default_str();
+  gains_cmd->add_option("--coulomb-smoothing", gains.coulomb_smoothing,
+                        "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
+  gains_cmd->add_option("--filter-cutoff", gains.filter.cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
+      ->capture_default_str();
+  gains_cmd->add_option("--filter-order", gains.filter.order, "Butterworth order")->capture_default_str();
+  gains_cmd->add_option("--max-gap", gains.max_gap_s, "Longest time step resampled [s]; 0 = 10 median steps")
+      ->capture_default_str();
+  gains_cmd->add_option("--out", gains.out_dir, "Output directory for gains.json (created if missing, never wiped)")
+      ->capture_default_str();
 
   idbench::MonteCarloOptions montecarlo;
   montecarlo.command_line = command_line;
@@ -488,6 +548,7 @@ int main(int argc, char** argv) {
       identify.plausibility.com_in_geometry = identify_com_bound == "geometry";
       return IdentifyCommand(identify, robot_load, identify_report);
     }
+    if (gains_cmd->parsed()) return GainsCommand(gains, robot_load);
     if (montecarlo_cmd->parsed()) return MonteCarloCommand(montecarlo, robot_load);
     if (render_cmd->parsed()) return RenderCommand(render, robot_load);
     if (report_cmd->parsed()) return ReportCommand(report_dir);
@@ -506,5 +567,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;
   }
-  return UsageError("a subcommand is required (run, simulate, identify, montecarlo, design, compare, render, report, gui); see idbench --help");
+  return UsageError("a subcommand is required (run, simulate, identify, gains, montecarlo, design, compare, render, report, gui); see idbench --help");
 }

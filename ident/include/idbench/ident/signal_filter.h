@@ -134,7 +134,27 @@ struct LogFilterOptions {
 // offending sample index), or the record is shorter than the filter needs.
 JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, const Eigen::MatrixXd& tau,
                              const LogFilterOptions& options);
-// The same on a log's t, q and tau (its qd and qdd, if any, are replaced).
+// The same on a log's t, q and tau, using what the log recorded: a recorded
+// qd (log.qd non-empty) is filtered instead of differentiating q_f, and qdd is
+// then FirstDerivative(FiltFilt(qd)) (one difference of a measured velocity
+// rather than two of a position); a recorded qdd is filtered and used as is.
+// Every signal thus passes through the same zero-phase filter. A log with both
+// qd and qdd needs no filter and is not a case for this function (it would
+// filter them anyway). Throws as above, and if a recorded qd/qdd is not
+// t.size() × n_dof.
 JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options);
+
+// Parallel filtering of stacked equations (Gautier 1997): `rows` holds
+// n_samples · n_channels rows interleaved by channel (row = sample·n_channels
+// + channel), e.g. a stacked regressor with its torques as the last column.
+// Each channel's rows are filtered column by column with the Butterworth of
+// `options` (FiltFilt along the samples) at `sample_rate_hz`, then
+// trim_s (< 0: 5/cutoff_hz) is dropped at both ends and every
+// decimation-th sample kept; *rows is replaced by the kept samples' rows,
+// still interleaved. Linear: filtering W and τ alike keeps W β = τ. Throws
+// std::invalid_argument for invalid options, rows not a multiple of
+// n_channels, or too few samples to trim.
+void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_rate_hz, int n_channels,
+                               Eigen::MatrixXd* rows);
 
 }  // namespace idbench

@@ -1,0 +1,231 @@
+#include "idbench/ident/drive_gains.h"
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/ident/least_squares.h"
+#include "idbench/ident/linear_estimator.h"
+
+namespace idbench {
+namespace {
+
+// Columns of one log's equations, rows interleaved by joint (s·n + j):
+// the base regressor (n_base), the last link's 10 standard columns
+// [m, mcx, …, Izz] (payload; used in the loaded log only), and the current
+// of the row's joint in that joint's column (n_dof).
+Eigen::MatrixXd StackGainEquations(const RobotModel& model, const FrictionModel& friction,
+                                   const BaseParameters& base, const CurrentLog& log, const char* which) {
+  const int n = model.n_dof();
+  const JointLog& m = log.motion;
+  const int n_samples = m.n_samples();
+  const auto fail = [&](const std::string& what) { throw std::invalid_argument(std::string(which) + " log: " + what); };
+  if (m.n_dof() != n || m.qd.rows() != n_samples || m.qdd.rows() != n_samples || m.qd.cols() != n ||
+      m.qdd.cols() != n) {
+    fail("expected q, qd, qdd of " + std::to_string(n) + " joints for " + std::to_string(n_samples) +
+         " samples (robot '" + model.name() + "')");
+  }
+  if (log.current.rows() != n_samples || log.current.cols() != n) {
+    fail("expected currents of " + std::to_string(n_samples) + "x" + std::to_string(n) + ", got " +
+         std::to_string(log.current.rows()) + "x" + std::to_string(log.current.cols()));
+  }
+  const int n_base = base.n_base();
+  const int payload_first = (model.n_links() - 1) * kInertialParametersPerLink;
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_samples) * n,
+                                               n_base + kInertialParametersPerLink + n);
+  RobotData data(model);
+  Eigen::MatrixXd Y;
+  Eigen::VectorXd q(n), qd(n), qdd(n);
+  for (int s = 0; s < n_samples; ++s) {
+    q = m.q.row(s).transpose();
+    qd = m.qd.row(s).transpose();
+    qdd = m.qdd.row(s).transpose();
+    ComputeJointTorqueRegressor(model, friction, q, qd, qdd, &data, &Y);
+    const Eigen::Index r0 = static_cast<Eigen::Index>(s) * n;
+    for (int k = 0; k < n_base; ++k) rows.block(r0, k, n, 1) = Y.col(base.independent[static_cast<size_t>(k)]);
+    rows.block(r0, n_base, n, kInertialParametersPerLink) = Y.middleCols(payload_first, kInertialParametersPerLink);
+    for (int j = 0; j < n; ++j) rows(r0 + j, n_base + kInertialParametersPerLink + j) = log.current(s, j);
+  }
+  if (log.parallel_filter) {
+    ParallelFilterStackedRows(log.parallel_filter->filter, log.parallel_filter->sample_rate_hz, n, &rows);
+  }
+  return rows;
+}
+
+// Per-joint RMS of a stacked residual, and ‖r‖/‖ref‖.
+void ResidualStatistics(const Eigen::VectorXd& r, const Eigen::VectorXd& reference, int n_dof, Eigen::VectorXd* rms,
+                        double* relative) {
+  *rms = JointRms(r, n_dof);
+  const double ref = reference.norm();
+  *relative = ref > 0.0 ? r.norm() / ref : std::numeric_limits<double>::infinity();
+}
+
+// Minimum-norm least squares of A x = b with the unknowns' identifiability
+// (least_squares.h), through the R factor of [A b] (same row space, p + 1
+// rows instead of m), and diag((AᵀA)⁺) for the variances.
+struct MinNormSolution {
+  LeastSquaresSolution ls;   // rank, identifiable, reasons
+  Eigen::VectorXd x;         // minimum-norm solution, every entry finite (p)
+  Eigen::VectorXd variance;  // diag((AᵀA)⁺) in the determined directions (p)
+  double residual2 = 0.0;    // ‖A x − b‖²
+};
+
+MinNormSolution SolveMinNorm(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const std::vector<std::string>& names) {
+  const Eigen::Index p = A.cols();
+  const Eigen::MatrixXd factor = CombinedFactor(A, b);
+  const Eigen::MatrixXd R = factor.topLeftCorner(p, p);
+  const Eigen::VectorXd z = factor.col(p).head(p);
+  MinNormSolution out;
+  out.ls = SolveLeastSquares(R, z, names);
+  // SVD of the column-normalised R, truncated at the rank decided above.
+  Eigen::VectorXd norms = R.colwise().norm();
+  for (Eigen::Index c = 0; c < p; ++c) norms[c] = norms[c] > 0.0 ? norms[c] : 1.0;
+  const Eigen::MatrixXd Rn = R * norms.cwiseInverse().asDiagonal();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Rn, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const int rank = out.ls.rank;
+  const Eigen::VectorXd inverse_sv = svd.singularValues().head(rank).cwiseInverse();
+  const Eigen::MatrixXd Vr = svd.matrixV().leftCols(rank);
+  out.x = (Vr * inverse_sv.asDiagonal() * (svd.matrixU().leftCols(rank).transpose() * z)).cwiseQuotient(norms);
+  out.variance = (Vr * inverse_sv.asDiagonal()).rowwise().squaredNorm().cwiseQuotient(norms.cwiseAbs2());
+  out.residual2 = (R * out.x - z).squaredNorm() + factor(p, p) * factor(p, p);
+  return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& PayloadParameterNames() {
+  static const std::vector<std::string> names{"mcx", "mcy", "mcz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"};
+  return names;
+}
+
+bool DriveGainOptions::IsValid(std::string* why) const {
+  if (!(payload_mass > 0.0 && payload_mass <= kMaxPayloadMass)) {
+    if (why) {
+      char text[160];
+      std::snprintf(text, sizeof(text), "expected a payload mass in (0, %g] kg, got %g", kMaxPayloadMass, payload_mass);
+      *why = text;
+    }
+    return false;
+  }
+  return true;
+}
+
+DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& unloaded, const CurrentLog& loaded,
+                                     const DriveGainOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("drive gains: " + why);
+  const int n = model.n_dof();
+  DriveGainEstimate out;
+  out.base = ComputeBaseParameters(model, options.friction, options.base);
+  const int n_base = out.base.n_base();
+  const int n_payload = kInertialParametersPerLink - 1;
+  const int p = n_base + n_payload + n;  // unknowns x = [β; φ'; K]
+
+  // Both logs' equations: [W, payload columns, −diag(i)] x = b.
+  const Eigen::MatrixXd U = StackGainEquations(model, options.friction, out.base, unloaded, "unloaded");
+  const Eigen::MatrixXd L = StackGainEquations(model, options.friction, out.base, loaded, "loaded");
+  const Eigen::Index m_u = U.rows(), m_l = L.rows();
+  out.n_equations = m_u + m_l;
+  if (out.n_equations <= p) {
+    throw std::invalid_argument("drive gains: " + std::to_string(out.n_equations) + " equations for " +
+                                std::to_string(p) + " unknowns; record longer logs");
+  }
+  const int mass_col = n_base, payload_col = n_base + 1;  // in U, L
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(out.n_equations, p);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(out.n_equations);
+  A.topLeftCorner(m_u, n_base) = U.leftCols(n_base);
+  A.topRightCorner(m_u, n) = -U.rightCols(n);
+  A.bottomLeftCorner(m_l, n_base) = L.leftCols(n_base);
+  A.block(m_u, n_base, m_l, n_payload) = L.middleCols(payload_col, n_payload);
+  A.bottomRightCorner(m_l, n) = -L.rightCols(n);
+  b.tail(m_l) = -options.payload_mass * L.col(mass_col);
+
+  // Names of the unknowns, for the messages.
+  out.unknown_names = out.base.names;
+  for (const std::string& name : PayloadParameterNames()) out.unknown_names.push_back("payload " + name);
+  for (int j = 1; j <= n; ++j) out.unknown_names.push_back("K" + std::to_string(j));
+
+  // 1. Linear least squares in torque units (Gautier & Briot's equations as
+  //    written). Noise in the currents sits in A's K columns, so this shrinks
+  //    K (errors in variables: the homogeneous unloaded rows reward a small
+  //    K by (σ_i K)² per row); it is the start, and says what is identifiable.
+  MinNormSolution solution = SolveMinNorm(A, b, out.unknown_names);
+  out.rank = solution.ls.rank;
+  out.identifiable = solution.ls.identifiable;
+  Eigen::VectorXd x = solution.x;
+  const Eigen::Index n_head = n_base + n_payload;
+  const bool gains_found = (x.tail(n).array().abs() > 0.0).all() && x.allFinite();
+
+  // 2. Gauss–Newton on the same model in current units, the noise where it is
+  //    measured: e = (W β + Y φ' + M y)/K_j − i per row of joint j. Started
+  //    at the linear estimate; noise-free data are a fixed point.
+  auto current_residual = [&](const Eigen::VectorXd& xk, Eigen::MatrixXd* J) {
+    const Eigen::VectorXd torque = A.leftCols(n_head) * xk.head(n_head) - b;  // W β + Y φ' + M y
+    Eigen::VectorXd e(A.rows());
+    if (J) J->setZero(A.rows(), p);
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      const int j = static_cast<int>(r % n);
+      const double K = xk[n_head + j], current = -A(r, n_head + j);
+      e[r] = torque[r] / K - current;
+      if (J) {
+        J->row(r).head(n_head) = A.row(r).head(n_head) / K;
+        (*J)(r, n_head + j) = -torque[r] / (K * K);
+      }
+    }
+    return e;
+  };
+  Eigen::MatrixXd J;
+  if (gains_found) {
+    constexpr int kMaxIterations = 30;
+    for (int it = 0; it < kMaxIterations; ++it) {
+      const Eigen::VectorXd e = current_residual(x, &J);
+      const MinNormSolution step = SolveMinNorm(J, -e, out.unknown_names);
+      x += step.x;
+      if (step.x.tail(n).cwiseQuotient(x.tail(n)).cwiseAbs().maxCoeff() < 1e-13) break;
+    }
+    const Eigen::VectorXd e = current_residual(x, &J);
+    solution = SolveMinNorm(J, e, out.unknown_names);  // for σ: the Jacobian at the estimate
+    solution.residual2 = e.squaredNorm();
+  }
+  const Eigen::VectorXd x_full = x;  // the undetermined entries as the minimum-norm steps left them
+  for (size_t c = 0; c < out.identifiable.size(); ++c) {
+    if (!out.identifiable[c]) x[static_cast<Eigen::Index>(c)] = std::numeric_limits<double>::quiet_NaN();
+  }
+  out.beta = x.head(n_base);
+  out.payload = x.segment(n_base, n_payload);
+  out.gains = x.tail(n);
+
+  // σ² = ‖e‖²/(m − rank), cov = σ² (JᵀJ)⁺ (the linear A if no refinement).
+  const double sigma2 = solution.residual2 / static_cast<double>(out.n_equations - out.rank);
+  out.sigma = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  for (int j = 0; j < n; ++j) {
+    if (out.identifiable[static_cast<size_t>(n_head + j)]) out.sigma[j] = std::sqrt(sigma2 * solution.variance[n_head + j]);
+  }
+
+  // Each log's torque residual W β + Y φ' + M y − K·i (the undetermined
+  // unknowns' values do not change it: they are in the null space of A).
+  const Eigen::VectorXd r = A * x_full - b;
+  const Eigen::VectorXd torque = -(A.rightCols(n) * x_full.tail(n));  // K·i
+  ResidualStatistics(r.head(m_u), torque.head(m_u), n, &out.unloaded_rms, &out.unloaded_relative_error);
+  ResidualStatistics(r.tail(m_l), torque.tail(m_l), n, &out.loaded_rms, &out.loaded_relative_error);
+
+  // Gains the logs do not determine: a status, with the reason.
+  std::string missing;
+  for (int j = 0; j < n; ++j) {
+    const size_t c = static_cast<size_t>(n_base + n_payload + j);
+    if (out.identifiable[c]) continue;
+    missing += (missing.empty() ? "" : "; ") + solution.ls.reason[c];
+  }
+  if (!missing.empty()) {
+    out.status = DriveGainStatus::kNotIdentifiable;
+    out.message = "the logs do not determine every drive gain (" + missing +
+                  "): the loaded motion must move the payload so that its mass shows in every joint's torque, and "
+                  "each joint must move in both logs";
+  }
+  return out;
+}
+
+}  // namespace idbench
