@@ -1,6 +1,8 @@
 // idbench simulate / identify / montecarlo, run as a user would.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -99,6 +101,37 @@ TEST_F(IdentifyCliTest, IdentifiedUrdfLoadsBackAndReproducesTheEstimate) {
   // Every link of the estimate is a physical body.
   for (const auto& e : a["physically_consistent"]["min_pseudo_inertia_eigenvalue"]) EXPECT_GT(e.get<double>(), 0.0);
   EXPECT_LE(a["physically_consistent"]["cost"].get<double>(), 1.05 * a["physically_consistent"]["ols_cost"].get<double>());
+}
+
+// joints.yaml carries, per joint, what a controller loads next to the URDF:
+// on a noise-free log the estimate's viscous and Coulomb friction are the
+// PUMA's published values (Corke's mdl_puma560, the robot file), and the
+// file agrees with identified.json; the plausible estimate's links report
+// their masses inside their bounds.
+TEST_F(IdentifyCliTest, JointsYamlHoldsTheEstimatedFriction) {
+  const fs::path log = SimulatePuma("log.csv");
+  const Result r = Run("identify --robot puma560 --estimator pc --data " + log.string() + " --out " + (dir_ / "id").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string yaml = Slurp(dir_ / "id" / "joints.yaml");
+  const nlohmann::json j = Json(dir_ / "id" / "identified.json");
+  std::map<std::string, double> file_value;
+  for (const auto& p : j["physically_consistent"]["standard_parameters"]) file_value[p["name"]] = p["robot_file_value"];
+  size_t at = 0;
+  for (int joint = 1; joint <= 6; ++joint) {
+    for (const char* term : {"viscous", "coulomb"}) {
+      at = yaml.find(std::string(term) + ": ", at);
+      ASSERT_NE(at, std::string::npos) << term << " of joint " << joint << " in\n" << yaml;
+      const double value = std::stod(yaml.substr(at + std::string(term).size() + 2));
+      const double truth = file_value[(term[0] == 'v' ? "Fv" : "Fc") + std::to_string(joint)];
+      EXPECT_NEAR(value, truth, 1e-6 * std::max(1.0, truth)) << term << " of joint " << joint;
+      ++at;
+    }
+  }
+  EXPECT_NE(yaml.find("drive_gain: null"), std::string::npos);
+  for (const auto& link : j["physically_consistent"]["links"]) {
+    EXPECT_GE(link["mass"].get<double>(), link["mass_bounds"][0].get<double>() * (1 - 1e-9)) << link["name"];
+    EXPECT_LE(link["mass"].get<double>(), link["mass_bounds"][1].get<double>() * (1 + 1e-9)) << link["name"];
+  }
 }
 
 // The Monte-Carlo: torque noise σ 0.5 N m (joints 1–3), 0.05 (4–6),

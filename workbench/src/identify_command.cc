@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "idbench/engine/urdf.h"
 #include "joint_log_csv.h"
@@ -158,6 +160,63 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   return out;
 }
 
+namespace {
+
+// Per joint, what a controller loads besides the URDF: the physically
+// consistent estimate's friction, offset and rotor inertia (null when not in
+// the model) and the drive gain the log was read with (null without currents).
+struct JointDynamicsValues {
+  std::string name;
+  std::optional<double> viscous, coulomb, offset, rotor_inertia, drive_gain;
+};
+std::vector<JointDynamicsValues> JointDynamicsOf(const RobotModel& model, const IdentifyOptions& options,
+                                                 const IdentifyReport& report) {
+  const std::vector<std::string>& names = report.identification.standard_names;
+  std::vector<JointDynamicsValues> joints(static_cast<size_t>(model.n_dof()));
+  for (int j = 0; j < model.n_dof(); ++j) {
+    JointDynamicsValues& v = joints[static_cast<size_t>(j)];
+    v.name = model.link(j).joint_name;
+    const std::string s = std::to_string(j + 1);
+    for (size_t c = 0; c < names.size(); ++c) {
+      const double value = report.identification.consistent.pi[static_cast<Eigen::Index>(c)];
+      if (names[c] == "Fv" + s) v.viscous = value;
+      if (names[c] == "Fc" + s) v.coulomb = value;
+      if (names[c] == "offset" + s) v.offset = value;
+      if (names[c] == "Ia" + s) v.rotor_inertia = value;
+    }
+    if (!options.format.drive_gains.empty()) v.drive_gain = options.format.drive_gains[static_cast<size_t>(j)];
+  }
+  return joints;
+}
+
+nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions& options, const IdentifyReport& report) {
+  auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  nlohmann::json joints = nlohmann::json::array();
+  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
+    joints.push_back({{"name", v.name}, {"viscous", value(v.viscous)}, {"coulomb", value(v.coulomb)},
+                      {"offset", value(v.offset)}, {"rotor_inertia", value(v.rotor_inertia)},
+                      {"drive_gain", value(v.drive_gain)}});
+  }
+  return joints;
+}
+
+}  // namespace
+
+std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
+                                    const IdentifyReport& report) {
+  auto value = [](const std::optional<double>& v) { return v ? Shortest(*v) : std::string("null"); };
+  std::string out = "# idbench identify: per-joint friction and drive values of the physically consistent estimate\n"
+                    "# (the rigid-body parameters are in identified.urdf). Units: viscous [N m s/rad], coulomb and\n"
+                    "# offset [N m], rotor_inertia [kg m^2], drive_gain [N m/A]; null: not in the model.\n"
+                    "robot: \"" + model.name() + "\"\njoints:\n";
+  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
+    out += "  - name: \"" + v.name + "\"\n    viscous: " + value(v.viscous) + "\n    coulomb: " + value(v.coulomb) +
+           "\n    offset: " + value(v.offset) + "\n    rotor_inertia: " + value(v.rotor_inertia) +
+           "\n    drive_gain: " + value(v.drive_gain) + "\n";
+  }
+  return out;
+}
+
 std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
   using nlohmann::json;
@@ -174,9 +233,29 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
                     {"status", ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]))},
                     {"robot_file_value", id.beta_model[k]}});
   }
+  const Eigen::VectorXd pi_model = StandardParameters(model, options.friction_model());
   json standard = json::array();
   for (size_t c = 0; c < id.standard_names.size(); ++c) {
-    standard.push_back({{"name", id.standard_names[c]}, {"value", id.consistent.pi[static_cast<Eigen::Index>(c)]}});
+    const Eigen::Index k = static_cast<Eigen::Index>(c);
+    standard.push_back({{"name", id.standard_names[c]}, {"value", id.consistent.pi[k]}, {"robot_file_value", pi_model[k]}});
+  }
+  // Per link: the plausible estimate's mass and centre of mass, and the
+  // bounds it was held to.
+  const PlausibleFitOptions bounds = MakePlausibleFitOptions(model, options.friction_model(), options.plausibility);
+  json links = json::array();
+  for (int l = 0; l < model.n_links(); ++l) {
+    const Eigen::Index o = kInertialParametersPerLink * l;
+    const double m = id.consistent.pi[o];
+    const LinkPlausibilityBounds& b = bounds.links[static_cast<size_t>(l)];
+    const Eigen::Vector3d c = id.consistent.pi.segment<3>(o + 1) / m;
+    links.push_back({{"name", model.link(l).name},
+                     {"mass", m},
+                     {"robot_file_mass", model.link(l).inertia.mass},
+                     {"mass_bounds", {b.mass_min, b.mass_max}},
+                     {"com_B", {c.x(), c.y(), c.z()}},
+                     {"com_box_B", b.bound_com ? json{{"min", {b.com_min_B.x(), b.com_min_B.y(), b.com_min_B.z()}},
+                                                      {"max", {b.com_max_B.x(), b.com_max_B.y(), b.com_max_B.z()}}}
+                                               : json(nullptr)}});
   }
   json unexcited = json::array();
   for (int c : id.base.unexcited) unexcited.push_back(id.standard_names[static_cast<size_t>(c)]);
@@ -216,7 +295,9 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
           {"total_mass_tolerance", options.plausibility.total_mass_tolerance},
           {"com_bound", options.plausibility.com_in_geometry ? "geometry" : "none"},
           {"prior_weight", options.plausibility.prior_weight}}},
-        {"standard_parameters", standard}}},
+        {"standard_parameters", standard},
+        {"links", links}}},
+      {"joints", JointDynamicsJson(model, options, report)},
   };
   if (report.validation) {
     result["validation"] = {{"data", options.validate},

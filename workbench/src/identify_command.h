@@ -58,6 +58,10 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
 // identified.json (README.md).
 std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);
+// joints.yaml: per joint, the friction, offset, rotor inertia and drive gain
+// a controller loads next to identified.urdf (README.md).
+std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
+                                    const IdentifyReport& report);
 // identified.urdf: the robot with the physically consistent standard parameters.
 std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);

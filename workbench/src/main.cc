@@ -134,13 +134,14 @@ int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::Urdf
   idbench::EnsureOutputDirectory(dir);
   std::vector<std::pair<std::filesystem::path, std::string>> files{
       {dir / "identified.json", idbench::FormatIdentifiedJson(model, options, report)},
-      {dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report)}};
+      {dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report)},
+      {dir / "joints.yaml", idbench::FormatJointDynamicsYaml(model, options, report)}};
   if (with_report) {
     for (auto& file : idbench::FormatReportFiles(idbench::MakeIdentifyReportContent(model, options, report), dir))
       files.push_back(std::move(file));
   }
   idbench::WriteFilesAtomically(files);
-  std::printf("wrote %s and %s%s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str(),
+  std::printf("wrote %s, %s and joints.yaml%s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str(),
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
   return 0;
 }
