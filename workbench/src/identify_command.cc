@@ -144,7 +144,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   joint_row("  fit       ", report.identification.fit.joint_rms);
   if (report.validation) joint_row("  validation", report.validation->joint_rms);
   std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.identification.fit.relative_error,
-                report.validation ? (", validation " + Shortest(report.validation->relative_error)).c_str() : "");
+                report.validation ? (", validation " + Format("%.4g", report.validation->relative_error)).c_str() : "");
   out += line;
   const PhysicallyConsistentFit& pc = id.consistent;
   std::snprintf(line, sizeof(line), "Physically consistent fit (SDP): cost %.6g vs OLS %.6g (the unconstrained "
