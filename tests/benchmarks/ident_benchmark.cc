@@ -8,6 +8,8 @@
 #include "idbench/engine/puma560.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/ident/linear_estimator.h"
+#include "idbench/ident/plausible_fit.h"
 
 namespace idbench {
 namespace {
@@ -81,6 +83,52 @@ void BM_StackDenseAndOlsPuma560(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StackDenseAndOlsPuma560)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// The physically consistent estimate from the triangular factor of [W τ]
+// (its cost does not depend on the number of samples): torques of the PUMA
+// 560 itself (Fv, Fc from the robot file) along random states, with noise, so
+// that some bounds are active. The plausible fit (barrier method on the SDP,
+// bounds and prior) side by side with the SLSQP fit over Cholesky factors it
+// replaced in `identify`.
+struct Puma560ConsistentProblem {
+  Puma560Problem p{2000};
+  Eigen::MatrixXd factor;
+  Eigen::VectorXd pi_model;
+  Puma560ConsistentProblem() {
+    pi_model = StandardParameters(p.model, p.friction);
+    const Eigen::MatrixXd W = StackBaseRegressor(p.model, p.friction, p.base, p.log);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.5);
+    Eigen::VectorXd tau = W * (p.base.combination * pi_model);
+    for (Eigen::Index r = 0; r < tau.size(); ++r) tau[r] += noise(rng);
+    factor = CombinedFactor(W, tau);
+  }
+};
+
+void BM_PlausibleFitPuma560(benchmark::State& state) {
+  const Puma560ConsistentProblem c;
+  const PlausibleFitOptions options = MakePlausibleFitOptions(c.p.model, c.p.friction, PlausibilitySettings{});
+  for (auto _ : state) {
+    const PhysicallyConsistentFit fit = SolvePlausibleFit(c.factor, c.p.base, 6, c.pi_model, options);
+    benchmark::DoNotOptimize(fit.pi.data());
+    state.counters["gap"] = fit.duality_gap;
+    state.counters["newton_steps"] = fit.evaluations;
+  }
+}
+BENCHMARK(BM_PlausibleFitPuma560)->Unit(benchmark::kMillisecond);
+
+void BM_SlsqpConsistentFitPuma560(benchmark::State& state) {
+  const Puma560ConsistentProblem c;
+  PhysicallyConsistentOptions options;
+  options.nonnegative = MakePlausibleFitOptions(c.p.model, c.p.friction, PlausibilitySettings{}).nonnegative;
+  const Eigen::VectorXd beta_start = SolutionNearPrior(c.factor, c.p.base.combination * c.pi_model);
+  for (auto _ : state) {
+    const PhysicallyConsistentFit fit = SolvePhysicallyConsistent(c.factor, c.p.base, 6, beta_start, c.pi_model, options);
+    benchmark::DoNotOptimize(fit.pi.data());
+    state.counters["evaluations"] = fit.evaluations;
+  }
+}
+BENCHMARK(BM_SlsqpConsistentFitPuma560)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench
