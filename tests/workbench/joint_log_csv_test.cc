@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/test_util.h"
+
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -11,15 +13,7 @@
 namespace idbench {
 namespace {
 
-std::string ExpectInvalid(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no std::invalid_argument";
-  return "";
-}
+using testing::ExpectInvalid;
 
 // Header-less lines of a 6-joint log: t, q (0.1 j + t), qd (j), a target
 // current to skip, i (−j), an extra column to ignore.

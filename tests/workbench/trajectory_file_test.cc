@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/test_util.h"
+
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -34,15 +36,7 @@ FourierSeriesTrajectory MakeSeries(bool rest_to_rest, double duration = 10.0) {
   return FourierSeriesTrajectory(q0, a, b, 0.1, duration, rest_to_rest);
 }
 
-std::string ExpectInvalid(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no std::invalid_argument";
-  return "";
-}
+using testing::ExpectInvalid;
 
 TEST(TrajectoryFileTest, FourierJsonRoundTripIsExact) {
   for (bool rest_to_rest : {false, true}) {
