@@ -1,10 +1,10 @@
 // The physically consistent and plausible estimate of the standard
-// parameters, solved as the convex problem it is: a semidefinite program
-// (least squares with a 4 × 4 linear matrix inequality per link), by DSDP
-// (Debian libdsdp-dev) to a certified optimum.
+// parameters, solved as the convex problem it is: least squares under a 4 × 4
+// linear matrix inequality per link and linear bounds (a semidefinite
+// program), to a certified optimum.
 //
 // Over π (n_standard), with x = D⁻¹(π − π_prior) the deviation from the robot
-// file in units of each parameter's scale D (plausible_fit below):
+// file in units of each parameter's scale D (PlausibleFitOptions::scale):
 //   minimise  ‖W_b C π − τ‖² + λ ‖x‖²,   λ = γ ρ² / n_standard,
 //   subject to  J_l(π) ⪰ ε diag(D_I, D_I, D_I, D_m)          per link l,
 //               m_min,l ≤ m_l ≤ m_max,l,  M_min ≤ Σ m_l ≤ M_max,
@@ -16,11 +16,13 @@
 // file's values, projected onto the constraints) and costs γ ρ² when every
 // parameter is one scale away from the file: with γ ≪ 1 it hardly moves the
 // determined directions (Lee & Wensing 2020 use an entropic distance to the
-// prior for the same purpose; a scaled Euclidean one keeps the problem an SDP
-// with one extra identity block).
-// The least squares enter as the epigraph t ≥ ‖R'x − z'‖², i.e. the LMI
-// [[t, (R'x − z')ᵀ], [R'x − z', 𝟙]] ⪰ 0, after the data and prior rows are
-// compressed by QR to n_standard rows.
+// prior for the same purpose; a scaled Euclidean one keeps the objective a
+// least squares). Where the data are 10⁵ times stronger than λ (nearly
+// noise-free logs) λ is raised per parameter to 10⁻¹⁰ of the data's
+// curvature, what double precision resolves.
+// The data and prior rows are compressed by QR to n_standard rows and the
+// program is solved by the barrier method of ident/src/quadratic_sdp.h, whose
+// dual function certifies the optimum (the relative duality gap reported).
 #pragma once
 
 #include <Eigen/Core>
