@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
@@ -239,6 +240,25 @@ bool PlausibilitySettings::IsValid(std::string* why) const {
   return true;
 }
 
+bool PlausibilitySettings::IsValidFor(const RobotModel& model, std::string* why) const {
+  if (!IsValid(why)) return false;
+  if (total_mass <= 0.0) return true;
+  double file_total = 0.0;
+  for (const Link& link : model.links()) file_total += link.inertia.mass;
+  const double lo = total_mass * (1.0 - total_mass_tolerance), hi = total_mass * (1.0 + total_mass_tolerance);
+  if (hi < mass_factor_min * file_total || lo > mass_factor_max * file_total) {
+    char text[400];
+    std::snprintf(text, sizeof(text),
+                  "--total-mass %.6g kg (± %.3g %%) cannot be met: the links' bounds (--mass-range %.3g,%.3g × the "
+                  "robot file's %.6g kg) allow %.6g to %.6g kg; widen --mass-range or --total-mass-tolerance",
+                  total_mass, 100.0 * total_mass_tolerance, mass_factor_min, mass_factor_max, file_total,
+                  mass_factor_min * file_total, mass_factor_max * file_total);
+    if (why) *why = text;
+    return false;
+  }
+  return true;
+}
+
 PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const FrictionModel& friction,
                                             const PlausibilitySettings& settings) {
   const Eigen::VectorXd pi = StandardParameters(model, friction);
@@ -296,6 +316,10 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   const Eigen::MatrixXd factor = CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof()));
   out.consistent = SolvePlausibleFit(factor, out.base, model.n_links(), pi_model,
                                      MakePlausibleFitOptions(model, options.friction, options.plausibility));
+  if (!std::isfinite(out.consistent.duality_gap) || !out.consistent.min_pseudo_inertia_eigenvalue.allFinite() ||
+      out.consistent.status.rfind("infeasible", 0) == 0) {
+    throw std::runtime_error("physically consistent estimate: " + out.consistent.status);
+  }
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
   out.fit = Predict(factors, out.beta);
   out.model_fit = Predict(factors, out.beta_model);

@@ -91,10 +91,12 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
   const Eigen::VectorXd z = factor.col(p).head(p);
   program.rho2 = factor(p, p) * factor(p, p);
   program.start_cost = DataCost(factor, C * pi_prior);
-  program.s2 = std::max(program.start_cost, 1e-300);
+  // The unit: the prior's cost, at least 10⁻¹² of ‖τ‖² (= ‖z‖² + ρ²), so
+  // that a noise-free log of the robot file itself keeps a sane scale.
+  program.s2 = std::max({program.start_cost, 1e-12 * (z.squaredNorm() + program.rho2), 1e-300});
   const double s = std::sqrt(program.s2);
   // λ = γ ρ² / n, with ρ² floored so that noise-free data keep a prior term.
-  const double lambda = options.prior_weight * std::max(program.rho2, 1e-12 * program.start_cost) / n;
+  const double lambda = options.prior_weight * std::max(program.rho2, 1e-12 * program.s2) / n;
   Eigen::MatrixXd M(p + n, n);
   M.topRows(p) = (R * C * options.scale.asDiagonal()) / s;
   // Prior weights λ_k = max(λ, κ ‖data column k‖²): where the data are 10⁵

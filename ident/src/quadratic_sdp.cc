@@ -209,9 +209,11 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   QuadraticSdpSolution solution;
   Eigen::VectorXd u = options.start.size() == n ? options.start : Eigen::VectorXd::Zero(n);
 
-  // Phase I, when the start is not strictly feasible: minimise s over (u, s)
-  // with S_j(u) + s 𝟙 ⪰ 0 and r_k(u) + s ≥ 0 (plus ε/2 ‖u − u₀‖², which keeps
-  // the Newton system regular for variables no constraint holds) until s < 0.
+  // Phase I, when the start is not strictly feasible: minimise s + η f(u)
+  // over (u, s) with S_j(u) + s 𝟙 ⪰ 0 and r_k(u) + s ≥ 0 until s < 0. The
+  // small multiple of the objective, η = 10⁻⁴/f(u₀), keeps the barrier
+  // problem bounded (without it, growing inertias drive −log det S to −∞)
+  // and the Newton system regular, in the objective's own scale.
   BarrierProblem phase1;
   phase1.blocks = &problem.blocks;
   phase1.rows = &problem.rows;
@@ -224,20 +226,29 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
                                   .eigenvalues()[0]);
     for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) worst = std::min(worst, plain.r(k, u));
     if (!(worst > 0.0)) {
+      // η trades the objective against the violation: where the data pin a
+      // direction hard (a nearly noise-free log) even a small η can hold s
+      // above 0, so a phase that ends infeasible is retried with η 10⁻⁴ times
+      // smaller before the constraints are called contradictory.
       const Eigen::VectorXd u0 = u;
+      const double f0 = std::max((problem.R * u0 - problem.z).squaredNorm(), 1e-300);
       phase1.extra = n;
-      phase1.P = Eigen::MatrixXd::Zero(n + 1, n + 1);
-      phase1.P.topLeftCorner(n, n).diagonal().setConstant(1e-8);
-      phase1.q = Eigen::VectorXd::Zero(n + 1);
-      phase1.q.head(n) = -1e-8 * u0;
-      phase1.q[n] = 1.0;
       Eigen::VectorXd w(n + 1);
-      w << u, 1.0 - worst;
       bool found = false;
-      for (double tau = 1.0; tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps; tau *= kBarrierGrowth) {
-        Centre(phase1, tau, &w, &solution.newton_steps, options.max_newton_steps,
-               [&](const Eigen::VectorXd& v) { return found = v[n] < 0.0; });
-        found = found || w[n] < 0.0;
+      for (double eta = 1e-4 / f0; !found && eta > 1e-24 / f0; eta *= 1e-4) {
+        phase1.P = Eigen::MatrixXd::Zero(n + 1, n + 1);
+        phase1.P.topLeftCorner(n, n) = 2.0 * eta * problem.R.transpose() * problem.R;
+        phase1.q = Eigen::VectorXd::Zero(n + 1);
+        phase1.q.head(n) = -2.0 * eta * problem.R.transpose() * problem.z;
+        phase1.q[n] = 1.0;
+        w << u0, 1.0 - worst;
+        for (double tau = 1.0 / std::max(1.0 - worst, 1.0); tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps;
+             tau *= kBarrierGrowth) {
+          const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
+          Centre(phase1, tau, &w, &solution.newton_steps, limit,
+                 [&](const Eigen::VectorXd& v) { return found = v[n] < 0.0; });
+          found = found || w[n] < 0.0;
+        }
       }
       if (!found) {
         solution.u = w.head(n);

@@ -134,6 +134,35 @@ TEST_F(IdentifyCliTest, JointsYamlHoldsTheEstimatedFriction) {
   }
 }
 
+// Bounds of the physically consistent estimate that cannot be right are
+// usage errors before anything runs (exit 2, one line naming the option,
+// nothing written): the PUMA's moving links weigh 54.4 kg in its file (with
+// link 1's 10 kg), so 0.5–1.5 × that cannot reach 200 kg ± 10 %.
+TEST_F(IdentifyCliTest, ImpossiblePlausibilityBoundsAreUsageErrors) {
+  const fs::path log = SimulatePuma("log.csv");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--total-mass 200", "--total-mass 200 kg"},
+      {"--mass-range 2,3", "--mass-range"},
+      {"--mass-range 0.5", "--mass-range"},
+      {"--com-bound hull", "--com-bound"},
+      {"--prior-weight -1", "--prior-weight"},
+      {"--total-mass-tolerance 2", "--total-mass-tolerance"}};
+  for (const auto& [option, expected] : cases) {
+    const fs::path out = dir_ / "bad";
+    const Result r = Run("identify --robot puma560 --data " + log.string() + " " + option + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << option << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << option;
+  }
+  // A total mass the links can reach is accepted and held.
+  const Result ok = Run("identify --robot puma560 --data " + log.string() + " --total-mass 54.4 --out " + (dir_ / "ok").string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  double total = 0.0;
+  for (const auto& link : Json(dir_ / "ok" / "identified.json")["physically_consistent"]["links"]) total += link["mass"].get<double>();
+  EXPECT_GE(total, 0.9 * 54.4 * (1 - 1e-9));
+  EXPECT_LE(total, 1.1 * 54.4 * (1 + 1e-9));
+}
+
 // The Monte-Carlo: torque noise σ 0.5 N m (joints 1–3), 0.05 (4–6),
 // 1000 samples of a 10 s Fourier motion, 100 seeded draws.
 TEST_F(IdentifyCliTest, MonteCarloSpreadAgreesWithThePredictedCovariance) {

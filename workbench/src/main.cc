@@ -127,6 +127,7 @@ int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::Urdf
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   if (!options.format.IsValidFor(model.n_dof(), &why)) return UsageError(why);
+  if (!options.plausibility.IsValidFor(model, &why)) return UsageError(why);
   const idbench::IdentifyReport report = idbench::RunIdentify(model, options);
   PrintWarnings(report.warnings);
   std::fputs(idbench::FormatIdentifyTables(model, options, report).c_str(), stdout);

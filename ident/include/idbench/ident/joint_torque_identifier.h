@@ -44,6 +44,9 @@ struct PlausibilitySettings {
   double prior_weight = 1e-4;           // γ (plausible_fit.h)
 
   bool IsValid(std::string* why) const;
+  // Also checks the settings against the robot: the total mass's range must
+  // meet the range the links' bounds allow.
+  bool IsValidFor(const RobotModel& model, std::string* why) const;
 };
 
 struct JointTorqueOptions {
