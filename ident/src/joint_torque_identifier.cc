@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -223,6 +224,13 @@ void StackEquations(const RobotModel& model, const FrictionModel& friction, cons
   *tau = rows.col(rows.cols() - 1);
 }
 
+std::vector<Eigen::Index> StackedSamples(const JointLog& log, const std::optional<ParallelFilter>& filter) {
+  if (filter) return ParallelFilterKeptSamples(filter->filter, filter->sample_rate_hz, log.n_samples());
+  std::vector<Eigen::Index> all(static_cast<size_t>(log.n_samples()));
+  for (size_t s = 0; s < all.size(); ++s) all[s] = static_cast<Eigen::Index>(s);
+  return all;
+}
+
 bool PlausibilitySettings::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;
@@ -329,6 +337,30 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
   return Predict(FactorEquations(model, options.friction, base, log, options.parallel_filter), beta);
+}
+
+TorqueSeries PredictTorqueSeries(const RobotModel& model, const JointTorqueOptions& options,
+                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
+  if (beta.size() != base.n_base()) {
+    throw std::invalid_argument("torque prediction: expected " + std::to_string(base.n_base()) +
+                                " base parameters, got " + std::to_string(beta.size()));
+  }
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
+  const std::vector<Eigen::Index> samples = StackedSamples(log, options.parallel_filter);
+  const int n = model.n_dof();
+  const Eigen::Index n_kept = static_cast<Eigen::Index>(samples.size());
+  assert(W.rows() == n_kept * n);
+  // The stacked rows are interleaved by joint (sample·n_dof + joint): row-major n_kept × n_dof.
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::VectorXd tau_hat = W * beta;
+  TorqueSeries out;
+  out.t.resize(n_kept);
+  for (Eigen::Index k = 0; k < n_kept; ++k) out.t[k] = log.t[samples[static_cast<size_t>(k)]];
+  out.measured = Eigen::Map<const RowMajor>(tau.data(), n_kept, n);
+  out.predicted = Eigen::Map<const RowMajor>(tau_hat.data(), n_kept, n);
+  return out;
 }
 
 }  // namespace idbench

@@ -343,6 +343,18 @@ void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_ra
     channel = FiltFilt(sos, channel);
   }
   // Drop the transients at both ends, then keep every k-th sample.
+  const std::vector<Eigen::Index> kept = ParallelFilterKeptSamples(options, sample_rate_hz, n_samples);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(kept.size()) * n_channels, rows->cols());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    out.middleRows(static_cast<Eigen::Index>(k) * n_channels, n_channels) = rows->middleRows(kept[k] * n_channels, n_channels);
+  }
+  *rows = std::move(out);
+}
+
+std::vector<Eigen::Index> ParallelFilterKeptSamples(const LogFilterOptions& options, double sample_rate_hz,
+                                                    Eigen::Index n_samples) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("parallel filter options: " + why);
   const double trim_s = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;
   const Eigen::Index trim = static_cast<Eigen::Index>(std::ceil(trim_s * sample_rate_hz - 1e-9));
   if (n_samples - 2 * trim < 1) {
@@ -351,11 +363,7 @@ void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_ra
   }
   std::vector<Eigen::Index> kept;
   for (Eigen::Index s = trim; s < n_samples - trim; s += options.decimation) kept.push_back(s);
-  Eigen::MatrixXd out(static_cast<Eigen::Index>(kept.size()) * n_channels, rows->cols());
-  for (size_t k = 0; k < kept.size(); ++k) {
-    out.middleRows(static_cast<Eigen::Index>(k) * n_channels, n_channels) = rows->middleRows(kept[k] * n_channels, n_channels);
-  }
-  *rows = std::move(out);
+  return kept;
 }
 
 }  // namespace idbench

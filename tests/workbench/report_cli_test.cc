@@ -74,8 +74,28 @@ TEST_F(ReportCliTest, IdentifyReport) {
   const fs::path out = dir_ / "id";
   const Result r = Run("identify --data " + (dir_ / "log.csv").string() + " --report --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  ExpectCompleteReport(out, {"figure.png", "plot_joints.svg", "plot_parameters.svg", "plot_spectrum.svg"});
+  ExpectCompleteReport(out, {"figure.png", "plot_joints.svg", "plot_parameters.svg", "plot_spectrum.svg",
+                             "plot_torques.svg", "plot_torques.png", "plot_torques.pdf"});
   EXPECT_NE(Slurp(out / "report.html").find("Base parameters"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out / "plot_validation_torques.svg"));  // no --validate
+}
+
+// With --validate, measured against predicted torque on the held-out log as
+// well; here a log without qd, qdd, so it is predicted on its parallel-filtered rows.
+TEST_F(ReportCliTest, IdentifyReportWithValidationPlotsTheHeldOutTorques) {
+  ASSERT_EQ(Run("simulate --duration 3 --out " + (dir_ / "log.csv").string()).exit_code, 0);
+  ASSERT_EQ(Run("simulate --duration 3 --trajectory general-reversed --no-derivatives --out " +
+                (dir_ / "held.csv").string()).exit_code, 0);
+  const fs::path out = dir_ / "id";
+  const Result r = Run("identify --data " + (dir_ / "log.csv").string() + " --validate " +
+                       (dir_ / "held.csv").string() + " --report --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ExpectCompleteReport(out, {"plot_torques.svg", "plot_torques.png", "plot_torques.pdf", "plot_validation_torques.svg",
+                             "plot_validation_torques.png", "plot_validation_torques.pdf"});
+  const std::string html = Slurp(out / "report.html");
+  EXPECT_NE(html.find("Measured and predicted joint torque on the held-out log " + (dir_ / "held.csv").string()),
+            std::string::npos);
+  EXPECT_NE(html.find("both parallel-filtered"), std::string::npos);
 }
 
 TEST_F(ReportCliTest, ReportWithoutResultsSaysWhatIsMissingAndWritesNothing) {

@@ -71,6 +71,7 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   report.log = std::move(data.log);
   id_options.parallel_filter = data.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
+  report.parallel_filter = id_options.parallel_filter;
   report.derivatives = data.derivatives;
   report.notes = data.notes;
   report.warnings = data.warnings;
@@ -91,6 +92,8 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(options.validate + ": " + e.what());
     }
+    report.held_out_log = std::move(held_out.log);
+    report.held_out_filter = held_out.parallel_filter;
   }
   return report;
 }

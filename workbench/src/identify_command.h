@@ -47,6 +47,10 @@ struct IdentifyReport {
   std::vector<std::string> warnings; // for stderr
   JointTorqueIdentification identification;
   std::optional<TorquePrediction> validation;  // on the held-out log
+  // What predicts the torques again (PredictTorqueSeries, the report's plots):
+  std::optional<ParallelFilter> parallel_filter;   // on log's equations; set when filtered
+  std::optional<JointLog> held_out_log;            // --validate, prepared as validation scored it
+  std::optional<ParallelFilter> held_out_filter;   // on held_out_log's equations, if any
 };
 
 // Reads the logs and identifies. Throws std::invalid_argument naming the file,

@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "idbench/ident/per_body_regressor.h"
 
@@ -67,6 +68,33 @@ PlotFigure JointSignalsPlot(const JointSignals& signals) {
     figure.axes.push_back(SignalAxes("Joint accelerations", "qdd [rad/s²]", signals.t, signals.qdd, ""));
   }
   figure.axes.push_back(SignalAxes("Joint torques", "τ [N m]", signals.t, signals.tau, "t [s]"));
+  return figure;
+}
+
+PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& log_label, int max_samples) {
+  const Eigen::Index n_kept = series.t.size(), n_dof = series.measured.cols();
+  const int k = std::max(1, static_cast<int>((n_kept + max_samples - 1) / max_samples));
+  std::vector<double> t;
+  for (Eigen::Index i = 0; i < n_kept; i += k) t.push_back(series.t[i]);
+  const Eigen::MatrixXd measured = EveryKthRow(series.measured, k), predicted = EveryKthRow(series.predicted, k);
+  PlotFigure figure;
+  figure.columns = n_dof > 1 ? 2 : 1;
+  const Eigen::Index rows = (n_dof + figure.columns - 1) / figure.columns;
+  figure.width = 900, figure.height = 220.0 * static_cast<double>(std::max<Eigen::Index>(1, rows));
+  for (Eigen::Index j = 0; j < n_dof; ++j) {
+    PlotAxes axes;
+    axes.title = "Joint " + std::to_string(j + 1) + ", " + log_label;
+    axes.y_label = "τ [N m]";
+    if (j >= n_dof - figure.columns) axes.x_label = "t [s]";  // the bottom row
+    for (const auto& [label, values] : {std::pair{"measured", &measured}, std::pair{"predicted", &predicted}}) {
+      PlotSeries s;
+      s.label = label;
+      s.x = t;
+      s.y.assign(values->col(j).data(), values->col(j).data() + values->rows());
+      axes.series.push_back(std::move(s));
+    }
+    figure.axes.push_back(std::move(axes));
+  }
   return figure;
 }
 

@@ -1,6 +1,7 @@
 // The workbench's plots, built from experiment results (drawn by
-// idbench/render/plot.h): joint signals over time, identified versus true
-// parameters, singular-value spectra, and a comparison of motions.
+// idbench/render/plot.h): joint signals over time, measured versus predicted
+// torques, identified versus true parameters, singular-value spectra, and a
+// comparison of motions.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "idbench/engine/measurements.h"
+#include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/render/plot.h"
 
@@ -28,6 +30,12 @@ JointSignals SignalsOf(const JointLog& log, int max_samples = 2000);
 
 // q, qd, qdd and τ over time, one axes each, one line per joint.
 PlotFigure JointSignalsPlot(const JointSignals& signals);
+
+// Measured against predicted torque (PredictTorqueSeries) over time, one axes
+// per joint in two columns, titled "Joint j, <log_label>", each with the lines
+// "measured" and "predicted"; every k-th sample so that at most max_samples
+// remain, as SignalsOf.
+PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& log_label, int max_samples = 2000);
 
 // One parameter: its true (or reference) value, the estimate and its
 // uncertainty (σ, or the error when there is no σ); NaN estimate = not identified.

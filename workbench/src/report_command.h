@@ -44,7 +44,8 @@ ReportContent MakeRunReportContent(const RobotModel& model, const RunOptions& op
                                    std::string pose_figure_png);
 
 // An identification's report: base parameters with σ against the robot
-// file, fit and validation, joint signals, the base regressor's spectrum, and
+// file, fit and validation, joint signals, measured vs predicted torques (of
+// the log and the held-out log), the base regressor's spectrum, and
 // the poses along the log.
 ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyOptions& options,
                                         const IdentifyReport& report);

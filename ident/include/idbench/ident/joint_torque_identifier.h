@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/measurements.h"
 #include "idbench/ident/base_parameters.h"
@@ -113,6 +114,12 @@ void StackEquations(const RobotModel& model, const FrictionModel& friction, cons
                     const JointLog& log, const std::optional<ParallelFilter>& filter, Eigen::MatrixXd* W,
                     Eigen::VectorXd* tau);
 
+// The samples of the log whose rows StackEquations keeps, in order: every
+// sample, or with `filter` those left after its trimming and decimation
+// (ParallelFilterKeptSamples). Row block k (rows k·n_dof … k·n_dof + n_dof − 1)
+// of W and τ belongs to sample kept[k]. Throws as ParallelFilterKeptSamples.
+std::vector<Eigen::Index> StackedSamples(const JointLog& log, const std::optional<ParallelFilter>& filter);
+
 // Identifies the base parameters from the log; also fits the physically
 // consistent standard parameters (from the linear estimate, with the model's
 // parameters as the prior for the unidentifiable directions). Throws std::invalid_argument
@@ -124,5 +131,20 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 // How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
+
+// Measured and predicted torques of a log over time, on the equations
+// PredictTorques scores: W and τ of StackEquations (with
+// options.parallel_filter, both filtered, the ends trimmed, decimated) and
+// τ̂ = W β, one row per kept sample (StackedSamples), so that RMS(τ̂ − τ) per
+// joint is PredictTorques' joint_rms. Holds W of the whole log while it runs
+// (n_samples·n_dof × n_base). Throws std::invalid_argument as StackEquations,
+// or when beta does not have base.n_base() entries.
+struct TorqueSeries {
+  Eigen::VectorXd t;          // [s] time of each kept sample (n_kept)
+  Eigen::MatrixXd measured;   // τ [N m] (n_kept × n_dof); parallel-filtered with the log
+  Eigen::MatrixXd predicted;  // τ̂ = W β [N m] (n_kept × n_dof)
+};
+TorqueSeries PredictTorqueSeries(const RobotModel& model, const JointTorqueOptions& options,
+                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
 
 }  // namespace idbench

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -156,5 +157,12 @@ JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options);
 // n_channels, or too few samples to trim.
 void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_rate_hz, int n_channels,
                                Eigen::MatrixXd* rows);
+
+// The samples of an n_samples record that ParallelFilterStackedRows keeps, in
+// order: s = trim, trim + decimation, … < n_samples − trim, with trim =
+// ⌈trim_s · sample_rate_hz⌉ (trim_s < 0: 5/cutoff_hz). Throws
+// std::invalid_argument for invalid options or when no sample is left.
+std::vector<Eigen::Index> ParallelFilterKeptSamples(const LogFilterOptions& options, double sample_rate_hz,
+                                                    Eigen::Index n_samples);
 
 }  // namespace idbench
