@@ -33,8 +33,7 @@ FrictionModel GainsOptions::friction_model() const {
 
 LogPreparationOptions GainsOptions::preparation() const {
   LogPreparationOptions out;
-  out.format.columns = columns;
-  out.format.angle_unit = angle_unit;
+  out.format = format;
   out.torques = TorqueColumns::kCurrents;
   out.filter = filter;
   out.max_gap_s = max_gap_s;

@@ -17,8 +17,7 @@ struct GainsOptions {
   std::string data;                // unloaded log with currents i1..in (required)
   std::string loaded;              // the same robot with the payload (required)
   double payload_mass = 0.0;       // [kg] (required)
-  std::vector<std::string> columns;  // --columns, for both logs
-  std::string angle_unit = "rad";
+  JointLogFormat format;           // --columns and --angle-unit, for both logs (no drive gains: they are the unknowns)
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
   LogFilterOptions filter{.trim_s = -1.0};

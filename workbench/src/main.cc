@@ -266,6 +266,26 @@ int ReportCommand(const std::string& out_dir) {
   return 0;
 }
 
+// The options that say how a joint log is read and conditioned, shared by
+// identify and gains (README "Joint logs").
+void AddLogReadingOptions(CLI::App* command, idbench::JointLogFormat* format, std::vector<std::string>* friction,
+                          double* coulomb_smoothing, idbench::LogFilterOptions* filter, double* max_gap_s) {
+  command->add_option("--columns", format->columns,
+                      "Column names in file order for a log without a header: t,q1..q6,qd1..qd6,i1..i6,_ ...")
+      ->delimiter(',');
+  command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
+      ->capture_default_str();
+  command->add_option("--friction", *friction, "Friction terms: none or viscous,coulomb,offset,rotor")
+      ->delimiter(',')->capture_default_str();
+  command->add_option("--coulomb-smoothing", *coulomb_smoothing,
+                      "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
+  command->add_option("--filter-cutoff", filter->cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
+      ->capture_default_str();
+  command->add_option("--filter-order", filter->order, "Butterworth order")->capture_default_str();
+  command->add_option("--max-gap", *max_gap_s, "Longest time step resampled [s]; 0 = 10 median steps")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -335,28 +355,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   identify_cmd->add_option("--estimator", identify.estimator, "ols, wls or pc (physically consistent)")
       ->capture_default_str();
-  identify_cmd->add_option("--friction", identify.friction, "Friction terms: none or viscous,coulomb,offset,rotor")
-      ->delimiter(',')->capture_default_str();
-  identify_cmd->add_option("--coulomb-smoothing", identify.coulomb_smoothing,
-                           "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
-  identify_cmd->add_option("--filter-cutoff", identify.filter.cutoff_hz,
-                           "Butterworth cutoff for logs without qd/qdd [Hz]")->capture_default_str();
-  identify_cmd->add_option("--filter-order", identify.filter.order, "Butterworth order")->capture_default_str();
+  AddLogReadingOptions(identify_cmd, &identify.format, &identify.friction, &identify.coulomb_smoothing,
+                       &identify.filter, &identify.max_gap_s);
   identify_cmd->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   identify_cmd->add_option("--validate", identify.validate, "Held-out joint log to validate on");
-  // Reading real logs (README "Joint logs"): issue 12.
-  identify_cmd->add_option("--columns", identify.format.columns,
-                           "Column names in file order for a log without a header: t,q1..q6,qd1..qd6,i1..i6,_ ...")
-      ->delimiter(',');
-  identify_cmd->add_option("--angle-unit", identify.format.angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
-      ->capture_default_str();
+  // Currents and a part of the log (README "Joint logs").
   identify_cmd->add_option("--drive-gains", identify.format.drive_gains,
                            "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
   identify_cmd->add_option("--time-window", identify.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
       ->delimiter(',');
-  identify_cmd->add_option("--max-gap", identify.max_gap_s,
-                           "Longest time step resampled [s]; 0 = 10 median steps")->capture_default_str();
   std::vector<double> identify_mass_range{identify.plausibility.mass_factor_min, identify.plausibility.mass_factor_max};
   identify_cmd->add_option("--mass-range", identify_mass_range,
                            "Physically consistent estimate: each link's mass within LO,HI x the robot file's")
@@ -386,19 +394,8 @@ int main(int argc, char** argv) {
   gains_cmd->add_option("--data", gains.data, "Unloaded log with motor currents i1..in")->required();
   gains_cmd->add_option("--loaded", gains.loaded, "Log of the same robot with the payload on the last link")->required();
   gains_cmd->add_option("--payload-mass", gains.payload_mass, "Known payload mass [kg]")->required();
-  gains_cmd->add_option("--columns", gains.columns, "Column names in file order for logs without a header")
-      ->delimiter(',');
-  gains_cmd->add_option("--angle-unit", gains.angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
-      ->capture_default_str();
-  gains_cmd->add_option("--friction", gains.friction, "Friction terms: none or viscous,coulomb,offset,rotor")
-      ->delimiter(',')->capture_default_str();
-  gains_cmd->add_option("--coulomb-smoothing", gains.coulomb_smoothing,
-                        "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
-  gains_cmd->add_option("--filter-cutoff", gains.filter.cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
-      ->capture_default_str();
-  gains_cmd->add_option("--filter-order", gains.filter.order, "Butterworth order")->capture_default_str();
-  gains_cmd->add_option("--max-gap", gains.max_gap_s, "Longest time step resampled [s]; 0 = 10 median steps")
-      ->capture_default_str();
+  AddLogReadingOptions(gains_cmd, &gains.format, &gains.friction, &gains.coulomb_smoothing, &gains.filter,
+                       &gains.max_gap_s);
   gains_cmd->add_option("--out", gains.out_dir, "Output directory for gains.json (created if missing, never wiped)")
       ->capture_default_str();
 
