@@ -4,8 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include "idbench/engine/paper6r.h"
-#include "log_csv.h"
-#include "run_command.h"
+#include "idbench/workbench/formats/log_csv.h"
+#include "idbench/workbench/commands/run_command.h"
 
 namespace idbench {
 namespace {

@@ -1,0 +1,190 @@
+// `idbench design` and `idbench compare`, run as a user would.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "workbench/cli/cli_fixture.h"
+
+namespace idbench {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing::Result;
+using testing::Slurp;
+
+class DesignCliTest : public testing::CliFixture {
+ protected:
+  // The issue's PUMA velocity and acceleration limits (positions from the robot file).
+  std::string PumaLimits() {
+    const fs::path path = dir_ / "limits.json";
+    std::ofstream(path) << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
+      {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 3, "qdd_max": 8}, {"qd_max": 3, "qdd_max": 8},
+      {"qd_max": 3, "qdd_max": 8}]})";
+    return path.string();
+  }
+  std::string Paper6rLimits() {
+    const fs::path path = dir_ / "p6limits.json";
+    std::ofstream out(path);
+    out << R"({"joints": [)";
+    for (int j = 0; j < 6; ++j) out << (j ? ", " : "") << R"({"q_min": -3, "q_max": 3, "qd_max": 1, "qdd_max": 3})";
+    out << "]}";
+    return path.string();
+  }
+  // A small, quick design.
+  static constexpr const char* kQuick = "--harmonics 2 --f0 0.5 --samples 40 --starts 2 --max-evaluations 25 --quiet";
+};
+
+TEST_F(DesignCliTest, WritesTrajectoryAndReportThatSimulateReads) {
+  const Result r = Run("design --robot puma560 --friction viscous,coulomb --limits " + PumaLimits() + " " + kQuick +
+                       " --out " + (dir_ / "d").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json design = json::parse(Slurp(dir_ / "d" / "design.json"));
+  EXPECT_EQ(design["parameters"].size(), 48u);  // puma560 with Fv, Fc: 48 base parameters
+  const double before = design["before"]["identifiability"]["cond"], after = design["after"]["identifiability"]["cond"];
+  EXPECT_LT(after, before);
+  EXPECT_NEAR(std::log(after), design["after"]["criterion"].get<double>(), 1e-9);
+  EXPECT_TRUE(design["check"]["feasible"].get<bool>());
+  EXPECT_EQ(design["check"]["rate_hz"].get<double>(), 1000.0);
+  EXPECT_EQ(design["limits"][0]["qd_max"].get<double>(), 1.5);
+  // trajectory.csv: the log columns at 1 kHz over one period (2 s).
+  const std::string csv = Slurp(dir_ / "d" / "trajectory.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2001);
+  // The JSON drives a simulation.
+  const Result sim = Run("simulate --robot puma560 --trajectory " + (dir_ / "d" / "trajectory.json").string() +
+                         " --rate 100 --out " + (dir_ / "log.csv").string());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_NE(sim.out.find("for 2 s"), std::string::npos) << sim.out;
+}
+
+TEST_F(DesignCliTest, DeterministicForASeed) {
+  const std::string common = "design --robot puma560 --limits " + PumaLimits() + " " + kQuick + " --seed 7 --out ";
+  ASSERT_EQ(Run(common + (dir_ / "a").string() + " --threads 1").exit_code, 0);
+  ASSERT_EQ(Run(common + (dir_ / "b").string() + " --threads 2").exit_code, 0);
+  EXPECT_EQ(Slurp(dir_ / "a" / "trajectory.json"), Slurp(dir_ / "b" / "trajectory.json"));
+  EXPECT_EQ(Slurp(dir_ / "a" / "trajectory.csv"), Slurp(dir_ / "b" / "trajectory.csv"));
+}
+
+TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
+  const std::string out = " --out " + (dir_ / "d").string();
+  Result r = Run("design --robot paper6r" + out);  // the robot file has no velocity limits
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("joint 1 ('O1'): the velocity limit qd_max must be finite and > 0"), std::string::npos)
+      << r.err;
+  r = Run("design --robot puma560 --harmonics 0" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--harmonics must be in 1..50, got 0"), std::string::npos) << r.err;
+  r = Run("design --robot puma560 --f0 -1" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--f0"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "zero.json") << R"({"joints": [{}, {"qd_max": 0}, {}, {}, {}, {}]})";
+  r = Run("design --robot puma560 --limits " + (dir_ / "zero.json").string() + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("zero.json: joints[1].qd_max: must be > 0, got 0"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "order.json") << R"({"joints": [{"q_min": 1, "q_max": -1}, {}, {}, {}, {}, {}]})";
+  r = Run("design --robot puma560 --limits " + (dir_ / "order.json").string() + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("joints[0]: q_min = 1 must be below q_max = -1 rad"), std::string::npos) << r.err;
+  r = Run("design --robot puma560 --algorithm newton" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "d"));
+}
+
+// paper6r, per-body: a D-optimal design identifies masses and inertias from
+// noisy hinge wrenches better than the paper's two-hinge motion, and Bullet
+// realises the designed cond.
+TEST_F(DesignCliTest, CompareShowsThePerBodyErrorFalling) {
+  ASSERT_EQ(Run("design --robot paper6r --model per-body --limits " + Paper6rLimits() +
+                " --harmonics 3 --f0 0.2 --samples 60 --starts 2 --max-evaluations 40 --quiet --out " +
+                (dir_ / "d").string())
+                .exit_code,
+            0);
+  const Result r = Run("compare paper " + (dir_ / "d" / "trajectory.json").string() +
+                       " --robot paper6r --model per-body --duration 2 --samples 100 --trials 5 --out " +
+                       (dir_ / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(Slurp(dir_ / "c" / "compare.json"));
+  ASSERT_EQ(c["motions"].size(), 2u);
+  const json& paper = c["motions"][0];
+  const json& designed = c["motions"][1];
+  EXPECT_LT(3.0 * designed["mean_relative_error"].get<double>(), paper["mean_relative_error"].get<double>());
+  EXPECT_LT(designed["designed"]["cond"].get<double>(), paper["designed"]["cond"].get<double>());
+  for (const json& m : c["motions"]) {
+    EXPECT_NEAR(m["realised"]["cond"].get<double>(), m["designed"]["cond"].get<double>(),
+                0.01 * m["designed"]["cond"].get<double>());
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "c" / "compare.csv"));
+  // The paper's experiment along the designed motion: every moment of B1 but
+  // its hinge's, and all of the other bodies, are identified exactly.
+  const Result run = Run("run --trajectory " + (dir_ / "d" / "trajectory.json").string() +
+                         " --duration 2 --no-figure --out " + (dir_ / "r").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json results = json::parse(Slurp(dir_ / "r" / "results.json"));
+  EXPECT_LT(results["max_rel_error"].get<double>(), 1e-9) << results.dump().substr(0, 400);
+}
+
+// Joint-torque model on puma560: the Monte-Carlo error of WLS under torque
+// noise follows the predicted σ, and the designed motion beats "general".
+TEST_F(DesignCliTest, CompareTorqueModel) {
+  ASSERT_EQ(Run("design --robot puma560 --limits " + PumaLimits() + " " + kQuick + " --out " + (dir_ / "d").string())
+                .exit_code,
+            0);
+  const Result r = Run("compare general " + (dir_ / "d" / "trajectory.json").string() +
+                       " --robot puma560 --samples 200 --trials 5 --out " + (dir_ / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("predicted %sigma per base parameter"), std::string::npos);
+  const json c = json::parse(Slurp(dir_ / "c" / "compare.json"));
+  const json& general = c["motions"][0];
+  const json& designed = c["motions"][1];
+  EXPECT_EQ(general["predicted_percent_sigma"].size(), 52u);
+  EXPECT_LT(designed["designed"]["cond"].get<double>(), general["designed"]["cond"].get<double>());
+  EXPECT_LT(designed["mean_relative_error"].get<double>(), general["mean_relative_error"].get<double>());
+  const Result bad = Run("compare --robot puma560 --out " + (dir_ / "x").string());
+  EXPECT_EQ(bad.exit_code, 2);
+}
+
+// --report: the HTML names only files that exist.
+TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
+  ASSERT_EQ(Run("design --robot puma560 --limits " + PumaLimits() + " " + kQuick + " --report --out " +
+                (dir_ / "d").string())
+                .exit_code,
+            0);
+  ASSERT_EQ(Run("compare general " + (dir_ / "d" / "trajectory.json").string() +
+                " --robot puma560 --samples 100 --trials 3 --report --out " + (dir_ / "c").string())
+                .exit_code,
+            0);
+  for (const fs::path dir : {dir_ / "d", dir_ / "c"}) {
+    const std::string html = Slurp(dir / "report.html");
+    ASSERT_FALSE(html.empty()) << dir;
+    EXPECT_EQ(Slurp(dir / "report.pdf").substr(0, 5), "%PDF-");
+    if (std::system("command -v pdfinfo >/dev/null 2>&1") == 0) {
+      EXPECT_EQ(std::system(("pdfinfo " + (dir / "report.pdf").string() + " >/dev/null 2>&1").c_str()), 0);
+    }
+    const std::regex ref(R"re((src|href)="([^"#:]+)")re");
+    int refs = 0;
+    for (auto it = std::sregex_iterator(html.begin(), html.end(), ref); it != std::sregex_iterator(); ++it, ++refs) {
+      EXPECT_TRUE(fs::exists(dir / (*it)[2].str())) << (*it)[2].str();
+    }
+    EXPECT_GT(refs, 1);
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "d" / "figure.png"));
+}
+
+// Ctrl-C: the design stops and keeps the best feasible point found so far.
+TEST_F(DesignCliTest, InterruptKeepsTheBestFeasibleDesign) {
+  const Result r = Run("design --robot puma560 --limits " + PumaLimits() +
+                       " --starts 1 --max-evaluations 1000000 --quiet --out " + (dir_ / "d").string(),
+                       "timeout --preserve-status -s INT 1.5 ");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json design = json::parse(Slurp(dir_ / "d" / "design.json"));
+  EXPECT_TRUE(design["stopped"].get<bool>());
+  EXPECT_EQ(design["starts"][0]["status"], "stopped");
+  EXPECT_TRUE(design["check"]["feasible"].get<bool>());
+  EXPECT_LT(design["after"]["criterion"].get<double>(), design["before"]["criterion"].get<double>());
+}
+
+}  // namespace
+}  // namespace idbench

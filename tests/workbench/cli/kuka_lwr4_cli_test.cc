@@ -1,0 +1,86 @@
+// idbench identify on logs recorded on a real KUKA LWR4+ (FloBaRoID's
+// data/KUKA/HW, see ../shared/data/kuka_lwr4/README.md): 200 Hz, t, q, qd,
+// qdd, τ from joint torque sensors; measurements_1 to fit, measurements_3 (a
+// different trajectory) held out. Published reference (FloBaRoID's tutorial,
+// the README there): its bounded physically consistent fit on measurements_1
+// has a relative torque error of 2.15 %. The data are not part of the
+// project: without ../shared the tests skip and say what is missing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "workbench/cli/cli_fixture.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using idbench::testing::CliFixture;
+using idbench::testing::Result;
+
+const fs::path kData = fs::path(IDBENCH_SOURCE_DIR) / ".." / "shared" / "data" / "kuka_lwr4";
+
+class KukaLwr4CliTest : public CliFixture {
+ protected:
+  void SetUp() override {
+    CliFixture::SetUp();
+    if (!fs::exists(kData / "logs" / "measurements_1.csv"))
+      GTEST_SKIP() << "real-robot data not found at " << kData.string()
+                   << " (../shared/data/kuka_lwr4 beside the checkout; not part of the project)";
+  }
+  Result Identify(const std::string& estimator, const std::string& out) {
+    return Run("identify --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() + " --data " +
+               (kData / "logs" / "measurements_1.csv").string() + " --validate " +
+               (kData / "logs" / "measurements_3.csv").string() +
+               " --friction viscous,coulomb,offset --estimator " + estimator + " --out " + (dir_ / out).string());
+  }
+  nlohmann::json Json(const std::string& out) {
+    return nlohmann::json::parse(idbench::testing::Slurp(dir_ / out / "identified.json"));
+  }
+};
+
+// OLS: 1.99 % on measurements_1 (FloBaRoID's bounded fit: 2.15 %; OLS is the
+// unconstrained optimum, so it must be at or below any constrained fit).
+TEST_F(KukaLwr4CliTest, OlsFitsAtLeastAsWellAsThePublishedBoundedFit) {
+  const Result r = Identify("ols", "ols");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = Json("ols");
+  EXPECT_EQ(j["n_samples"].get<int>(), 5027);
+  EXPECT_LE(j["fit"]["relative_error"].get<double>(), 0.0215);
+}
+
+// The plausible estimate (issue 12's targets): fit ≤ 2.5 % (measured 2.26 %),
+// held-out ≤ 5.5 % (measured 5.36 %; OLS 12.7 %), every link's mass within
+// 0.5–1.5 × the robot file's, every centre of mass in its link's box, and the
+// optimum certified to a relative duality gap ≤ 1e-6 (measured 6.7e-10).
+TEST_F(KukaLwr4CliTest, PlausibleEstimateStaysInItsBoundsAndPredictsTheHeldOutLog) {
+  const Result r = Identify("pc", "pc");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = Json("pc");
+  const auto& pc = j["physically_consistent"];
+  EXPECT_TRUE(pc["converged"].get<bool>()) << pc["status"];
+  EXPECT_LE(pc["duality_gap"].get<double>(), 1e-6);
+  EXPECT_LE(j["fit"]["relative_error"].get<double>(), 0.025);
+  EXPECT_LE(j["validation"]["relative_error"].get<double>(), 0.055);
+  ASSERT_EQ(pc["links"].size(), 7u);
+  double total = 0.0;
+  for (const auto& link : pc["links"]) {
+    const double m = link["mass"], m_file = link["robot_file_mass"];
+    total += m;
+    EXPECT_GE(m, 0.5 * m_file * (1 - 1e-9)) << link["name"];
+    EXPECT_LE(m, 1.5 * m_file * (1 + 1e-9)) << link["name"];
+    ASSERT_FALSE(link["com_box_B"].is_null()) << link["name"] << ": every KUKA link has geometry";
+    for (int a = 0; a < 3; ++a) {
+      const double c = link["com_B"][a], lo = link["com_box_B"]["min"][a], hi = link["com_box_B"]["max"][a];
+      EXPECT_GE(c, lo - 1e-9) << link["name"] << " axis " << a;
+      EXPECT_LE(c, hi + 1e-9) << link["name"] << " axis " << a;
+      EXPECT_LT(hi - lo, 0.5) << link["name"] << ": a box around one LWR link, not the whole arm";
+    }
+  }
+  // The robot file's moving links weigh 14.4 kg; FloBaRoID held the total
+  // within 30 % of 16 kg. No link drifts to hundreds of kg (379 kg before).
+  EXPECT_GT(total, 0.7 * 16.0);
+  EXPECT_LT(total, 1.3 * 16.0);
+}
+
+}  // namespace

@@ -1,0 +1,166 @@
+#include "idbench/workbench/formats/joint_log_csv.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/test_util.h"
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "idbench/engine/puma560.h"
+
+namespace idbench {
+namespace {
+
+using testing::ExpectInvalid;
+
+// Header-less lines of a 6-joint log: t, q (0.1 j + t), qd (j), a target
+// current to skip, i (−j), an extra column to ignore.
+std::string HeaderlessText() {
+  std::string text;
+  for (int s = 0; s < 3; ++s) {
+    const double t = 0.01 * s;
+    text += std::to_string(t);
+    for (int j = 1; j <= 6; ++j) text += "," + std::to_string(0.1 * j + t);
+    for (int j = 1; j <= 6; ++j) text += "," + std::to_string(j);
+    text += ",99";
+    for (int j = 1; j <= 6; ++j) text += "," + std::to_string(-j);
+    text += ",7,8\n";
+  }
+  return text;
+}
+
+TEST(JointLogCsvTest, ColumnsNameAHeaderlessFileWithRangesSkipsAndGains) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat format;
+  format.columns = {"t", "q1..q6", "qd1..qd6", "_", "i1..i6"};
+  format.drive_gains = {10, 20, 30, 40, 50, 60};
+  const RecordedJointLog r = ParseRecordedJointLog(HeaderlessText(), puma, "ur.csv", format, TorqueColumns::kRequired);
+  ASSERT_EQ(r.log.n_samples(), 3);
+  EXPECT_EQ(r.lines, (std::vector<int>{1, 2, 3}));
+  EXPECT_TRUE(r.torque_from_currents);
+  EXPECT_EQ(r.log.qdd.size(), 0);  // not recorded: estimated later
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_DOUBLE_EQ(r.log.t[2], 0.02);
+    EXPECT_DOUBLE_EQ(r.log.q(2, j), 0.1 * (j + 1) + 0.02);
+    EXPECT_DOUBLE_EQ(r.log.qd(1, j), j + 1.0);
+    EXPECT_DOUBLE_EQ(r.log.tau(0, j), -(j + 1.0) * format.drive_gains[j]);  // τ = K·i
+  }
+  // For the gains: the currents themselves.
+  format.drive_gains.clear();
+  const RecordedJointLog currents = ParseRecordedJointLog(HeaderlessText(), puma, "ur.csv", format, TorqueColumns::kCurrents);
+  EXPECT_DOUBLE_EQ(currents.log.tau(0, 3), -4.0);
+  EXPECT_FALSE(currents.torque_from_currents);
+  EXPECT_EQ(ExpandColumnNames({"t", "tau2..tau4", "_"}), (std::vector<std::string>{"t", "tau2", "tau3", "tau4", "_"}));
+}
+
+// --columns overrides a header line (skipped); degrees become radians before
+// the joint-limit check.
+TEST(JointLogCsvTest, ColumnsOverrideAHeaderAndDegreesAreConverted) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat format;
+  format.columns = {"t", "q1..q6", "tau1..tau6"};
+  format.angle_unit = "deg";
+  const std::string text = "time,a,b,c,d,e,f,g,h,i,j,k,l\n0,90,0,0,0,0,0,1,2,3,4,5,6\n0.5,45,0,0,0,0,0,1,2,3,4,5,6\n";
+  const RecordedJointLog r = ParseRecordedJointLog(text, puma, "deg.csv", format, TorqueColumns::kRequired);
+  ASSERT_EQ(r.log.n_samples(), 2);
+  EXPECT_EQ(r.lines, (std::vector<int>{2, 3}));
+  EXPECT_DOUBLE_EQ(r.log.q(0, 0), std::numbers::pi / 2);
+  EXPECT_DOUBLE_EQ(r.log.q(1, 0), std::numbers::pi / 4);
+  EXPECT_DOUBLE_EQ(r.log.tau(1, 5), 6.0);
+  // 170 deg is inside puma joint 1's limits in rad (±2.79) but 170 rad is not.
+  const std::string far = "0,200,0,0,0,0,0,1,2,3,4,5,6\n";
+  EXPECT_NE(ExpectInvalid([&] { ParseRecordedJointLog(far, puma, "deg.csv", format, TorqueColumns::kRequired); })
+                .find("deg.csv:1: column 2 ('q1'): 200 deg (3.49"),
+            std::string::npos);
+  format.angle_unit = "rad";
+  EXPECT_NE(ExpectInvalid([&] {
+              ParseRecordedJointLog("0,2,0,0,0,0,0,1,2,3,4,5,6\n1,2.5,0,0,0,0,0,1,2,3,4,5,6\n1.5,9,0,0,0,0,0,1,2,3,4,5,6\n",
+                                    puma, "rad.csv", format, TorqueColumns::kRequired);
+            }).find("rad.csv:3: column 2 ('q1'): 9 rad is outside joint 1's limits"),
+            std::string::npos);
+}
+
+// With a header: any subset of qd, qdd; tau and currents both present with
+// gains: K·i wins, with a warning.
+TEST(JointLogCsvTest, HeaderWithMeasuredVelocityAndBothTorqueKinds) {
+  const RobotModel puma = MakePuma560();
+  const std::string text =
+      "t,q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,tau1,tau2,tau3,tau4,tau5,tau6,i1,i2,i3,i4,i5,i6\n"
+      "0,0,0,0,0,0,0,1,1,1,1,1,1,5,5,5,5,5,5,2,2,2,2,2,2\n";
+  const RecordedJointLog plain = ParseRecordedJointLog(text, puma, "p.csv", {}, TorqueColumns::kRequired);
+  EXPECT_EQ(plain.log.qd.rows(), 1);
+  EXPECT_EQ(plain.log.qdd.size(), 0);
+  EXPECT_EQ(plain.log.tau(0, 0), 5.0);
+  EXPECT_TRUE(plain.warnings.empty());
+  JointLogFormat gains;
+  gains.drive_gains = std::vector<double>(6, 3.0);
+  const RecordedJointLog scaled = ParseRecordedJointLog(text, puma, "p.csv", gains, TorqueColumns::kRequired);
+  EXPECT_EQ(scaled.log.tau(0, 0), 6.0);
+  ASSERT_EQ(scaled.warnings.size(), 1u);
+  EXPECT_NE(scaled.warnings[0].find("tau columns ignored"), std::string::npos);
+  // The trajectory reader still wants qd and qdd together.
+  EXPECT_NE(ExpectInvalid([&] { ParseJointLogCsv(text, puma, "p.csv"); }).find("qd1' without qdd1"), std::string::npos);
+}
+
+TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
+  const RobotModel puma = MakePuma560();
+  auto parse = [&](const std::string& text, const JointLogFormat& format, TorqueColumns torques = TorqueColumns::kRequired) {
+    return ExpectInvalid([&] { ParseRecordedJointLog(text, puma, "x.csv", format, torques); });
+  };
+  JointLogFormat currents;
+  currents.columns = {"t", "q1..q6", "i1..i6"};
+  const std::string data = "0,0,0,0,0,0,0,1,1,1,1,1,1\n";
+  struct Case {
+    std::string text;
+    JointLogFormat format;
+    std::string expected;
+  };
+  JointLogFormat short_columns;
+  short_columns.columns = {"t", "q1..q6", "tau1..tau6", "_"};
+  JointLogFormat bad_range;
+  bad_range.columns = {"t", "q1..qd6"};
+  JointLogFormat seven;
+  seven.columns = {"t", "q1..q7", "tau1..tau6"};
+  const std::vector<Case> cases = {
+      {data, {}, "x.csv:1: the first line is data (all numbers), not a header naming the columns: pass --columns"},
+      {data, currents, "x.csv: --columns: the log has motor currents i1..i6 but no tau: pass --drive-gains"},
+      {data, short_columns, "x.csv:1: 13 fields, expected at least 14"},
+      {data, bad_range, "--columns: 'q1..qd6': expected a range such as q1..q6"},
+      {data, seven, "--columns: column 8 ('q7'): joint 7 but the robot has 6 joints"},
+      {"t,q1,q2,q3,q4,q5,q6,qd1,qd2,tau1,tau2,tau3,tau4,tau5,tau6\n", {}, "x.csv:1: missing column 'qd3': give all of qd1..qd6 or none"},
+      {"t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n0,0,0,0,0,0,0,1,1,1,1,x,1\n", {}, "x.csv:2: column 12 ('tau5'): 'x' is not a number"},
+  };
+  for (const Case& c : cases) {
+    const std::string what = parse(c.text, c.format);
+    EXPECT_NE(what.find(c.expected), std::string::npos) << what;
+  }
+  EXPECT_NO_THROW(ParseRecordedJointLog(data, puma, "x.csv", currents, TorqueColumns::kCurrents));
+  JointLogFormat gains_without_currents;
+  gains_without_currents.drive_gains = std::vector<double>(6, 1.0);
+  EXPECT_NE(parse("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n0,0,0,0,0,0,0,1,1,1,1,1,1\n", gains_without_currents)
+                .find("x.csv:1: --drive-gains given but the log has no motor currents i1..i6"),
+            std::string::npos);
+  // Options alone: the CLI reports these as usage errors.
+  std::string why;
+  JointLogFormat unit;
+  unit.angle_unit = "grad";
+  EXPECT_FALSE(unit.IsValid(&why));
+  EXPECT_NE(why.find("--angle-unit"), std::string::npos);
+  JointLogFormat zero_gain;
+  zero_gain.drive_gains = {1, 0};
+  EXPECT_FALSE(zero_gain.IsValid(&why));
+  EXPECT_NE(why.find("--drive-gains: joint 2"), std::string::npos);
+  zero_gain.drive_gains = {1, 2};
+  EXPECT_TRUE(zero_gain.IsValid(&why));
+  EXPECT_FALSE(zero_gain.IsValidFor(6, &why));
+  EXPECT_NE(why.find("2 gains, the robot has 6 joints"), std::string::npos);
+  JointLogFormat too_many;
+  too_many.columns = {"t", "q1..q2000"};
+  EXPECT_FALSE(too_many.IsValid(&why));
+  EXPECT_NE(why.find("more than 1024 columns"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace idbench

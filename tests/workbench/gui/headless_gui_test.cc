@@ -1,0 +1,321 @@
+// The GUI driven headless as a user would: click named widgets, set values,
+// wait for jobs. Asserts the state behind the widgets against independent
+// computations and that the screenshots show the robot and the plots.
+#include "idbench/gui/headless_gui.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/gui/gui_script.h"
+#include "idbench/ident/joint_torque_regressor.h"
+#include "render/image_test_util.h"
+#include "idbench/workbench/formats/trajectory_file.h"
+
+namespace idbench::gui {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("idbench_gui_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void RunScript(HeadlessGui& gui, const std::string& script) {
+  std::string why;
+  ASSERT_TRUE(RunGuiScript(gui, ParseGuiScript(script, "test script"), "test script", &why)) << why;
+}
+
+// Pixels inside a widget's rectangle whose colour is saturated (robot links,
+// plot lines and bars; the GUI's chrome is grey and white).
+long long SaturatedPixels(const Image& image, const WidgetRect& r) {
+  const testing::PixelBox box = testing::RobotBox(image, static_cast<int>(r.x0), static_cast<int>(r.y0),
+                                                  static_cast<int>(r.width()), static_cast<int>(r.height()));
+  return box.count;
+}
+
+// A small design on paper6r, simulated, identified, compared with the
+// paper's motion and exported: the issue's done-when path.
+TEST(HeadlessGuiTest, DesignSimulateIdentifyCompareExport) {
+  const fs::path out = TempDir("flow");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  ASSERT_EQ(session.model().name(), "paper6r");
+
+  // paper6r's file has no limits: the design refuses, says why, and the
+  // session stays usable.
+  RunScript(gui, "click design.run\nwait design 60\n");
+  EXPECT_FALSE(session.design_report().has_value());
+  EXPECT_NE(session.last_error().find("design failed"), std::string::npos) << session.last_error();
+
+  // Limits from the table (filled, then one edited), a small fast design.
+  RunScript(gui, R"(
+click limits.fill
+set limits.2.qd_max 0.8
+set design.harmonics 2
+set design.f0 0.5
+set design.samples 40
+set design.max_evaluations 20
+click design.run
+wait design 120
+)");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  const DesignCommandReport& design = *session.design_report();
+  const DesignResult& r = design.result;
+  ASSERT_EQ(design.limits.size(), 6u);
+  EXPECT_EQ(design.limits[1].qd_max, 0.8);
+  EXPECT_EQ(design.limits[0].qd_max, 1.0);
+  EXPECT_EQ(design.limits[3].q_max, 3.0);
+  EXPECT_TRUE(r.check.feasible()) << r.check.Explain();
+  EXPECT_DOUBLE_EQ(r.trajectory.duration(), 2.0);
+
+  // The criterion (log cond W, the torque model's default) from an
+  // independent SVD of the regressor on the design grid.
+  DesignOptions grid;
+  grid.f0 = 0.5;
+  grid.samples = 40;
+  const DesignRegressor regressor =
+      DesignRegressor::JointTorque(session.model(), *ParseFrictionTerms(session.design.friction, nullptr));
+  const Eigen::MatrixXd W = regressor.Stack(r.trajectory, DesignSampleTimes(grid));
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(W).singularValues();
+  const double cond = s(0) / s(s.size() - 1);
+  EXPECT_NEAR(r.final.cond / cond, 1.0, 1e-8);
+  EXPECT_NEAR(r.value, std::log(cond), 1e-8);
+  EXPECT_LT(r.value, r.initial_value);
+  // The live curve: best values so far, never increasing, ending at the result.
+  const std::vector<double> curve = session.DesignCurve();
+  ASSERT_FALSE(curve.empty());
+  for (size_t k = 1; k < curve.size(); ++k) EXPECT_LE(curve[k], curve[k - 1]);
+  EXPECT_EQ(curve.back(), r.value);
+  // The velocity limits hold on a fine grid, checked here independently.
+  for (double t = 0.0; t <= r.trajectory.duration(); t += 1e-3) {
+    const JointState x = r.trajectory.At(t);
+    for (int j = 0; j < 6; ++j) ASSERT_LE(std::abs(x.qd[j]), design.limits[static_cast<size_t>(j)].qd_max + 1e-9);
+  }
+  // The viewport now plays the designed motion.
+  EXPECT_EQ(session.motion, "designed");
+  const Image design_shot = gui.Screenshot();
+  gui.WriteScreenshot((out / "design_tab.png").string());  // to look at
+  const WidgetEntry* viewport = gui.widgets().Find("viewport");
+  ASSERT_NE(viewport, nullptr);
+  EXPECT_GT(SaturatedPixels(design_shot, viewport->rect), 5000);
+  const WidgetEntry* curve_plot = gui.widgets().Find("design.curve");
+  ASSERT_NE(curve_plot, nullptr);
+  EXPECT_GT(curve_plot->rect.width(), 300.0f);
+  EXPECT_GT(SaturatedPixels(design_shot, curve_plot->rect), 50);
+
+  // Simulate the designed motion with torque noise, identify (OLS).
+  RunScript(gui, R"(
+click tab.experiment
+set experiment.tau_noise 0.05
+click experiment.simulate
+wait simulate 120
+click experiment.identify
+wait identify 120
+)");
+  ASSERT_TRUE(session.log().has_value()) << session.last_error();
+  EXPECT_EQ(session.log()->n_samples(), 2000);  // 2 s at 1 kHz
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  const std::vector<IdentifiedRow> rows = session.IdentifiedRows();
+  ASSERT_FALSE(rows.empty());
+  // The robot file is the truth of the simulation: every base parameter
+  // within 6 σ of it, the well-determined ones (σ < 0.01 %) within 0.1 %.
+  int well_determined = 0;
+  const Eigen::VectorXd& sigma = session.identify_report()->identification.linear.sigma;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_LE(std::abs(rows[k].identified - rows[k].model_value), 6.0 * sigma[static_cast<Eigen::Index>(k)] + 1e-9)
+        << rows[k].name;
+    if (rows[k].sigma_percent < 0.01) {
+      ++well_determined;
+      EXPECT_LT(std::abs(rows[k].relative_error), 1e-3) << rows[k].name;
+    }
+    EXPECT_EQ(rows[k].status, ClassifyParameter(rows[k].identified, sigma[static_cast<Eigen::Index>(k)]));
+  }
+  EXPECT_GT(well_determined, 5);
+  // Link 1 turns about a fixed axis: its mass cannot affect any torque.
+  const std::vector<std::string> unexcited = session.UnexcitedParameters();
+  EXPECT_NE(std::find(unexcited.begin(), unexcited.end(), "B1.m"), unexcited.end());
+  const Image experiment_shot = gui.Screenshot();
+  gui.WriteScreenshot((out / "experiment_tab.png").string());
+  const WidgetEntry* bars = gui.widgets().Find("experiment.bars");
+  ASSERT_NE(bars, nullptr);
+  EXPECT_GT(SaturatedPixels(experiment_shot, bars->rect), 50);
+
+  // The per-body experiment along the same motion: every mass estimate
+  // against the robot file's link mass; B1 turns about its own axis only, so
+  // some of its parameters are not identifiable, with the reason.
+  RunScript(gui, "set identify.model per-body\nclick experiment.per_body\nwait per-body 120\n");
+  ASSERT_TRUE(session.per_body_result().has_value()) << session.last_error();
+  const PerBodyIdentificationResult& per_body = *session.per_body_result();
+  ASSERT_EQ(per_body.bodies.size(), 6u);
+  int masses = 0;
+  for (int i = 0; i < 6; ++i) {
+    for (const ParameterResult& p : per_body.bodies[static_cast<size_t>(i)].parameters) {
+      if (!p.identifiable) {
+        EXPECT_FALSE(p.reason.empty());
+        continue;
+      }
+      if (p.name.rfind("m", 0) == 0) {
+        ++masses;
+        EXPECT_NEAR(p.identified, session.model().link(i).inertia.mass, 1e-8 * session.model().link(i).inertia.mass)
+            << per_body.bodies[static_cast<size_t>(i)].name << "." << p.name;
+      }
+    }
+  }
+  EXPECT_GT(masses, 10);
+  const auto& b1 = per_body.bodies[0].parameters;
+  EXPECT_TRUE(std::any_of(b1.begin(), b1.end(), [](const ParameterResult& p) { return !p.identifiable; }));
+  EXPECT_GT(SaturatedPixels(gui.Screenshot(), gui.widgets().Find("experiment.per_body_bars")->rect), 50);
+
+  // Compare with the paper's motion, which moves two joints only: rank
+  // deficient for the joint-torque model.
+  RunScript(gui, R"(
+click tab.compare
+set compare.samples 40
+set compare.trials 2
+click compare.run
+wait compare 120
+)");
+  ASSERT_TRUE(session.compare_report().has_value()) << session.last_error();
+  const CompareReport& compare = *session.compare_report();
+  ASSERT_EQ(compare.motions.size(), 2u);
+  EXPECT_EQ(compare.motions[1].name, "paper");
+  EXPECT_TRUE(std::isfinite(compare.motions[0].designed.cond));
+  EXPECT_LT(compare.motions[1].designed.rank, compare.motions[0].designed.rank);
+  EXPECT_FALSE(std::isfinite(compare.motions[1].designed.cond));
+
+  // Export; the trajectory file reads back to the same motion.
+  RunScript(gui, R"(
+click tab.export
+click export.trajectory_json
+click export.trajectory_csv
+click export.urdf
+click export.screenshot
+click export.report
+wait report 120
+)");
+  EXPECT_TRUE(fs::is_regular_file(out / "report.html"));
+  EXPECT_TRUE(fs::is_regular_file(out / "report.pdf"));
+  EXPECT_TRUE(fs::is_regular_file(out / "trajectory.csv"));
+  EXPECT_TRUE(fs::is_regular_file(out / "screenshot.png"));
+  EXPECT_NE(ReadFile(out / "identified.urdf").find("<robot"), std::string::npos);
+  const auto back = ParseTrajectoryJson(ReadFile(out / "trajectory.json"), 6, "trajectory.json");
+  for (double t : {0.0, 0.37, 1.5}) EXPECT_TRUE(back->At(t).q.isApprox(r.trajectory.At(t).q, 1e-12));
+  EXPECT_EQ(session.last_error().find("export"), std::string::npos) << session.last_error();
+  if (!HasFailure()) fs::remove_all(out);  // else kept to look at
+}
+
+// A long design runs while frames keep coming, shows progress, and stops on
+// the Stop button with the best feasible design so far.
+TEST(HeadlessGuiTest, DesignRunsInTheBackgroundAndStops) {
+  const fs::path out = TempDir("stop");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click limits.fill\nset design.harmonics 2\nset design.samples 40\n"
+                 "set design.max_evaluations 1000000\nclick design.run\n");
+  // Frames render while the job runs; the live curve fills.
+  int frames = 0;
+  while (session.DesignCurve().empty() && session.running(JobKind::kDesign) && frames < 100000) {
+    gui.RenderFrame();
+    ++frames;
+  }
+  ASSERT_TRUE(session.running(JobKind::kDesign));
+  EXPECT_FALSE(session.DesignCurve().empty());
+  RunScript(gui, "click design.stop\nwait design 60\n");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  EXPECT_TRUE(session.design_report()->result.stopped);
+  EXPECT_LT(session.design_report()->result.evaluations, 1000000);
+  fs::remove_all(out);
+}
+
+// The viewport follows the timeline and draws the markers asked for.
+TEST(HeadlessGuiTest, ViewportFollowsTheTimelineAndShowsFrames) {
+  HeadlessGui gui({.width = 960, .height = 600, .session = {.robot = "paper6r", .out_dir = TempDir("view").string()}});
+  RunScript(gui, "click tab.experiment\nset experiment.motion general\nset timeline.time 0\nframes 1\n");
+  const WidgetRect r = gui.widgets().Find("viewport")->rect;
+  const int x = static_cast<int>(r.x0), y = static_cast<int>(r.y0), w = static_cast<int>(r.width()),
+            h = static_cast<int>(r.height());
+  const Image at_0 = gui.Screenshot();
+  RunScript(gui, "set timeline.time 3\nframes 1\n");
+  EXPECT_DOUBLE_EQ(gui.app().time(), 3.0);
+  const Image at_3 = gui.Screenshot();
+  // The general motion moves every joint: the robot's silhouette changes.
+  long long moved = 0;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u)
+      moved += testing::IsRobotPixel(at_0.at(x + u, y + v)) != testing::IsRobotPixel(at_3.at(x + u, y + v));
+  EXPECT_GT(moved, 500);
+  // Link frames and centre-of-mass crosses stick out of the links.
+  RunScript(gui, "set view.frames true\nset view.com true\nframes 1\n");
+  const Image marked = gui.Screenshot();
+  long long changed = 0;
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      const std::uint8_t *a = at_3.at(x + u, y + v), *b = marked.at(x + u, y + v);
+      changed += std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) > 60;
+    }
+  }
+  EXPECT_GT(changed, 200);
+  fs::remove_all(gui.session().out_dir);
+}
+
+TEST(HeadlessGuiTest, BadInputShowsAMessageAndKeepsTheSession) {
+  const fs::path out = TempDir("bad");
+  const fs::path garbage = out / "broken.urdf";
+  std::ofstream(garbage) << "<robot name='x'><link name=";
+  HeadlessGui gui({.width = 800, .height = 600, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const std::string script = "set robot.urdf " + (out / "missing.urdf").string() + "\nclick robot.load_urdf\n";
+  RunScript(gui, script);
+  EXPECT_NE(session.last_error().find("missing.urdf"), std::string::npos) << session.last_error();
+  EXPECT_EQ(session.model().name(), "paper6r");
+  RunScript(gui, "set robot.urdf " + garbage.string() + "\nclick robot.load_urdf\n");
+  EXPECT_NE(session.last_error().find("broken.urdf"), std::string::npos) << session.last_error();
+  EXPECT_EQ(session.model().name(), "paper6r");
+
+  // Limits that cannot hold a motion (q_min >= q_max).
+  RunScript(gui, "click limits.fill\nset limits.1.q_min 1\nset limits.1.q_max 0.5\nclick design.run\nwait design 60\n");
+  EXPECT_FALSE(session.design_report().has_value());
+  EXPECT_NE(session.last_error().find("design failed"), std::string::npos) << session.last_error();
+  // Identify before any log: a message, no job.
+  RunScript(gui, "click tab.experiment\n");
+  session.StartIdentify();
+  EXPECT_NE(session.last_error().find("simulate first"), std::string::npos);
+
+  // Script errors name the step.
+  std::string why;
+  EXPECT_FALSE(RunGuiScript(gui, ParseGuiScript("frames 1\nclick no.such.widget\n", "s"), "s", &why));
+  EXPECT_EQ(why.rfind("s:2: no widget 'no.such.widget'", 0), 0u) << why;
+  EXPECT_FALSE(RunGuiScript(gui, ParseGuiScript("set experiment.tau_noise abc\n", "s"), "s", &why));
+  EXPECT_NE(why.find("expected a number, got 'abc'"), std::string::npos) << why;
+
+  // Another robot still loads, and the screenshot shows it.
+  RunScript(gui, "click tab.design\nset robot.builtin puma560\nclick robot.load_builtin\nset limits.6.qd_max 2.5\n");
+  EXPECT_EQ(session.model().name(), "puma560");
+  EXPECT_TRUE(std::isfinite(session.limits[0].q_max));  // puma560's file has limits
+  EXPECT_EQ(session.limits[5].qd_max, 2.5);              // the new robot's table is the one edited
+  const WidgetEntry* viewport = gui.widgets().Find("viewport");
+  ASSERT_NE(viewport, nullptr);
+  EXPECT_GT(SaturatedPixels(gui.Screenshot(), viewport->rect), 2000);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace idbench::gui

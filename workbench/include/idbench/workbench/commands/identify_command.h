@@ -1,0 +1,73 @@
+// `idbench identify`: joint-torque identification of a robot from a joint log
+// (simulated or recorded), with an optional held-out log for validation.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/measurements.h"
+#include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/signal_filter.h"
+#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/workbench/commands/log_preparation.h"
+
+namespace idbench {
+
+struct IdentifyOptions {
+  std::string robot = "puma560";   // built-in name or URDF path
+  std::string data;                // joint-log CSV (required)
+  std::string model = "torque";    // "torque"; "per-body" needs hinge wrenches (idbench run)
+  std::string estimator = "ols";   // ols | wls | pc
+  std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
+  double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
+  LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
+  PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
+  std::string validate;            // held-out joint log (optional)
+  // Reading the logs (README "Joint logs"): --columns, --angle-unit,
+  // --drive-gains for --data and --validate; --time-window for --data only.
+  JointLogFormat format;
+  std::vector<double> time_window;  // {T0, T1} [s]; empty: the whole log
+  double max_gap_s = 0.0;           // [s] longest step resampled; 0: 10 median steps
+  std::string out_dir = "out/identify";
+  std::string command_line;        // recorded in identified.json
+
+  FrictionModel friction_model() const;
+  // How --data (with_window) or --validate is read.
+  LogPreparationOptions preparation(bool with_window) const;
+  // Checks the options alone; *why names the bad one.
+  bool IsValid(std::string* why) const;
+};
+
+struct IdentifyReport {
+  JointLog log;                      // as identified (after filtering, if any)
+  bool filtered = false;             // qd/qdd were estimated by filtering
+  std::string derivatives;           // where the identification log's qd, qdd come from
+  std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout
+  std::vector<std::string> warnings; // for stderr
+  JointTorqueIdentification identification;
+  std::optional<TorquePrediction> validation;  // on the held-out log
+  // What predicts the torques again (PredictTorqueSeries, the report's plots):
+  std::optional<ParallelFilter> parallel_filter;   // on log's equations; set when filtered
+  std::optional<JointLog> held_out_log;            // --validate, prepared as validation scored it
+  std::optional<ParallelFilter> held_out_filter;   // on held_out_log's equations, if any
+};
+
+// Reads the logs and identifies. Throws std::invalid_argument naming the file,
+// line and column of bad data, or the option that does not fit the data.
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options);
+
+std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+// identified.json (README.md).
+std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+// joints.yaml: per joint, the friction, offset, rotor inertia and drive gain
+// a controller loads next to identified.urdf (README.md).
+std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
+                                    const IdentifyReport& report);
+// identified.urdf: the robot with the physically consistent standard parameters.
+std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
+
+}  // namespace idbench

@@ -1,0 +1,276 @@
+#include "idbench/workbench/commands/compare_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "idbench/workbench/commands/design_command.h"
+#include "idbench/engine/simulation.h"
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/ident/least_squares.h"
+#include "idbench/ident/per_body_identifier.h"
+#include "idbench/workbench/formats/limits_file.h"
+#include "idbench/workbench/commands/montecarlo_command.h"
+#include "number_format.h"
+#include "idbench/workbench/formats/trajectory_file.h"
+
+namespace idbench {
+namespace {
+
+constexpr double kCheckRateHz = 1000.0;
+
+// W of the regressor at the states of a joint log (what Bullet executed).
+Eigen::MatrixXd StackStates(const DesignRegressor& regressor, const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
+                            const Eigen::MatrixXd& qdd) {
+  DesignRegressor::Workspace ws(regressor.model());
+  const int r = regressor.rows_per_sample();
+  Eigen::MatrixXd W(r * q.rows(), regressor.n_parameters());
+  JointState x(static_cast<int>(q.cols()));
+  for (Eigen::Index s = 0; s < q.rows(); ++s) {
+    x.q = q.row(s).transpose();
+    x.qd = qd.row(s).transpose();
+    x.qdd = qdd.row(s).transpose();
+    regressor.Rows(x, &ws, W.middleRows(r * s, r));
+  }
+  return W;
+}
+
+// Per-body Monte-Carlo: Bullet's hinge wrenches at the sample steps plus
+// seeded noise, identified per body; mean over trials of the mean relative
+// error of every identifiable mass and principal moment.
+void PerBodyMonteCarlo(const RobotModel& model, const Trajectory& motion, const CompareOptions& options,
+                       const DesignRegressor& regressor, MotionComparison* row) {
+  SimulationOptions sim;
+  sim.dt = options.dt;
+  sim.duration = motion.duration();
+  const SimulationLog full = Simulate(model, motion, sim);
+  SimulationLog sampled;
+  sampled.robot = full.robot;
+  sampled.dt = full.dt;
+  const double spacing = motion.duration() / options.samples;
+  for (int k = 0; k < options.samples; ++k) {
+    const int step = full.StepAt(k * spacing);
+    if (step >= 0) sampled.steps.push_back(full.steps[static_cast<size_t>(step)]);
+  }
+  const int n = static_cast<int>(sampled.steps.size());
+  Eigen::MatrixXd q(n, model.n_dof()), qd(n, model.n_dof()), qdd(n, model.n_dof());
+  for (int s = 0; s < n; ++s) {
+    q.row(s) = sampled.steps[static_cast<size_t>(s)].q.transpose();
+    qd.row(s) = sampled.steps[static_cast<size_t>(s)].qd.transpose();
+    qdd.row(s) = sampled.steps[static_cast<size_t>(s)].qdd.transpose();
+  }
+  row->realised = ComputeIdentifiability(StackStates(regressor, q, qd, qdd));
+  std::vector<int> steps(static_cast<size_t>(n));
+  for (int s = 0; s < n; ++s) steps[static_cast<size_t>(s)] = s;
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double sigma_f = options.wrench_noise[0], sigma_m = options.wrench_noise[1];
+  for (int trial = 0; trial < options.trials; ++trial) {
+    SimulationLog noisy = sampled;
+    for (LogStep& step : noisy.steps) {
+      for (HingeWrench& h : step.hinge) {
+        for (int a = 0; a < 3; ++a) h.f_W[a] += sigma_f * normal(rng), h.m_Bo_W[a] += sigma_m * normal(rng);
+      }
+    }
+    const PerBodyIdentificationResult result = IdentifyPerBody(model, noisy, steps);
+    double sum = 0.0;
+    int count = 0;
+    for (const BodyResult& body : result.bodies) {
+      for (const ParameterResult& p : body.parameters) {
+        if (!p.identifiable || p.name.rfind("m_e", 0) == 0) continue;  // m and J11..J33
+        sum += p.rel_error;
+        ++count;
+      }
+    }
+    row->mean_relative_error += count > 0 ? sum / count / options.trials : 0.0;
+  }
+}
+
+}  // namespace
+
+bool CompareOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (trajectories.empty()) return fail("give at least one trajectory (built-in name or .json/.csv file)");
+  if (model != "torque" && model != "per-body") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
+  std::string friction_why;
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (samples < 4) return fail("--samples: must be >= 4, got " + std::to_string(samples));
+  if (trials < 2) return fail("--trials: must be >= 2, got " + std::to_string(trials));
+  if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
+  for (double s : tau_noise) {
+    if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
+  }
+  if (wrench_noise.size() != 2 || !(wrench_noise[0] > 0.0) || !(wrench_noise[1] > 0.0)) {
+    return fail("--wrench-noise: give force and moment sigma, both > 0 (N, N m)");
+  }
+  if (out_dir.empty()) return fail("--out: empty path");
+  return true;
+}
+
+CompareReport RunCompare(const RobotModel& model, const CompareOptions& options) {
+  const bool per_body = options.model == "per-body";
+  const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
+                                             : DesignRegressor::JointTorque(model, *ParseFrictionTerms(options.friction, nullptr));
+  CompareReport report;
+  report.parameter_names = regressor.parameter_names();
+  report.true_parameters = regressor.true_parameters();
+  const std::vector<JointLimits> limits = RobotLimits(model);
+  std::optional<ClearanceModel> clearance;
+  if (options.clearance >= 0.0) clearance.emplace(model, options.clearance);
+  const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
+  for (const std::string& name : options.trajectories) {
+    const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(name, model, builtin);
+    MotionComparison row;
+    row.name = name;
+    row.duration = motion->duration();
+    std::vector<double> times;
+    for (int k = 0; k < options.samples; ++k) times.push_back(k * motion->duration() / options.samples);
+    const Eigen::MatrixXd W = regressor.Stack(*motion, times);
+    row.designed = ComputeIdentifiability(W);
+    row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz, clearance ? &*clearance : nullptr);
+    if (row.designed.rank < regressor.n_parameters()) {
+      const LeastSquaresSolution ls =
+          SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
+      for (size_t i = 0; i < ls.identifiable.size(); ++i) {
+        if (!ls.identifiable[i]) row.unexcited.push_back(regressor.parameter_names()[i]);
+      }
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      row.realised.cond = row.mean_relative_error = nan;
+      row.predicted_percent_sigma = Eigen::VectorXd::Constant(regressor.n_parameters(), nan);
+    } else if (per_body) {
+      PerBodyMonteCarlo(model, *motion, options, regressor, &row);
+    } else {
+      MonteCarloOptions mc;
+      mc.trajectory = name;
+      mc.duration = options.duration;
+      mc.dt = options.dt;
+      mc.samples = options.samples;
+      mc.tau_noise = options.tau_noise;
+      mc.friction = options.friction;
+      mc.trials = options.trials;
+      mc.seed = options.seed;
+      const MonteCarloReport r = RunMonteCarlo(model, mc);
+      row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
+      row.predicted_percent_sigma = 100.0 * r.predicted_sigma.cwiseQuotient(r.beta_true.cwiseAbs());
+      row.mean_relative_error = r.mean_relative_error;
+    }
+    report.motions.push_back(std::move(row));
+  }
+  return report;
+}
+
+std::string FormatCompareTable(const CompareOptions& options, const CompareReport& report) {
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof line, "compare: %s model, %zu parameters, %d samples per motion, %d noisy trials\n\n",
+                options.model.c_str(), report.parameter_names.size(), options.samples, options.trials);
+  out += line;
+  std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", "motion", "cond(W)", "norm cond",
+                "log det", "sigma_min", "realised", "MC error", "limits, clearance");
+  out += line;
+  for (const MotionComparison& m : report.motions) {
+    std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
+    std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", name.c_str(),
+                  Format("%.5g", m.designed.cond).c_str(), Format("%.5g", m.designed.cond_normalised).c_str(),
+                  Format("%.5g", m.designed.log_det).c_str(), Format("%.5g", m.designed.sigma_min).c_str(),
+                  Format("%.5g", m.realised.cond).c_str(), Format("%.4g", m.mean_relative_error).c_str(),
+                  m.limits.feasible() ? "within" : "VIOLATED");
+    out += line;
+  }
+  out += options.model == "torque"
+             ? "\nMC error: mean over trials of |beta_hat - beta|/|beta| (WLS, torque noise); realised: cond(W) of the "
+               "states Bullet executed.\n"
+             : "\nMC error: mean over trials of the mean relative error of every identifiable mass and principal "
+               "moment (hinge-wrench noise); realised: cond(W) of the states Bullet executed.\n";
+  if (options.model == "torque") {
+    out += "\npredicted %sigma per base parameter:\n";
+    std::snprintf(line, sizeof line, "%4s", "#");
+    out += line;
+    for (size_t m = 0; m < report.motions.size(); ++m) {
+      std::snprintf(line, sizeof line, " %11s", ("T" + std::to_string(m + 1)).c_str());
+      out += line;
+    }
+    out += "  parameter\n";
+    for (size_t k = 0; k < report.parameter_names.size(); ++k) {
+      std::snprintf(line, sizeof line, "%4zu", k + 1);
+      out += line;
+      for (const MotionComparison& m : report.motions) {
+        std::snprintf(line, sizeof line, " %11s", Format("%.4g", m.predicted_percent_sigma[static_cast<Eigen::Index>(k)]).c_str());
+        out += line;
+      }
+      out += "  " + report.parameter_names[k] + "\n";
+    }
+  }
+  for (const MotionComparison& m : report.motions) {
+    if (!m.unexcited.empty()) {
+      out += "\n" + m.name + " does not excite every parameter (rank " + std::to_string(m.designed.rank) + " of " +
+             std::to_string(m.designed.cols) + "): no estimate, so no %sigma or Monte-Carlo error. " +
+             std::to_string(m.unexcited.size()) + " parameters are zero or dependent columns of W:\n";
+      constexpr size_t kListed = 8;
+      for (size_t i = 0; i < std::min(kListed, m.unexcited.size()); ++i) out += "  " + m.unexcited[i] + "\n";
+      if (m.unexcited.size() > kListed) {
+        out += "  … and " + std::to_string(m.unexcited.size() - kListed) + " more (compare.json: \"unexcited\")\n";
+      }
+    }
+    if (!m.limits.feasible()) {
+      out += "\n" + m.name + " violates the robot file's limits or the clearance:\n" + m.limits.Explain();
+    }
+  }
+  return out;
+}
+
+std::string FormatCompareJson(const CompareOptions& options, const CompareReport& report) {
+  using nlohmann::json;
+  json motions = json::array();
+  for (const MotionComparison& m : report.motions) {
+    json j = {{"trajectory", m.name},
+              {"duration", m.duration},
+              {"designed", IdentifiabilityJson(m.designed)},
+              {"realised", IdentifiabilityJson(m.realised)},
+              {"mean_relative_error", std::isfinite(m.mean_relative_error) ? json(m.mean_relative_error) : json(nullptr)},
+              {"unexcited", m.unexcited},
+              {"within_robot_limits", m.limits.feasible()},
+              {"limit_violations", m.limits.Explain()}};
+    if (m.predicted_percent_sigma.size() > 0 && m.unexcited.empty()) {
+      j["predicted_percent_sigma"] = ToStdVector(m.predicted_percent_sigma);
+    }
+    motions.push_back(j);
+  }
+  const json doc = {{"command", options.command_line},
+                    {"robot", options.robot},
+                    {"model", options.model},
+                    {"samples", options.samples},
+                    {"trials", options.trials},
+                    {"seed", options.seed},
+                    {"noise", options.model == "torque" ? json{{"tau", options.tau_noise}}
+                                                        : json{{"force", options.wrench_noise[0]},
+                                                               {"moment", options.wrench_noise[1]}}},
+                    {"parameters", report.parameter_names},
+                    {"true_parameters", ToStdVector(report.true_parameters)},
+                    {"motions", motions}};
+  return doc.dump(2) + "\n";
+}
+
+std::string FormatCompareCsv(const CompareReport& report) {
+  std::string out = "trajectory,duration,cond,cond_normalised,log_det,sigma_min,realised_cond,mean_relative_error,"
+                    "within_robot_limits\n";
+  for (const MotionComparison& m : report.motions) {
+    for (double v : {m.duration, m.designed.cond, m.designed.cond_normalised, m.designed.log_det,
+                     m.designed.sigma_min, m.realised.cond, m.mean_relative_error}) {
+      if (out.back() != '\n') out += ",";
+      else out += "\"" + m.name + "\",";
+      AppendShortest(&out, v);
+    }
+    out += m.limits.feasible() ? ",1\n" : ",0\n";
+  }
+  return out;
+}
+
+}  // namespace idbench

@@ -1,0 +1,208 @@
+#include "idbench/workbench/commands/design_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/workbench/formats/limits_file.h"
+#include "number_format.h"
+
+namespace idbench {
+namespace {
+
+bool IsCondCriterion(DesignCriterion c) {
+  return c == DesignCriterion::kLogCond || c == DesignCriterion::kLogCondNormalised;
+}
+
+// "cond 42.1" for the condition-number criteria, else the criterion value.
+std::string CriterionText(DesignCriterion c, double value) {
+  char buf[96];
+  if (!std::isfinite(value)) return "none feasible yet";
+  if (IsCondCriterion(c)) std::snprintf(buf, sizeof buf, "%s %.4g", c == DesignCriterion::kLogCond ? "cond" : "normalised cond", std::exp(value));
+  else std::snprintf(buf, sizeof buf, "%s %.6g", DesignCriterionName(c).c_str(), value);
+  return buf;
+}
+
+}  // namespace
+
+bool DesignCommandOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (model != "torque" && model != "per-body") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
+  std::string friction_why;
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!criterion.empty() && !ParseDesignCriterion(criterion)) {
+    return fail("--criterion: expected cond, cond-normalised, logdet or hybrid, got '" + criterion + "'");
+  }
+  if (!ParseDesignAlgorithm(algorithm)) {
+    return fail("--algorithm: expected slsqp, mma, cobyla or sbplx, got '" + algorithm + "'");
+  }
+  if (!design.IsValid(why)) return false;
+  if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("--rate: must be > 0 Hz");
+  if (out_dir.empty()) return fail("--out: empty path");
+  std::error_code ec;
+  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  return true;
+}
+
+DesignOptions DesignCommandOptions::Resolved() const {
+  DesignOptions d = design;
+  d.criterion = !criterion.empty() ? *ParseDesignCriterion(criterion)
+                : model == "per-body" ? DesignCriterion::kLogDet
+                                      : DesignCriterion::kLogCond;
+  d.algorithm = *ParseDesignAlgorithm(algorithm);
+  return d;
+}
+
+DesignRegressor DesignCommandOptions::MakeRegressor(const RobotModel& robot) const {
+  if (model == "per-body") return DesignRegressor::PerBody(robot);
+  return DesignRegressor::JointTorque(robot, *ParseFrictionTerms(friction, nullptr));
+}
+
+DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
+                              const std::atomic<bool>* stop) {
+  DesignControl control;
+  control.stop = stop;
+  return RunDesign(model, options, options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model),
+                   control);
+}
+
+DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
+                              const std::vector<JointLimits>& limits, const DesignControl& observer) {
+  CheckDesignLimits(model, limits);
+  const DesignRegressor regressor = options.MakeRegressor(model);
+  const DesignOptions design = options.Resolved();
+
+  // Progress: at most one line per start every second.
+  std::mutex mutex;
+  std::vector<std::chrono::steady_clock::time_point> last(static_cast<size_t>(design.starts));
+  DesignControl control;
+  control.stop = observer.stop;
+  control.progress = observer.progress;
+  if (design.clearance >= 0.0) {  // said even when quiet: the design is not protected there
+    std::string bare;
+    for (const Link& link : model.links()) {
+      if (link.CollisionShapes().empty()) bare += (bare.empty() ? "" : ", ") + link.name;
+    }
+    if (!bare.empty()) {
+      std::fprintf(stderr, "idbench: warning: clearance is not checked for links without shapes: %s\n", bare.c_str());
+    }
+  }
+  if (!options.quiet) {
+    std::fprintf(stderr, "design: %s, %s model (%d parameters), %s, %d starts on %d threads, seed %u\n",
+                 model.name().c_str(), options.model.c_str(), regressor.n_parameters(),
+                 DesignAlgorithmName(design.algorithm).c_str(), design.starts, std::min(design.threads, design.starts),
+                 design.seed);
+    control.progress = [&](const DesignProgress& p) {
+      if (observer.progress) observer.progress(p);
+      const std::lock_guard<std::mutex> lock(mutex);
+      const auto now = std::chrono::steady_clock::now();
+      auto& t = last[static_cast<size_t>(p.start)];
+      if (now - t < std::chrono::seconds(1)) return;
+      t = now;
+      std::fprintf(stderr, "  start %d/%d: %d evaluations, best %s%s\n", p.start + 1, design.starts, p.evaluations,
+                   CriterionText(design.criterion, p.best_value).c_str(), p.feasible ? "" : " (current point infeasible)");
+    };
+  }
+  DesignCommandReport report{limits, DesignExcitation(regressor, limits, design, control), regressor.parameter_names()};
+  if (!options.quiet) {
+    for (size_t s = 0; s < report.result.starts.size(); ++s) {
+      const DesignStartSummary& st = report.result.starts[s];
+      std::fprintf(stderr, "  start %zu: %s -> %s, %d evaluations (%s)\n", s + 1,
+                   CriterionText(design.criterion, st.initial_value).c_str(),
+                   CriterionText(design.criterion, st.best_value).c_str(), st.evaluations, st.status.c_str());
+    }
+    if (report.result.stopped) std::fprintf(stderr, "design: stopped; keeping the best feasible design so far\n");
+  }
+  return report;
+}
+
+nlohmann::json IdentifiabilityJson(const Identifiability& id) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"cond", number(id.cond)},           {"cond_normalised", number(id.cond_normalised)},
+          {"log_det", number(id.log_det)},     {"sigma_min", id.sigma_min},
+          {"sigma_max", id.sigma_max},         {"rank", id.rank},
+          {"rows", id.rows},                   {"parameters", id.cols}};
+}
+
+std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report) {
+  const DesignResult& r = report.result;
+  const DesignOptions design = options.Resolved();
+  char buf[512];
+  std::string out;
+  std::snprintf(buf, sizeof buf,
+                "criterion %s: %.6g -> %.6g\n"
+                "cond(W)            %12.6g -> %-12.6g (never cond(WᵀW))\n"
+                "normalised cond    %12.6g -> %-12.6g\n"
+                "log det(WᵀW/m)     %12.6g -> %-12.6g\n"
+                "sigma_min(W)       %12.6g -> %-12.6g\n"
+                "%d evaluations in %.2f s; %s at %g Hz\n",
+                DesignCriterionName(design.criterion).c_str(), r.initial_value, r.value, r.initial.cond, r.final.cond,
+                r.initial.cond_normalised, r.final.cond_normalised, r.initial.log_det, r.final.log_det,
+                r.initial.sigma_min, r.final.sigma_min, r.evaluations, r.wall_seconds,
+                r.check.feasible() ? "feasible" : "INFEASIBLE", r.check.rate_hz);
+  out = buf;
+  out += r.check.Explain();
+  return out;
+}
+
+std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                             const DesignCommandReport& report) {
+  using nlohmann::json;
+  const DesignResult& r = report.result;
+  const DesignOptions design = options.Resolved();
+  auto limit = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json limits = json::array();
+  for (const JointLimits& l : report.limits) {
+    limits.push_back({{"q_min", limit(l.q_min)}, {"q_max", limit(l.q_max)}, {"qd_max", limit(l.qd_max)},
+                      {"qdd_max", limit(l.qdd_max)}, {"tau_max", limit(l.tau_max)}});
+  }
+  json margins = json::array();
+  for (const ConstraintMargin& m : r.check.margins) {
+    margins.push_back({{"joint", m.joint + 1}, {"quantity", m.quantity}, {"time", m.time}, {"value", m.value},
+                       {"limit", m.limit}, {"margin", m.margin}});
+  }
+  json starts = json::array();
+  for (const DesignStartSummary& s : r.starts) {
+    starts.push_back({{"initial", s.initial_value},
+                      {"best", std::isfinite(s.best_value) ? json(s.best_value) : json(nullptr)},
+                      {"evaluations", s.evaluations},
+                      {"status", s.status}});
+  }
+  const json result = {
+      {"command", options.command_line},
+      {"robot", model.name()},
+      {"model", options.model},
+      {"friction", options.model == "torque" ? json(options.friction) : json::array()},
+      {"parameters", report.parameter_names},
+      {"criterion", DesignCriterionName(design.criterion)},
+      {"algorithm", DesignAlgorithmName(design.algorithm)},
+      {"trajectory",
+       {{"family", "fourier"},
+        {"harmonics", design.harmonics},
+        {"f0", design.f0},
+        {"duration", design.period_duration()},
+        {"rest_to_rest", design.rest_to_rest},
+        {"samples", design.samples}}},
+      {"search", {{"starts", design.starts}, {"seed", design.seed}, {"threads", design.threads},
+                  {"max_evaluations", design.max_evaluations}, {"margin", design.margin},
+                  {"clearance", design.clearance >= 0.0 ? json(design.clearance) : json(nullptr)}}},
+      {"limits", limits},
+      {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
+      {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
+      {"check", {{"rate_hz", r.check.rate_hz}, {"feasible", r.check.feasible()}, {"margins", margins}}},
+      {"starts", starts},
+      {"evaluations", r.evaluations},
+      {"wall_seconds", r.wall_seconds},
+      {"stopped", r.stopped},
+  };
+  return result.dump(2) + "\n";
+}
+
+}  // namespace idbench

@@ -1,0 +1,141 @@
+#include "idbench/workbench/commands/gains_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "number_format.h"
+
+namespace idbench {
+namespace {
+
+// A log's motion and currents for the estimator.
+CurrentLog ToCurrentLog(PreparedLog prepared) {
+  CurrentLog out;
+  out.current = std::move(prepared.log.tau);
+  out.motion = std::move(prepared.log);
+  out.parallel_filter = prepared.parallel_filter;
+  return out;
+}
+
+// JSON number, or null where not finite (not determined).
+nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+FrictionModel GainsOptions::friction_model() const {
+  FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
+  f.coulomb_smoothing = coulomb_smoothing;
+  return f;
+}
+
+LogPreparationOptions GainsOptions::preparation() const {
+  LogPreparationOptions out;
+  out.format = format;
+  out.torques = TorqueColumns::kCurrents;
+  out.filter = filter;
+  out.max_gap_s = max_gap_s;
+  return out;
+}
+
+bool GainsOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (data.empty()) return fail("--data: the unloaded log is required");
+  if (loaded.empty()) return fail("--loaded: the log with the payload is required");
+  DriveGainOptions gains;
+  gains.payload_mass = payload_mass;
+  std::string gains_why;
+  if (!gains.IsValid(&gains_why)) return fail("--payload-mass: " + gains_why);
+  std::string friction_why;
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
+    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+  if (!preparation().IsValid(why)) return false;
+  if (out_dir.empty()) return fail("--out: empty path");
+  std::error_code ec;
+  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  return true;
+}
+
+GainsReport RunGains(const RobotModel& model, const GainsOptions& options) {
+  GainsReport report;
+  DriveGainOptions gains;
+  gains.friction = options.friction_model();
+  gains.payload_mass = options.payload_mass;
+  PreparedLog unloaded = PrepareJointLog(options.data, model, options.preparation());
+  PreparedLog loaded = PrepareJointLog(options.loaded, model, options.preparation());
+  for (PreparedLog* log : {&unloaded, &loaded}) {
+    for (std::string& note : log->notes) report.notes.push_back(std::move(note));
+    for (std::string& warning : log->warnings) report.warnings.push_back(std::move(warning));
+  }
+  report.n_unloaded = unloaded.log.n_samples();
+  report.n_loaded = loaded.log.n_samples();
+  report.estimate = EstimateDriveGains(model, ToCurrentLog(std::move(unloaded)), ToCurrentLog(std::move(loaded)), gains);
+  return report;
+}
+
+std::string FormatGainsTable(const RobotModel& model, const GainsOptions& options, const GainsReport& report) {
+  const DriveGainEstimate& e = report.estimate;
+  std::string out;
+  for (const std::string& note : report.notes) out += note + "\n";
+  char line[512];
+  std::snprintf(line, sizeof(line), "Drive gains of %s from %s (unloaded, %d samples) and %s (payload %g kg, %d "
+                "samples): %d unknowns, rank %d\n\n", model.name().c_str(), options.data.c_str(), report.n_unloaded,
+                options.loaded.c_str(), options.payload_mass, report.n_loaded, static_cast<int>(e.unknown_names.size()),
+                e.rank);
+  out += line;
+  std::snprintf(line, sizeof(line), "%6s  %14s  %11s  %8s\n", "joint", "K [N m/A]", "sigma", "%sigma");
+  out += line;
+  for (int j = 0; j < model.n_dof(); ++j) {
+    if (!std::isfinite(e.gains[j])) {
+      std::snprintf(line, sizeof(line), "%6d  %14s  %11s  %8s\n", j + 1, "not ident.", "-", "-");
+    } else {
+      std::snprintf(line, sizeof(line), "%6d  %14.6g  %11.3g  %8.3g\n", j + 1, e.gains[j], e.sigma[j],
+                    100.0 * e.sigma[j] / std::abs(e.gains[j]));
+    }
+    out += line;
+  }
+  std::snprintf(line, sizeof(line), "Relative torque residual: unloaded %.4g, loaded %.4g\n", e.unloaded_relative_error,
+                e.loaded_relative_error);
+  out += line;
+  if (e.status != DriveGainStatus::kEstimated) out += e.message + "\n";
+  return out;
+}
+
+std::string FormatGainsJson(const RobotModel& model, const GainsOptions& options, const GainsReport& report) {
+  using nlohmann::json;
+  const DriveGainEstimate& e = report.estimate;
+  json gains = json::array(), sigma = json::array(), payload = json::object();
+  for (int j = 0; j < model.n_dof(); ++j) {
+    gains.push_back(NumberOrNull(e.gains[j]));
+    sigma.push_back(NumberOrNull(e.sigma[j]));
+  }
+  for (size_t c = 0; c < PayloadParameterNames().size(); ++c) {
+    payload[PayloadParameterNames()[c]] = NumberOrNull(e.payload[static_cast<Eigen::Index>(c)]);
+  }
+  const json result = {
+      {"drive_gains", gains},
+      {"sigma", sigma},
+      {"command", options.command_line},
+      {"robot", model.name()},
+      {"unloaded", {{"data", options.data}, {"n_samples", report.n_unloaded}, {"joint_rms", ToStdVector(e.unloaded_rms)},
+                    {"relative_error", e.unloaded_relative_error}}},
+      {"loaded", {{"data", options.loaded}, {"n_samples", report.n_loaded}, {"joint_rms", ToStdVector(e.loaded_rms)},
+                  {"relative_error", e.loaded_relative_error}}},
+      {"payload_mass", options.payload_mass},
+      {"payload_first_moment_and_inertia", payload},
+      {"rank", e.rank},
+      {"n_unknowns", e.unknown_names.size()},
+      {"friction", options.friction},
+      {"log_preparation", report.notes},
+  };
+  return result.dump(2) + "\n";
+}
+
+}  // namespace idbench

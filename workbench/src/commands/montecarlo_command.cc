@@ -1,0 +1,165 @@
+#include "idbench/workbench/commands/montecarlo_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <stdexcept>
+
+#include "idbench/engine/sensor_model.h"
+#include "idbench/engine/simulation.h"
+#include "number_format.h"
+#include "idbench/workbench/formats/trajectory_file.h"
+
+namespace idbench {
+namespace {
+
+// Noise-free joint log of a motion over its duration, sampled at rate_hz.
+JointLog SimulateNoiseFree(const RobotModel& model, const Trajectory& motion, double dt, double rate_hz) {
+  SimulationOptions sim;
+  sim.dt = dt;
+  sim.duration = motion.duration();
+  SensorOptions sensors;
+  sensors.rate_hz = rate_hz;
+  return Measure(Simulate(model, motion, sim), sensors);
+}
+
+}  // namespace
+
+bool MonteCarloOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (trials < 2 || trials > 100000) return fail("--trials: must be in [2, 100000], got " + std::to_string(trials));
+  if (samples < 2) return fail("--samples: must be >= 2, got " + std::to_string(samples));
+  if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
+  if (tau_noise.empty()) return fail("--tau-noise: give one value or one per joint");
+  for (double s : tau_noise) {
+    if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
+  }
+  std::string friction_why;
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  return true;
+}
+
+MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options) {
+  const int n = model.n_dof();
+  const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
+  const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
+  const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);
+  SensorOptions sensors;
+  sensors.rate_hz = options.samples / motion->duration();
+  sensors.tau_noise = options.tau_noise;
+  std::string why;
+  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--samples/--tau-noise: " + why);
+  // 1. One noise-free experiment and one held-out, and the fixed regressors.
+  const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
+  const JointLog log = SimulateNoiseFree(model, *motion, options.dt, sensors.rate_hz);
+  const JointLog held = SimulateNoiseFree(model, *held_motion, options.dt, sensors.rate_hz);
+  MonteCarloReport report;
+  report.log = log;
+  report.base = ComputeBaseParameters(model, friction);
+  report.beta_true = report.base.combination * StandardParameters(model, friction);
+  const Eigen::MatrixXd W = StackBaseRegressor(model, friction, report.base, log);
+  const Eigen::MatrixXd W_held = StackBaseRegressor(model, friction, report.base, held);
+  const Eigen::VectorXd tau = StackTorques(log), tau_held = StackTorques(held);
+
+  // 2. Trials: fresh torque noise on both logs, WLS, errors.
+  const int p = report.base.n_base();
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  auto noisy = [&](const Eigen::VectorXd& clean) {
+    Eigen::VectorXd out = clean;
+    for (Eigen::Index r = 0; r < out.size(); ++r) {
+      const double sigma = options.tau_noise.size() == 1 ? options.tau_noise[0]
+                                                         : options.tau_noise[static_cast<size_t>(r % n)];
+      out[r] += sigma * normal(rng);
+    }
+    return out;
+  };
+  Eigen::MatrixXd estimates(p, options.trials);
+  Eigen::VectorXd sigma_sum = Eigen::VectorXd::Zero(p);
+  Eigen::MatrixXd cov_sum = Eigen::MatrixXd::Zero(p, p);
+  for (int trial = 0; trial < options.trials; ++trial) {
+    const LinearFit fit = SolveWls(W, noisy(tau), n);
+    if (fit.rank < p) {
+      throw std::invalid_argument("montecarlo: the motion does not excite every base parameter (W has rank " +
+                                  std::to_string(fit.rank) + " of " + std::to_string(p) +
+                                  "); choose a richer --trajectory (see idbench compare)");
+    }
+    estimates.col(trial) = fit.beta;
+    sigma_sum += fit.sigma;
+    cov_sum += fit.covariance;
+    report.mean_relative_error += (fit.beta - report.beta_true).norm() / report.beta_true.norm();
+    const Eigen::VectorXd measured = noisy(tau_held);
+    report.mean_held_out_error += (W_held * fit.beta - measured).norm() / measured.norm();
+    report.held_out_noise_floor += (W_held * report.beta_true - measured).norm() / measured.norm();
+  }
+  const double trials = options.trials;
+  report.mean_relative_error /= trials;
+  report.mean_held_out_error /= trials;
+  report.held_out_noise_floor /= trials;
+  report.predicted_sigma = sigma_sum / trials;
+  report.predicted_relative_error = std::sqrt((cov_sum / trials).trace()) / report.beta_true.norm();
+  const Eigen::VectorXd mean = estimates.rowwise().mean();
+  report.empirical_bias = mean - report.beta_true;
+  report.empirical_sigma =
+      ((estimates.colwise() - mean).rowwise().squaredNorm() / (trials - 1.0)).cwiseSqrt();
+  const Eigen::VectorXd ratio = report.empirical_sigma.cwiseQuotient(report.predicted_sigma).array() - 1.0;
+  report.worst_sigma_ratio = ratio.cwiseAbs().maxCoeff(&report.worst_sigma_index);
+  return report;
+}
+
+std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report) {
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "Monte-Carlo: %d trials, %d samples of '%s' (held out: '%s'), %d base parameters, WLS\n\n",
+                options.trials, options.samples, options.trajectory.c_str(), options.held_out.c_str(),
+                report.base.n_base());
+  out += line;
+  std::snprintf(line, sizeof(line), "%4s  %14s  %12s  %12s  %7s  %12s  %s\n", "#", "true", "predicted σ", "empirical σ",
+                "ratio", "bias/σ", "base parameter");
+  out += line;
+  const double sqrt_trials = std::sqrt(static_cast<double>(options.trials));
+  for (int k = 0; k < report.base.n_base(); ++k) {
+    std::snprintf(line, sizeof(line), "%4d  %14.6g  %12.4g  %12.4g  %7.3f  %12.3g  %s\n", k + 1, report.beta_true[k],
+                  report.predicted_sigma[k], report.empirical_sigma[k],
+                  report.empirical_sigma[k] / report.predicted_sigma[k],
+                  report.empirical_bias[k] / (report.predicted_sigma[k] / sqrt_trials),
+                  report.base.names[static_cast<size_t>(k)].c_str());
+    out += line;
+  }
+  std::snprintf(line, sizeof(line),
+                "\nmean |dbeta|/|beta|: %.4g (predicted %.4g)\n"
+                "worst empirical/predicted sigma: %.3f (parameter %d)\n"
+                "held-out torque relative error: %.4g (noise alone: %.4g)\n",
+                report.mean_relative_error, report.predicted_relative_error, 1.0 + report.worst_sigma_ratio,
+                report.worst_sigma_index + 1, report.mean_held_out_error, report.held_out_noise_floor);
+  out += line;
+  return out;
+}
+
+std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCarloReport& report) {
+  nlohmann::json j = {
+      {"command", options.command_line},
+      {"robot", options.robot},
+      {"trials", options.trials},
+      {"samples", options.samples},
+      {"seed", options.seed},
+      {"tau_noise", options.tau_noise},
+      {"base_parameter_names", report.base.names},
+      {"beta_true", ToStdVector(report.beta_true)},
+      {"predicted_sigma", ToStdVector(report.predicted_sigma)},
+      {"empirical_sigma", ToStdVector(report.empirical_sigma)},
+      {"mean_relative_error", report.mean_relative_error},
+      {"predicted_relative_error", report.predicted_relative_error},
+      {"worst_sigma_ratio_deviation", report.worst_sigma_ratio},
+      {"mean_held_out_relative_error", report.mean_held_out_error},
+      {"held_out_noise_floor", report.held_out_noise_floor},
+  };
+  return j.dump(2) + "\n";
+}
+
+}  // namespace idbench

@@ -1,0 +1,416 @@
+#include "idbench/workbench/formats/joint_log_csv.h"
+
+#include "number_format.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace idbench {
+namespace {
+
+// Splits one CSV line on commas (no quoting: every field is a name or a number).
+std::vector<std::string> SplitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    std::string field = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    while (!field.empty() && (field.back() == ' ' || field.back() == '\r' || field.back() == '\t')) field.pop_back();
+    const size_t first = field.find_first_not_of(" \t");
+    fields.push_back(first == std::string::npos ? "" : field.substr(first));
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+// Where a column's values go: kind (0 t, 1 q, 2 qd, 3 qdd, 4 tau, 5 i;
+// -1 skipped) and joint.
+struct ColumnTarget {
+  int kind;
+  int joint;
+};
+constexpr const char* kKindPrefix[] = {"t", "q", "qd", "qdd", "tau", "i"};
+constexpr int kKinds = 6;
+
+// Parses a column name: t, q<j>, qd<j>, qdd<j>, tau<j>, i<j> (j >= 1) or "_".
+// Returns false for anything else.
+bool ParseColumnName(const std::string& name, ColumnTarget* target) {
+  if (name == "_") {
+    *target = {-1, 0};
+    return true;
+  }
+  if (name == "t") {
+    *target = {0, 0};
+    return true;
+  }
+  const size_t digits = name.find_first_of("0123456789");
+  if (digits == std::string::npos || digits == 0) return false;
+  const std::string prefix = name.substr(0, digits);
+  int joint = 0;
+  const char* end = name.data() + name.size();
+  const auto [ptr, ec] = std::from_chars(name.data() + digits, end, joint);
+  if (ec != std::errc() || ptr != end || joint < 1) return false;
+  for (int kind = 1; kind < kKinds; ++kind) {
+    if (prefix == kKindPrefix[kind]) {
+      *target = {kind, joint - 1};
+      return true;
+    }
+  }
+  return false;
+}
+
+// Whether every field of a line is a number (a data line, not a header).
+bool AllNumbers(const std::vector<std::string>& fields) {
+  for (const std::string& f : fields) {
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (f.empty() || ec != std::errc() || ptr != f.data() + f.size()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string FormatJointLogCsv(const JointLog& log) {
+  const int n = log.n_dof();
+  const bool derivatives = log.has_derivatives();
+  const bool torques = log.tau.size() > 0;
+  std::string out = "t";
+  for (const char* prefix : {"q", "qd", "qdd", "tau"}) {
+    if (!derivatives && prefix[1] == 'd') continue;
+    if (!torques && prefix[0] == 't') continue;
+    for (int j = 1; j <= n; ++j) out += "," + std::string(prefix) + std::to_string(j);
+  }
+  out += '\n';
+  out.reserve(out.size() + static_cast<size_t>(log.n_samples()) * static_cast<size_t>(4 * n + 1) * 24);
+  for (int s = 0; s < log.n_samples(); ++s) {
+    AppendShortest(&out, log.t[s]);
+    auto row = [&](const Eigen::MatrixXd& m) {
+      for (int j = 0; j < n; ++j) {
+        out.push_back(',');
+        AppendShortest(&out, m(s, j));
+      }
+    };
+    row(log.q);
+    if (derivatives) {
+      row(log.qd);
+      row(log.qdd);
+    }
+    if (torques) row(log.tau);
+    out.push_back('\n');
+  }
+  return out;
+}
+
+bool JointLogFormat::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (angle_unit != "rad" && angle_unit != "deg") return fail("--angle-unit: expected rad or deg, got '" + angle_unit + "'");
+  if (static_cast<int>(drive_gains.size()) > kMaxJoints) {
+    return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, at most " + std::to_string(kMaxJoints));
+  }
+  for (size_t j = 0; j < drive_gains.size(); ++j) {
+    if (!std::isfinite(drive_gains[j]) || drive_gains[j] == 0.0) {
+      return fail("--drive-gains: joint " + std::to_string(j + 1) + ": expected a finite non-zero gain [N m/A], got " +
+                  Shortest(drive_gains[j]));
+    }
+  }
+  if (columns.empty()) return true;
+  std::vector<std::string> names;
+  try {
+    names = ExpandColumnNames(columns);
+  } catch (const std::invalid_argument& e) {
+    return fail(e.what());
+  }
+  std::map<std::string, int> seen;
+  for (size_t c = 0; c < names.size(); ++c) {
+    const std::string where = "--columns: column " + std::to_string(c + 1) + " ('" + names[c] + "')";
+    ColumnTarget target{};
+    if (!ParseColumnName(names[c], &target)) {
+      return fail(where + ": unknown; expected t, q<j>, qd<j>, qdd<j>, tau<j>, i<j>, a range such as q1..q6, or _");
+    }
+    if (target.kind >= 0 && target.joint >= kMaxJoints) return fail(where + ": joint above " + std::to_string(kMaxJoints));
+    if (names[c] != "_" && !seen.emplace(names[c], static_cast<int>(c)).second) return fail(where + ": repeated");
+  }
+  if (!seen.count("t")) return fail("--columns: no 't' column");
+  return true;
+}
+
+bool JointLogFormat::IsValidFor(int n_dof, std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!drive_gains.empty() && static_cast<int>(drive_gains.size()) != n_dof) {
+    return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, the robot has " +
+                std::to_string(n_dof) + " joints");
+  }
+  if (columns.empty()) return true;
+  const std::vector<std::string> names = ExpandColumnNames(columns);
+  for (size_t c = 0; c < names.size(); ++c) {
+    ColumnTarget target{};
+    if (ParseColumnName(names[c], &target) && target.kind > 0 && target.joint >= n_dof) {
+      return fail("--columns: column " + std::to_string(c + 1) + " ('" + names[c] + "'): joint " +
+                  std::to_string(target.joint + 1) + " but the robot has " + std::to_string(n_dof) + " joints");
+    }
+  }
+  return true;
+}
+
+std::vector<std::string> ExpandColumnNames(const std::vector<std::string>& items) {
+  std::vector<std::string> names;
+  auto add = [&](const std::string& name) {
+    if (static_cast<int>(names.size()) >= JointLogFormat::kMaxColumns) {
+      throw std::invalid_argument("--columns: more than " + std::to_string(JointLogFormat::kMaxColumns) + " columns");
+    }
+    names.push_back(name);
+  };
+  for (const std::string& item : items) {
+    const size_t dots = item.find("..");
+    if (dots == std::string::npos) {
+      add(item);
+      continue;
+    }
+    // A range: <prefix><a>..<prefix><b>, a <= b.
+    ColumnTarget first{}, last{};
+    const std::string a = item.substr(0, dots), b = item.substr(dots + 2);
+    if (!ParseColumnName(a, &first) || !ParseColumnName(b, &last) || first.kind <= 0 || first.kind != last.kind ||
+        last.joint < first.joint) {
+      throw std::invalid_argument("--columns: '" + item + "': expected a range such as q1..q6 (same prefix, first <= last)");
+    }
+    if (last.joint - first.joint >= JointLogFormat::kMaxColumns) {
+      throw std::invalid_argument("--columns: '" + item + "': more than " + std::to_string(JointLogFormat::kMaxColumns) +
+                                  " columns");
+    }
+    for (int j = first.joint; j <= last.joint; ++j) add(kKindPrefix[first.kind] + std::to_string(j + 1));
+  }
+  return names;
+}
+
+RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel& model, const std::string& source,
+                                       const JointLogFormat& format, TorqueColumns torques) {
+  const int n_dof = model.n_dof();
+  auto fail = [&](int line, const std::string& what) -> void {
+    throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);
+  };
+  std::string why;
+  if (!format.IsValid(&why) || !format.IsValidFor(n_dof, &why)) throw std::invalid_argument(why);
+  std::istringstream in(text);
+  std::string line;
+  int line_number = 0;
+
+  // The first non-blank line: the header, or data when --columns names them.
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
+  }
+  if (line_number == 0 || line.find_first_not_of(" \t\r") == std::string::npos) {
+    fail(std::max(line_number, 1), format.columns.empty() ? "empty file, expected a header line" : "empty file");
+  }
+  const std::vector<std::string> first_fields = SplitFields(line);
+  const bool header = !AllNumbers(first_fields);
+  const bool named = !format.columns.empty();
+  if (!named && !header) {
+    fail(line_number, "the first line is data (all numbers), not a header naming the columns: pass --columns with "
+                      "the names in file order, e.g. --columns t,q1..q" + std::to_string(n_dof) + ",qd1..qd" +
+                      std::to_string(n_dof) + ",i1..i" + std::to_string(n_dof) + " (_ skips a column)");
+  }
+  const std::vector<std::string> names = named ? ExpandColumnNames(format.columns) : first_fields;
+  const int header_line = named ? 0 : line_number;  // where column problems are reported (0: --columns)
+  auto fail_columns = [&](const std::string& what) -> void {
+    if (named) throw std::invalid_argument(source + ": --columns: " + what);
+    fail(header_line, what);
+  };
+  if (static_cast<int>(names.size()) > JointLogFormat::kMaxColumns) {
+    fail_columns(std::to_string(names.size()) + " columns, at most " + std::to_string(JointLogFormat::kMaxColumns));
+  }
+
+  // Every column named once, from a known set, of a joint the robot has.
+  std::map<std::string, int> column_of;
+  std::vector<ColumnTarget> targets;
+  for (size_t c = 0; c < names.size(); ++c) {
+    const std::string& name = names[c];
+    const std::string where = "column " + std::to_string(c + 1) + " ('" + name + "')";
+    ColumnTarget target{};
+    if (!ParseColumnName(name, &target)) {
+      fail_columns(where + ": unknown column; expected t, q1..q" + std::to_string(n_dof) +
+                   ", qd*, qdd*, tau*, i* (motor current)" + (named ? ", or _" : ""));
+    }
+    if (name != "_" && !column_of.emplace(name, static_cast<int>(c)).second) fail_columns(where + ": repeated");
+    if (target.kind > 0 && target.joint >= n_dof) {
+      fail_columns(where + ": joint " + std::to_string(target.joint + 1) + " but the robot has " +
+                   std::to_string(n_dof) + " joints");
+    }
+    targets.push_back(target);
+  }
+
+  // Required columns, and each other kind as a complete set or not at all.
+  auto has = [&](const std::string& name) { return column_of.count(name) > 0; };
+  auto complete = [&](const char* prefix) {
+    const std::string p(prefix);
+    int count = 0;
+    for (int j = 1; j <= n_dof; ++j) count += has(p + std::to_string(j));
+    if (count == 0 || count == n_dof) return count == n_dof;
+    for (int j = 1; j <= n_dof; ++j) {
+      if (!has(p + std::to_string(j))) {
+        if (has(p + "1")) {
+          fail_columns("missing column '" + p + std::to_string(j) + "': give all of " + p + "1.." + p +
+                       std::to_string(n_dof) + " or none");
+        }
+        break;
+      }
+    }
+    for (int j = 2; j <= n_dof; ++j) {
+      if (has(p + std::to_string(j))) {
+        fail_columns("column '" + p + std::to_string(j) + "' without " + p + "1: give all of " + p + "1.." + p +
+                     std::to_string(n_dof) + " or none");
+      }
+    }
+    return false;
+  };
+  if (!has("t")) fail_columns("missing column 't'");
+  for (int j = 1; j <= n_dof; ++j) {
+    if (!has("q" + std::to_string(j))) {
+      fail_columns("missing column 'q" + std::to_string(j) + "' (robot has " + std::to_string(n_dof) + " joints)");
+    }
+  }
+  const bool has_qd = complete("qd"), has_qdd = complete("qdd"), has_tau = complete("tau"), has_i = complete("i");
+  RecordedJointLog out;
+  const std::string n_str = std::to_string(n_dof);
+  bool use_tau = has_tau, use_i = false;
+  switch (torques) {
+    case TorqueColumns::kRequired:
+      if (!format.drive_gains.empty()) {
+        if (!has_i) fail_columns("--drive-gains given but the log has no motor currents i1..i" + n_str);
+        use_i = true;
+        use_tau = false;
+        if (has_tau) out.warnings.push_back(source + ": tau columns ignored: --drive-gains given, tau = K·i from i1..i" + n_str);
+      } else if (!has_tau) {
+        if (has_i) {
+          fail_columns("the log has motor currents i1..i" + n_str + " but no tau: pass --drive-gains K1,...,K" + n_str +
+                       " (tau = K·i; `idbench gains` estimates them)");
+        }
+        fail_columns("missing column 'tau1' (robot has " + n_str + " joints)");
+      }
+      break;
+    case TorqueColumns::kOptional:
+      break;
+    case TorqueColumns::kCurrents:
+      if (!has_i) fail_columns("missing column 'i1': drive gains need the motor currents i1..i" + n_str);
+      use_i = true;
+      use_tau = false;
+      break;
+  }
+
+  // Data lines: with --columns, fields after the named ones are ignored.
+  const bool degrees = format.degrees();
+  const double to_rad = degrees ? std::numbers::pi / 180.0 : 1.0;
+  std::vector<std::vector<double>> rows;
+  const size_t t_column = static_cast<size_t>(column_of["t"]);
+  if (named && header) {
+    // The first line is a header that --columns overrides: skipped.
+  } else if (named) {
+    in.clear();
+    in.str(text);  // the first line is data: read it again
+    line_number = 0;
+  }
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::vector<std::string> fields = SplitFields(line);
+    if (named ? fields.size() < names.size() : fields.size() != names.size()) {
+      fail(line_number, std::to_string(fields.size()) + " fields, expected " + (named ? "at least " : "") +
+                            std::to_string(names.size()));
+    }
+    std::vector<double> values(names.size(), 0.0);
+    for (size_t c = 0; c < names.size(); ++c) {
+      if (targets[c].kind < 0) continue;
+      const std::string& f = fields[c];
+      const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), values[c]);
+      const std::string where = "column " + std::to_string(c + 1) + " ('" + names[c] + "')";
+      if (f.empty() || ec != std::errc() || ptr != f.data() + f.size()) fail(line_number, where + ": '" + f + "' is not a number");
+      if (!std::isfinite(values[c])) fail(line_number, where + ": " + f + " is not finite");
+      if (targets[c].kind >= 1 && targets[c].kind <= 3) values[c] *= to_rad;
+      if (targets[c].kind == 1) {
+        const JointLimits& limits = model.link(targets[c].joint).limits;
+        if (values[c] < limits.q_min || values[c] > limits.q_max) {
+          fail(line_number, where + ": " + f + (degrees ? " deg (" + Shortest(values[c]) + " rad)" : " rad") +
+                                " is outside joint " + std::to_string(targets[c].joint + 1) + "'s limits [" +
+                                std::to_string(limits.q_min) + ", " + std::to_string(limits.q_max) + "] rad");
+        }
+      }
+    }
+    const double t = values[t_column];
+    if (!rows.empty() && !(t > rows.back()[t_column])) {
+      fail(line_number, "column " + std::to_string(t_column + 1) + " ('t'): time " + std::to_string(t) +
+                            " does not increase");
+    }
+    rows.push_back(std::move(values));
+    out.lines.push_back(line_number);
+  }
+  if (rows.empty()) fail(line_number, named && !header ? "no data lines" : "no data lines after the header");
+
+  // Columns into the log's matrices; currents × gains into tau.
+  const int n_samples = static_cast<int>(rows.size());
+  JointLog& log = out.log;
+  log.t.resize(n_samples);
+  log.q.resize(n_samples, n_dof);
+  if (has_qd) log.qd.resize(n_samples, n_dof);
+  if (has_qdd) log.qdd.resize(n_samples, n_dof);
+  if (use_tau || use_i) log.tau.resize(n_samples, n_dof);
+  Eigen::MatrixXd* matrices[] = {nullptr, &log.q, &log.qd, &log.qdd, use_tau ? &log.tau : nullptr,
+                                 use_i ? &log.tau : nullptr};
+  const bool scale = use_i && torques == TorqueColumns::kRequired;
+  out.torque_from_currents = scale;
+  for (int s = 0; s < n_samples; ++s) {
+    for (size_t c = 0; c < targets.size(); ++c) {
+      const double v = rows[static_cast<size_t>(s)][c];
+      const ColumnTarget& target = targets[c];
+      if (target.kind == 0) {
+        log.t[s] = v;
+      } else if (target.kind > 0 && matrices[target.kind]) {
+        (*matrices[target.kind])(s, target.joint) =
+            target.kind == 5 && scale ? format.drive_gains[static_cast<size_t>(target.joint)] * v : v;
+      }
+    }
+  }
+  return out;
+}
+
+RecordedJointLog ReadRecordedJointLog(const std::string& path, const RobotModel& model, const JointLogFormat& format,
+                                      TorqueColumns torques) {
+  return ParseRecordedJointLog(ReadTextFile(path), model, path, format, torques);
+}
+
+JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source,
+                          TorqueColumns torques) {
+  RecordedJointLog recorded = ParseRecordedJointLog(text, model, source, JointLogFormat{}, torques);
+  JointLog& log = recorded.log;
+  if ((log.qd.size() > 0) != (log.qdd.size() > 0)) {
+    throw std::invalid_argument(source + ":" + std::to_string(recorded.lines.front() - 1) + ": column '" +
+                                (log.qd.size() > 0 ? "qd1' without qdd1" : "qdd1' without qd1") +
+                                ": a trajectory needs qd and qdd both or neither");
+  }
+  if (torques == TorqueColumns::kCurrents) log.tau.resize(0, 0);
+  return std::move(log);
+}
+
+std::string ReadTextFile(const std::string& path) {
+  std::error_code ec;
+  std::ifstream file(path, std::ios::binary);
+  if (!file || std::filesystem::is_directory(path, ec)) throw std::invalid_argument(path + ": cannot read the file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+}  // namespace idbench

@@ -1,0 +1,77 @@
+#include "idbench/workbench/formats/limits_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "number_format.h"
+
+namespace idbench {
+
+std::vector<JointLimits> RobotLimits(const RobotModel& model) {
+  std::vector<JointLimits> limits;
+  for (const Link& link : model.links()) limits.push_back(link.limits);
+  return limits;
+}
+
+std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotModel& model, const std::string& source) {
+  using nlohmann::json;
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!doc.is_object() || !doc.contains("joints") || !doc["joints"].is_array()) {
+    throw std::invalid_argument(source + ": expected an object with a \"joints\" array");
+  }
+  for (const auto& [key, value] : doc.items()) {
+    if (key != "joints") throw std::invalid_argument(source + ": unknown key '" + key + "'");
+  }
+  const json& joints = doc["joints"];
+  if (static_cast<int>(joints.size()) != model.n_dof()) {
+    throw std::invalid_argument(source + ": \"joints\" has " + std::to_string(joints.size()) + " entries, robot '" +
+                                model.name() + "' has " + std::to_string(model.n_dof()) + " joints");
+  }
+  std::vector<JointLimits> limits = RobotLimits(model);
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const std::string where = source + ": joints[" + std::to_string(j) + "]";
+    if (!joints[j].is_object()) throw std::invalid_argument(where + ": expected an object");
+    JointLimits& l = limits[j];
+    for (const auto& [key, value] : joints[j].items()) {
+      double* field = key == "q_min"     ? &l.q_min
+                      : key == "q_max"   ? &l.q_max
+                      : key == "qd_max"  ? &l.qd_max
+                      : key == "qdd_max" ? &l.qdd_max
+                      : key == "tau_max" ? &l.tau_max
+                                         : nullptr;
+      if (!field) {
+        throw std::invalid_argument(where + "." + key + ": unknown key (q_min, q_max, qd_max, qdd_max, tau_max)");
+      }
+      if (!value.is_number() || !std::isfinite(value.get<double>())) {
+        throw std::invalid_argument(where + "." + key + ": expected a finite number, got " + value.dump());
+      }
+      *field = value.get<double>();
+      if (key != "q_min" && key != "q_max" && !(*field > 0.0)) {
+        throw std::invalid_argument(where + "." + key + ": must be > 0, got " + Shortest(*field));
+      }
+    }
+    if (!(l.q_min < l.q_max)) {
+      throw std::invalid_argument(where + ": q_min = " + Shortest(l.q_min) + " must be below q_max = " +
+                                  Shortest(l.q_max) + " rad");
+    }
+  }
+  return limits;
+}
+
+std::vector<JointLimits> ReadLimitsFile(const std::string& path, const RobotModel& model) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseLimitsJson(text.str(), model, path);
+}
+
+}  // namespace idbench

@@ -1,0 +1,212 @@
+#include "idbench/workbench/formats/trajectory_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "idbench/excitation/constant_acceleration.h"
+#include "idbench/excitation/fourier_series.h"
+#include "idbench/workbench/formats/joint_log_csv.h"
+#include "number_format.h"
+
+namespace idbench {
+namespace {
+
+using nlohmann::json;
+
+bool EndsWith(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+nlohmann::ordered_json MatrixRows(const Eigen::MatrixXd& m) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (int i = 0; i < m.rows(); ++i) rows.push_back(ToStdVector(m.row(i).transpose()));
+  return rows;
+}
+
+// Reads keys of one JSON object with messages "source: key 'k': what".
+class KeyReader {
+ public:
+  KeyReader(const json& object, std::string source) : object_(object), source_(std::move(source)) {}
+
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
+    throw std::invalid_argument(source_ + ": key '" + key + "': " + what);
+  }
+  const json& Get(const std::string& key) const {
+    if (!object_.contains(key)) Fail(key, "missing");
+    return object_.at(key);
+  }
+  // A finite number; `positive` requires > 0.
+  double Number(const std::string& key, bool positive) const {
+    const json& v = Get(key);
+    if (!v.is_number()) Fail(key, "expected a number, got " + v.dump());
+    const double x = v.get<double>();
+    if (positive && !(x > 0.0)) Fail(key, "must be > 0, got " + v.dump());
+    return x;
+  }
+  bool Bool(const std::string& key, bool fallback) const {
+    if (!object_.contains(key)) return fallback;
+    const json& v = object_.at(key);
+    if (!v.is_boolean()) Fail(key, "expected true or false, got " + v.dump());
+    return v.get<bool>();
+  }
+  // An array of `size` numbers (one per joint).
+  Eigen::VectorXd Vector(const std::string& key, int size) const {
+    const json& v = Get(key);
+    if (!v.is_array() || static_cast<int>(v.size()) != size) {
+      Fail(key, "expected an array of " + std::to_string(size) + " numbers (one per joint of the robot), got " +
+                    (v.is_array() ? std::to_string(v.size()) + " entries" : v.dump()));
+    }
+    Eigen::VectorXd x(size);
+    for (int i = 0; i < size; ++i) {
+      if (!v[static_cast<size_t>(i)].is_number()) Fail(key, "entry " + std::to_string(i + 1) + ": expected a number, got " + v[static_cast<size_t>(i)].dump());
+      x[i] = v[static_cast<size_t>(i)].get<double>();
+    }
+    return x;
+  }
+  // rows arrays of `cols` numbers each; cols < 0 takes the first row's length (>= 1).
+  Eigen::MatrixXd Matrix(const std::string& key, int rows, int cols) const {
+    const json& v = Get(key);
+    if (!v.is_array() || static_cast<int>(v.size()) != rows) {
+      Fail(key, "expected " + std::to_string(rows) + " rows (one per joint of the robot), got " +
+                    (v.is_array() ? std::to_string(v.size()) : v.dump()));
+    }
+    if (cols < 0) cols = v[0].is_array() ? static_cast<int>(v[0].size()) : 0;
+    if (cols < 1) Fail(key, "row 1: expected an array of at least one coefficient, got " + v[0].dump());
+    Eigen::MatrixXd m(rows, cols);
+    for (int i = 0; i < rows; ++i) {
+      const json& row = v[static_cast<size_t>(i)];
+      const std::string where = "row " + std::to_string(i + 1) + ": ";
+      if (!row.is_array() || static_cast<int>(row.size()) != cols) {
+        Fail(key, where + "expected " + std::to_string(cols) + " numbers (one per harmonic), got " +
+                      (row.is_array() ? std::to_string(row.size()) : row.dump()));
+      }
+      for (int c = 0; c < cols; ++c) {
+        const json& x = row[static_cast<size_t>(c)];
+        if (!x.is_number()) Fail(key, where + "entry " + std::to_string(c + 1) + ": expected a number, got " + x.dump());
+        m(i, c) = x.get<double>();
+      }
+    }
+    return m;
+  }
+  // Rejects keys outside `known` (typos would otherwise be silently ignored).
+  void OnlyKeys(const std::set<std::string>& known) const {
+    for (const auto& [key, value] : object_.items()) {
+      if (known.count(key)) continue;
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      Fail(key, "unknown for this family; expected " + list);
+    }
+  }
+
+ private:
+  const json& object_;
+  std::string source_;
+};
+
+}  // namespace
+
+std::string FormatTrajectoryJson(const Trajectory& trajectory) {
+  nlohmann::ordered_json j;  // keys in the documented order, family first
+  if (const auto* f = dynamic_cast<const FourierSeriesTrajectory*>(&trajectory)) {
+    j = {{"family", "fourier"},          {"f0", f->f0()},
+         {"duration", f->duration()},    {"rest_to_rest", f->rest_to_rest()},
+         {"q0", ToStdVector(f->q0())},   {"a", MatrixRows(f->a())},
+         {"b", MatrixRows(f->b())}};
+  } else if (const auto* c = dynamic_cast<const ConstantAccelerationTrajectory*>(&trajectory)) {
+    j = {{"family", "constant-acceleration"}, {"duration", c->duration()},     {"q0", ToStdVector(c->q0())},
+         {"qd0", ToStdVector(c->qd0())},       {"qdd", ToStdVector(c->qdd())}};
+  } else {
+    throw std::invalid_argument(
+        "trajectory JSON: expected a Fourier series or constant-acceleration trajectory; this family has no "
+        "coefficients to save (write it as CSV)");
+  }
+  return j.dump(2) + "\n";
+}
+
+std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_dof, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(source + ": not valid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw std::invalid_argument(source + ": expected a JSON object, got " + std::string(j.type_name()));
+  const KeyReader keys(j, source);
+  const json& family = keys.Get("family");
+  if (family == "fourier") {
+    keys.OnlyKeys({"family", "f0", "duration", "rest_to_rest", "q0", "a", "b"});
+    const double f0 = keys.Number("f0", true), duration = keys.Number("duration", true);
+    const bool rest_to_rest = keys.Bool("rest_to_rest", false);
+    Eigen::VectorXd q0 = keys.Vector("q0", n_dof);
+    Eigen::MatrixXd a = keys.Matrix("a", n_dof, -1);
+    Eigen::MatrixXd b = keys.Matrix("b", n_dof, static_cast<int>(a.cols()));
+    return std::make_unique<FourierSeriesTrajectory>(std::move(q0), std::move(a), std::move(b), f0, duration,
+                                                     rest_to_rest);
+  }
+  if (family == "constant-acceleration") {
+    keys.OnlyKeys({"family", "duration", "q0", "qd0", "qdd"});
+    const double duration = keys.Number("duration", true);
+    return std::make_unique<ConstantAccelerationTrajectory>(keys.Vector("q0", n_dof), keys.Vector("qd0", n_dof),
+                                                            keys.Vector("qdd", n_dof), duration);
+  }
+  keys.Fail("family", "expected \"fourier\" or \"constant-acceleration\", got " + family.dump());
+}
+
+std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz) {
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz))
+    throw std::invalid_argument("trajectory CSV: expected a rate > 0 Hz, got " + std::to_string(rate_hz));
+  const int n_samples = static_cast<int>(std::floor(trajectory.duration() * rate_hz + 1e-9)) + 1;
+  JointLog log;  // no torques: FormatJointLogCsv then writes t, q, qd, qdd
+  log.t.resize(n_samples);
+  log.q.resize(n_samples, trajectory.n_dof());
+  log.qd.resize(n_samples, trajectory.n_dof());
+  log.qdd.resize(n_samples, trajectory.n_dof());
+  JointState state(trajectory.n_dof());
+  for (int k = 0; k < n_samples; ++k) {
+    log.t[k] = k / rate_hz;
+    trajectory.Evaluate(log.t[k], &state);
+    log.q.row(k) = state.q.transpose();
+    log.qd.row(k) = state.qd.transpose();
+    log.qdd.row(k) = state.qdd.transpose();
+  }
+  return FormatJointLogCsv(log);
+}
+
+SampledTrajectory ParseTrajectoryCsv(const std::string& text, const RobotModel& model, const std::string& source) {
+  const JointLog log = ParseJointLogCsv(text, model, source, TorqueColumns::kOptional);
+  if (log.n_samples() < 2) {
+    throw std::invalid_argument(source + ": " + std::to_string(log.n_samples()) +
+                                " sample, expected at least 2 to interpolate");
+  }
+  if (!log.has_derivatives()) return SampledTrajectory(log.t, log.q.transpose());
+  return SampledTrajectory(log.t, log.q.transpose(), log.qd.transpose(), log.qdd.transpose());
+}
+
+bool IsTrajectoryFile(const std::string& name_or_path) {
+  return EndsWith(name_or_path, ".json") || EndsWith(name_or_path, ".csv");
+}
+
+std::unique_ptr<Trajectory> LoadTrajectoryArg(const std::string& name_or_path, const RobotModel& model,
+                                              const BuiltinMotionOptions& builtin) {
+  if (EndsWith(name_or_path, ".json")) return ParseTrajectoryJson(ReadTextFile(name_or_path), model.n_dof(), name_or_path);
+  if (EndsWith(name_or_path, ".csv")) {
+    return std::make_unique<SampledTrajectory>(ParseTrajectoryCsv(ReadTextFile(name_or_path), model, name_or_path));
+  }
+  const std::vector<std::string> names = BuiltinMotionNames();
+  if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {
+    return MakeBuiltinMotion(name_or_path, model.n_dof(), builtin);
+  }
+  try {
+    MakeBuiltinMotion(name_or_path, model.n_dof(), builtin);
+  } catch (const std::invalid_argument& e) {  // "trajectory 'x': not a built-in motion (names)"
+    throw std::invalid_argument(std::string(e.what()) + " nor a file ending in .json or .csv");
+  }
+  throw std::logic_error("MakeBuiltinMotion accepted '" + name_or_path + "', not in BuiltinMotionNames()");
+}
+
+}  // namespace idbench

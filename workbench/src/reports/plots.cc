@@ -1,0 +1,222 @@
+#include "idbench/workbench/reports/plots.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "idbench/ident/per_body_regressor.h"
+
+namespace idbench {
+namespace {
+
+// Rows 0, k, 2k, … of a matrix (empty stays empty).
+Eigen::MatrixXd EveryKthRow(const Eigen::MatrixXd& m, int k) {
+  if (m.size() == 0) return m;
+  Eigen::MatrixXd out((m.rows() + k - 1) / k, m.cols());
+  for (Eigen::Index i = 0; i < out.rows(); ++i) out.row(i) = m.row(i * k);
+  return out;
+}
+
+PlotAxes SignalAxes(const std::string& title, const std::string& y_label, const std::vector<double>& t,
+                    const Eigen::MatrixXd& values, const std::string& x_label) {
+  PlotAxes axes;
+  axes.title = title;
+  axes.y_label = y_label;
+  axes.x_label = x_label;
+  for (Eigen::Index j = 0; j < values.cols(); ++j) {
+    PlotSeries s;
+    s.label = std::to_string(j + 1);
+    s.x = t;
+    s.y.assign(values.col(j).data(), values.col(j).data() + values.rows());
+    axes.series.push_back(std::move(s));
+  }
+  return axes;
+}
+
+}  // namespace
+
+JointSignals SignalsOf(const SimulationLog& log, int max_samples) {
+  const int n = static_cast<int>(log.steps.size()), k = std::max(1, (n + max_samples - 1) / max_samples);
+  JointSignals s;
+  const int m = (n + k - 1) / k, n_dof = n ? static_cast<int>(log.steps[0].q.size()) : 0;
+  s.q.resize(m, n_dof), s.qd.resize(m, n_dof), s.qdd.resize(m, n_dof), s.tau.resize(m, n_dof);
+  for (int i = 0; i < m; ++i) {
+    const LogStep& step = log.steps[static_cast<size_t>(i * k)];
+    s.t.push_back(step.t);
+    s.q.row(i) = step.q.transpose(), s.qd.row(i) = step.qd.transpose();
+    s.qdd.row(i) = step.qdd.transpose(), s.tau.row(i) = step.tau.transpose();
+  }
+  return s;
+}
+
+JointSignals SignalsOf(const JointLog& log, int max_samples) {
+  const int k = std::max(1, (log.n_samples() + max_samples - 1) / max_samples);
+  JointSignals s;
+  for (Eigen::Index i = 0; i < log.t.size(); i += k) s.t.push_back(log.t[i]);
+  s.q = EveryKthRow(log.q, k), s.qd = EveryKthRow(log.qd, k), s.qdd = EveryKthRow(log.qdd, k);
+  s.tau = EveryKthRow(log.tau, k);
+  return s;
+}
+
+PlotFigure JointSignalsPlot(const JointSignals& signals) {
+  PlotFigure figure;
+  figure.width = 720, figure.height = 760;
+  figure.axes.push_back(SignalAxes("Joint positions", "q [rad]", signals.t, signals.q, ""));
+  if (signals.qd.size() > 0) {
+    figure.axes.push_back(SignalAxes("Joint velocities", "qd [rad/s]", signals.t, signals.qd, ""));
+    figure.axes.push_back(SignalAxes("Joint accelerations", "qdd [rad/s²]", signals.t, signals.qdd, ""));
+  }
+  figure.axes.push_back(SignalAxes("Joint torques", "τ [N m]", signals.t, signals.tau, "t [s]"));
+  return figure;
+}
+
+PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& log_label, int max_samples) {
+  const Eigen::Index n_kept = series.t.size(), n_dof = series.measured.cols();
+  const int k = std::max(1, static_cast<int>((n_kept + max_samples - 1) / max_samples));
+  std::vector<double> t;
+  for (Eigen::Index i = 0; i < n_kept; i += k) t.push_back(series.t[i]);
+  const Eigen::MatrixXd measured = EveryKthRow(series.measured, k), predicted = EveryKthRow(series.predicted, k);
+  PlotFigure figure;
+  figure.columns = n_dof > 1 ? 2 : 1;
+  const Eigen::Index rows = (n_dof + figure.columns - 1) / figure.columns;
+  figure.width = 900, figure.height = 220.0 * static_cast<double>(std::max<Eigen::Index>(1, rows));
+  for (Eigen::Index j = 0; j < n_dof; ++j) {
+    PlotAxes axes;
+    axes.title = "Joint " + std::to_string(j + 1) + ", " + log_label;
+    axes.y_label = "τ [N m]";
+    if (j >= n_dof - figure.columns) axes.x_label = "t [s]";  // the bottom row
+    for (const auto& [label, values] : {std::pair{"measured", &measured}, std::pair{"predicted", &predicted}}) {
+      PlotSeries s;
+      s.label = label;
+      s.x = t;
+      s.y.assign(values->col(j).data(), values->col(j).data() + values->rows());
+      axes.series.push_back(std::move(s));
+    }
+    figure.axes.push_back(std::move(axes));
+  }
+  return figure;
+}
+
+PlotFigure ParameterPlot(const std::string& title, const std::string& reference_label,
+                         const std::vector<ParameterEstimate>& parameters) {
+  PlotAxes axes;
+  axes.title = title;
+  axes.y_label = "value [SI units]";
+  PlotSeries reference{reference_label, {}, {}, {}, PlotSeries::Style::kBars};
+  PlotSeries estimate{"identified ± error bar", {}, {}, {}, PlotSeries::Style::kMarkers};
+  bool positive = true;
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const ParameterEstimate& p = parameters[i];
+    axes.categories.push_back(p.name);
+    reference.x.push_back(static_cast<double>(i)), reference.y.push_back(p.reference);
+    estimate.x.push_back(static_cast<double>(i)), estimate.y.push_back(p.estimate);
+    estimate.y_error.push_back(p.error_bar);
+    positive &= p.reference > 0.0 && (!std::isfinite(p.estimate) || p.estimate > 0.0);
+  }
+  axes.log_y = positive && !parameters.empty();
+  axes.series = {reference, estimate};
+  PlotFigure figure;
+  figure.width = std::max(720.0, 18.0 * static_cast<double>(parameters.size()) + 120.0);
+  figure.height = 420;
+  figure.axes.push_back(axes);
+  return figure;
+}
+
+std::vector<ParameterEstimate> RunParameterEstimates(const PerBodyIdentificationResult& result) {
+  std::vector<ParameterEstimate> out;
+  for (const BodyResult& body : result.bodies) {
+    for (const ParameterResult& p : body.parameters) {
+      out.push_back({body.name + "." + p.name, p.true_value, p.identified, std::abs(p.abs_error)});
+    }
+  }
+  return out;
+}
+
+Eigen::VectorXd NormalizedSingularValues(const Eigen::MatrixXd& A) {
+  // Columns negligible against the largest (rounding noise of a column that
+  // is zero in exact arithmetic) count as zero, as in the identifier.
+  Eigen::MatrixXd scaled = A;
+  const double largest = A.size() ? A.colwise().norm().maxCoeff() : 0.0;
+  for (Eigen::Index c = 0; c < scaled.cols(); ++c) {
+    const double norm = scaled.col(c).norm();
+    if (norm > 1e-9 * largest) scaled.col(c) /= norm;
+    else scaled.col(c).setZero();
+  }
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(scaled).singularValues();
+}
+
+PlotFigure SpectrumPlot(const std::string& title, const std::vector<Spectrum>& spectra) {
+  PlotAxes axes;
+  axes.title = title;
+  axes.x_label = "index (largest first)";
+  axes.y_label = "singular value";
+  axes.log_y = true;
+  // Short spectra as numbered categories (σ1, σ2, …), long ones as lines.
+  Eigen::Index longest = 0;
+  for (const Spectrum& s : spectra) longest = std::max(longest, s.singular_values.size());
+  const bool categories = longest <= 12;
+  for (Eigen::Index i = 0; categories && i < longest; ++i) axes.categories.push_back("σ" + std::to_string(i + 1));
+  for (const Spectrum& s : spectra) {
+    PlotSeries series{s.label, {}, {}, {}, categories ? PlotSeries::Style::kMarkers : PlotSeries::Style::kLine};
+    for (Eigen::Index i = 0; i < s.singular_values.size(); ++i) {
+      series.x.push_back(static_cast<double>(categories ? i : i + 1));
+      series.y.push_back(s.singular_values[i]);
+    }
+    axes.series.push_back(std::move(series));
+  }
+  PlotFigure figure;
+  figure.height = 380;
+  figure.axes.push_back(axes);
+  return figure;
+}
+
+std::vector<Spectrum> RunEulerSpectra(const RobotModel& model, const SimulationLog& log,
+                                      const std::vector<int>& steps) {
+  std::vector<Spectrum> spectra;
+  for (int body = 0; body < model.n_links(); ++body) {
+    Eigen::MatrixXd K(3 * static_cast<Eigen::Index>(steps.size()), 3);
+    for (size_t s = 0; s < steps.size(); ++s) {
+      K.middleRows<3>(3 * static_cast<Eigen::Index>(s)) =
+          ComputePerBodyRows(model, body, log.steps[static_cast<size_t>(steps[s])]).euler_regressor;
+    }
+    spectra.push_back({model.link(body).name, NormalizedSingularValues(K)});
+  }
+  return spectra;
+}
+
+MotionSummary SummarizeMotion(const std::string& name, const std::vector<Spectrum>& spectra, double max_rel_error) {
+  MotionSummary m{name, 0.0, 0.0, max_rel_error};
+  for (const Spectrum& s : spectra) {
+    // Identifiable directions: singular values above the rank tolerance.
+    const double tol = s.singular_values.size() ? 1e-10 * s.singular_values.maxCoeff() : 0.0;
+    double smallest = INFINITY;
+    for (double sigma : s.singular_values) {
+      if (sigma <= tol) continue;
+      smallest = std::min(smallest, sigma);
+      m.log10_det += 2.0 * std::log10(sigma);
+    }
+    if (std::isfinite(smallest)) m.cond = std::max(m.cond, s.singular_values.maxCoeff() / smallest);
+  }
+  return m;
+}
+
+PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions, const MotionPlotTitles& titles) {
+  PlotFigure figure;
+  figure.columns = 3;
+  figure.height = 300;
+  PlotAxes cond{titles.cond, "", "cond", true, {}, {}};
+  PlotAxes det{titles.log_det, "", "log10 det", false, {}, {}};
+  PlotAxes error{titles.error, "", "relative error", true, {}, {}};
+  PlotSeries c{"", {}, {}, {}, PlotSeries::Style::kBars}, d = c, e = c;
+  for (size_t i = 0; i < motions.size(); ++i) {
+    for (PlotAxes* axes : {&cond, &det, &error}) axes->categories.push_back(motions[i].name);
+    c.x.push_back(double(i)), d.x.push_back(double(i)), e.x.push_back(double(i));
+    c.y.push_back(motions[i].cond), d.y.push_back(motions[i].log10_det), e.y.push_back(motions[i].max_rel_error);
+  }
+  cond.series = {c}, det.series = {d}, error.series = {e};
+  figure.axes = {cond, det, error};
+  return figure;
+}
+
+}  // namespace idbench
