@@ -7,6 +7,7 @@ packages=(build-essential cmake pkg-config
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
           libdsdp-dev                 # the tests' second SDP solver
+          pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           libgtest-dev libbenchmark-dev
           xvfb xauth libgl1-mesa-dri  # the windowed GUI's smoke test runs under Xvfb
           poppler-utils)              # pdfinfo: the report tests open the PDFs

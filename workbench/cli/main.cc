@@ -28,6 +28,7 @@
 #include "idbench/workbench/commands/run_command.h"
 #include "idbench/workbench/commands/simulate_command.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/workbench/version.h"
 
 namespace {
 
@@ -290,6 +291,8 @@ void AddLogReadingOptions(CLI::App* command, idbench::JointLogFormat* format, st
 
 int main(int argc, char** argv) {
   CLI::App app{"idbench: a workbench for robot excitation design and dynamic parameter identification"};
+  app.set_version_flag("--version", std::string("idbench ") + idbench::Version() + " (git " + idbench::GitRevision() + ")",
+                       "Print the version and the git revision built from, then exit");
 
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(i ? argv[i] : "idbench");

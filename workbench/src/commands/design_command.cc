@@ -65,12 +65,15 @@ DesignRegressor DesignCommandOptions::MakeRegressor(const RobotModel& robot) con
   return DesignRegressor::JointTorque(robot, *ParseFrictionTerms(friction, nullptr));
 }
 
+std::vector<JointLimits> DesignLimits(const RobotModel& model, const DesignCommandOptions& options) {
+  return options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model);
+}
+
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::atomic<bool>* stop) {
   DesignControl control;
   control.stop = stop;
-  return RunDesign(model, options, options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model),
-                   control);
+  return RunDesign(model, options, DesignLimits(model, options), control);
 }
 
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,

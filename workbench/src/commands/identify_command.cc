@@ -62,12 +62,19 @@ bool IdentifyOptions::IsValid(std::string* why) const {
 }
 
 IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
+  PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
+  std::optional<PreparedLog> held_out;
+  if (!options.validate.empty()) held_out = PrepareJointLog(options.validate, model, options.preparation(false));
+  return IdentifyPreparedLogs(model, options, std::move(data), std::move(held_out));
+}
+
+IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
+                                    std::optional<PreparedLog> held_out) {
   IdentifyReport report;
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
   id_options.estimator = *ParseTorqueEstimator(options.estimator);
   id_options.plausibility = options.plausibility;
-  PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
   report.log = std::move(data.log);
   id_options.parallel_filter = data.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
@@ -80,20 +87,19 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(options.data + ": " + e.what());
   }
-  if (!options.validate.empty()) {
+  if (held_out) {
     JointTorqueOptions held_options = id_options;
-    PreparedLog held_out = PrepareJointLog(options.validate, model, options.preparation(false));
-    held_options.parallel_filter = held_out.parallel_filter;
-    for (std::string& note : held_out.notes) report.notes.push_back(std::move(note));
-    for (std::string& warning : held_out.warnings) report.warnings.push_back(std::move(warning));
+    held_options.parallel_filter = held_out->parallel_filter;
+    for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));
+    for (std::string& warning : held_out->warnings) report.warnings.push_back(std::move(warning));
     try {
       report.validation = PredictTorques(model, held_options, report.identification.base,
-                                         report.identification.beta, held_out.log);
+                                         report.identification.beta, held_out->log);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(options.validate + ": " + e.what());
     }
-    report.held_out_log = std::move(held_out.log);
-    report.held_out_filter = held_out.parallel_filter;
+    report.held_out_log = std::move(held_out->log);
+    report.held_out_filter = held_out->parallel_filter;
   }
   return report;
 }

@@ -58,7 +58,11 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
 }
 
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options) {
-  RecordedJointLog recorded = ReadRecordedJointLog(path, model, options.format, options.torques);
+  return PrepareRecordedJointLog(ReadRecordedJointLog(path, model, options.format, options.torques), path, options);
+}
+
+PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,
+                                    const LogPreparationOptions& options) {
   PreparedLog out;
   out.warnings = recorded.warnings;
   if (recorded.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");

@@ -67,11 +67,15 @@ std::unique_ptr<Trajectory> MakeRenderTrajectory(const RobotModel& model, const 
                            {.duration = options.duration, .paper_qdd = options.paper_accel_deg_s2 * std::numbers::pi / 180.0});
 }
 
-std::string RenderPoseFigurePng(const RobotModel& model, const Trajectory& trajectory,
-                                const PoseFigureOptions& options) {
+Image RenderPoseFigureImage(const RobotModel& model, const Trajectory& trajectory, const PoseFigureOptions& options) {
   OsMesaContext context;
   SceneRenderer renderer(OsMesaContext::loader(), 4);
-  return EncodePng(RenderPoseFigure(renderer, model, trajectory, options));
+  return RenderPoseFigure(renderer, model, trajectory, options);
+}
+
+std::string RenderPoseFigurePng(const RobotModel& model, const Trajectory& trajectory,
+                                const PoseFigureOptions& options) {
+  return EncodePng(RenderPoseFigureImage(model, trajectory, options));
 }
 
 std::string RenderRunFigurePng(const RobotModel& model, const RunOptions& options) {

@@ -46,6 +46,10 @@ struct DesignCommandReport {
   std::vector<std::string> parameter_names;
 };
 
+// The limits a design keeps: the --limits file's, else the robot file's.
+// Throws std::invalid_argument naming a bad file.
+std::vector<JointLimits> DesignLimits(const RobotModel& model, const DesignCommandOptions& options);
+
 // Runs the design; progress lines on stderr unless quiet; `stop` ends it
 // early with the best feasible design so far. Throws std::invalid_argument for
 // bad limits or files, std::runtime_error when nothing feasible was found.

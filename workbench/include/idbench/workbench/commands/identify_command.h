@@ -57,6 +57,12 @@ struct IdentifyReport {
 // line and column of bad data, or the option that does not fit the data.
 IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options);
 
+// The same for logs already prepared (PrepareJointLog or
+// PrepareRecordedJointLog, e.g. arrays from Python); options.data and
+// options.validate only name them in messages.
+IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
+                                    std::optional<PreparedLog> held_out);
+
 std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);
 // identified.json (README.md).

@@ -48,4 +48,9 @@ struct PreparedLog {
 // log too short for the filter.
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options);
 
+// The same for a log already read (e.g. arrays from Python: lines are then
+// row numbers); `source` names it in messages. options.format is not used.
+PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& source,
+                                    const LogPreparationOptions& options);
+
 }  // namespace idbench

@@ -8,6 +8,7 @@
 
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
+#include "idbench/render/image.h"
 #include "idbench/render/pose_figure.h"
 #include "idbench/workbench/commands/run_command.h"
 
@@ -41,9 +42,11 @@ std::vector<double> DefaultFigureTimes(double duration);
 // an unknown motion or a bad file.
 std::unique_ptr<Trajectory> MakeRenderTrajectory(const RobotModel& model, const RenderOptions& options);
 
-// Renders the figure headless (OSMesa, MSAA 4) and encodes it as PNG. The
-// options must be valid for the trajectory. Throws std::runtime_error when no
-// OpenGL 3.3 context can be created.
+// Renders the figure headless (OSMesa, MSAA 4). The options must be valid for
+// the trajectory. Throws std::runtime_error when no OpenGL 3.3 context can be
+// created.
+Image RenderPoseFigureImage(const RobotModel& model, const Trajectory& trajectory, const PoseFigureOptions& options);
+// The same encoded as PNG.
 std::string RenderPoseFigurePng(const RobotModel& model, const Trajectory& trajectory,
                                 const PoseFigureOptions& options);
 

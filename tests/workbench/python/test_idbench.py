@@ -1,0 +1,145 @@
+"""The Python module against the command line (the same library calls) and numpy.
+
+Run from CTest (tests/CMakeLists.txt): PYTHONPATH holds the built module,
+IDBENCH the built executable, IDBENCH_VERSION the project's version.
+"""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import idbench
+
+IDBENCH = os.environ["IDBENCH"]
+SOURCE_DIR = os.environ["IDBENCH_SOURCE_DIR"]
+
+
+def cli(*args, cwd):
+    """Runs the idbench executable; returns (exit code, stdout, stderr)."""
+    done = subprocess.run([IDBENCH, *args], cwd=cwd, capture_output=True, text=True)
+    return done.returncode, done.stdout, done.stderr
+
+
+@pytest.fixture(scope="module")
+def puma():
+    return idbench.Robot("puma560")
+
+
+@pytest.fixture(scope="module")
+def puma_log(puma):
+    # The general motion for 3 s at 200 Hz, the simulator's exact qd, qdd.
+    return idbench.simulate(puma, "general", duration=3.0, rate=200.0)
+
+
+def test_version_is_the_projects():
+    assert idbench.__version__ == os.environ["IDBENCH_VERSION"]
+    code, out, _ = cli("--version", cwd=".")
+    assert code == 0
+    assert out.strip() == f"idbench {idbench.__version__} (git {idbench.__git_revision__})"
+
+
+def test_robots_load_by_name_and_from_urdf():
+    puma = idbench.Robot("puma560")
+    assert (puma.name, puma.n_dof) == ("puma560", 6)
+    urdf = idbench.Robot(os.path.join(SOURCE_DIR, "engine/robots/paper6r.urdf"))
+    assert urdf.n_dof == 6
+    assert len(urdf.joint_names) == 6 and len(set(urdf.link_names)) == 6
+
+
+def test_regressor_times_the_files_parameters_gives_the_simulated_torques(puma, puma_log):
+    friction = ["viscous", "coulomb", "rotor"]
+    base = idbench.base_parameters(puma, friction)
+    names, pi = idbench.standard_parameters(puma, friction)
+    assert len(names) == pi.size == base.combination.shape[1]
+    beta = base.combination @ pi
+    W = idbench.regressor(puma, puma_log["q"], puma_log["qd"], puma_log["qdd"], friction, base=base)
+    n, dof = puma_log["q"].shape
+    assert W.shape == (n * dof, base.n_base)
+    tau = puma_log["tau"].reshape(-1)  # rows sample·n_dof + joint
+    # Bullet's torques (computed-torque tracking) against the regressor's RNEA.
+    assert np.linalg.norm(W @ beta - tau) / np.linalg.norm(tau) < 1e-8
+
+
+def test_regressor_rejects_arrays_of_the_wrong_shape(puma):
+    q = np.zeros((10, 5))
+    with pytest.raises(ValueError, match=r"q: expected an array of 10 samples × 6 joints, got 10 × 5"):
+        idbench.regressor(puma, q, q, q)
+
+
+def test_identify_matches_the_command_line(puma, tmp_path):
+    code, _, err = cli("simulate", "--robot", "puma560", "--duration", "3", "--rate", "200",
+                       "--tau-noise", "0.05", "--seed", "7", "--out", "log.csv", cwd=tmp_path)
+    assert code == 0, err
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "log.csv", "--estimator", "pc",
+                       "--out", "id", cwd=tmp_path)
+    assert code == 0, err
+    expected = json.loads((tmp_path / "id/identified.json").read_text())
+    beta_cli = np.array([np.nan if p["value"] is None else p["value"] for p in expected["base_parameters"]])
+
+    from_file = idbench.identify(puma, str(tmp_path / "log.csv"), estimator="pc")
+    assert from_file.base_names == [p["name"] for p in expected["base_parameters"]]
+    np.testing.assert_allclose(from_file.beta, beta_cli, rtol=1e-9, equal_nan=True)
+    assert from_file.urdf == (tmp_path / "id/identified.urdf").read_text()
+
+    # The same log as arrays (as numpy reads the CSV): the same estimate.
+    columns = np.loadtxt(tmp_path / "log.csv", delimiter=",", skiprows=1)
+    arrays = {"t": columns[:, 0], "q": columns[:, 1:7], "qd": columns[:, 7:13], "qdd": columns[:, 13:19],
+              "tau": columns[:, 19:25]}
+    from_arrays = idbench.identify(puma, arrays, estimator="pc")
+    np.testing.assert_allclose(from_arrays.beta, from_file.beta, rtol=1e-12, equal_nan=True)
+    np.testing.assert_allclose(from_arrays.standard, from_file.standard, rtol=1e-9, atol=1e-12)
+
+
+def test_unidentifiable_parameters_are_nan_never_numbers(puma):
+    # The paper's motion turns joints 1 and 2 only: the other joints' friction is not excited.
+    log = idbench.simulate(puma, "paper", duration=2.0, rate=200.0)
+    result = idbench.identify(puma, log, friction=["viscous"])
+    status = np.array(result.status)
+    assert (status == "not identifiable").any()
+    assert np.isnan(result.beta[status == "not identifiable"]).all()
+    assert np.isfinite(result.beta[status != "not identifiable"]).all()
+    fv6 = result.base_names.index("Fv6")
+    assert result.status[fv6] == "not identifiable"
+
+
+def test_errors_carry_the_command_lines_messages(puma, tmp_path):
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
+    assert code != 0
+    message = err.strip().splitlines()[-1].removeprefix("idbench: error: ")
+    with pytest.raises(ValueError) as raised:
+        idbench.identify(puma, "missing.csv")
+    assert str(raised.value) == message
+
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "x.csv", "--estimator", "best", cwd=tmp_path)
+    assert code == 2
+    with pytest.raises(ValueError) as raised:
+        idbench.identify(puma, "x.csv", estimator="best")
+    assert str(raised.value) == err.strip().splitlines()[-1].removeprefix("idbench: error: ")
+
+
+def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
+    # The PUMA's velocity and acceleration limits (design_cli_test.cc), a small quick design.
+    limits = [{"qd_max": 1.5, "qdd_max": 4}] * 3 + [{"qd_max": 3, "qdd_max": 8}] * 3
+    (tmp_path / "limits.json").write_text(json.dumps({"joints": limits}))
+    calls = []
+    result = idbench.design(puma, harmonics=2, f0=0.5, samples=40, starts=1, max_evaluations=25, clearance=-1,
+                            friction=["viscous"], limits=str(tmp_path / "limits.json"),
+                            progress=lambda *args: calls.append(args))
+    assert result.feasible and not result.stopped
+    assert calls and all(start == 0 for start, *_ in calls)
+    assert np.isfinite(result.cond) and result.value <= result.initial_value
+    design = json.loads(result.design_json)
+    assert design["trajectory"]["harmonics"] == 2
+    assert design["after"]["criterion"] == pytest.approx(result.value, rel=1e-12)
+    assert isinstance(json.loads(result.trajectory_json), dict)
+
+
+def test_render_gives_the_figure_as_an_array_and_png(tmp_path):
+    robot = idbench.Robot("paper6r")
+    png = tmp_path / "figure.png"
+    image = idbench.render(robot, "paper", times=[0.0, 1.0], size="64x48", layout="strip", png=str(png))
+    assert image.shape == (48, 128, 3) and image.dtype == np.uint8
+    assert image.std() > 1.0  # the robot is drawn, not a blank panel
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
