@@ -72,6 +72,17 @@ BENCHMARK(BM_StackAndOlsPuma560)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The stacked base regressor W alone (6N × 48): what Python's
+// idbench.regressor returns (python_regressor_benchmark.py, the same problem).
+void BM_StackBaseRegressorPuma560(benchmark::State& state) {
+  const Puma560Problem p(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const Eigen::MatrixXd W = StackBaseRegressor(p.model, p.friction, p.base, p.log);
+    benchmark::DoNotOptimize(W.data());
+  }
+}
+BENCHMARK(BM_StackBaseRegressorPuma560)->Arg(100000)->Unit(benchmark::kMillisecond);
+
 // The same through the whole stacked W (StackBaseRegressor, then SolveOls on
 // W), as IdentifyJointTorque does (its physically consistent fit needs W).
 void BM_StackDenseAndOlsPuma560(benchmark::State& state) {

@@ -21,3 +21,7 @@ cmake -S "$source/tests/package/consumer" -B "$work/consumer" -DCMAKE_BUILD_TYPE
       -DCMAKE_PREFIX_PATH="$work/prefix" "${launcher[@]}" > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
 "$work/consumer/consumer"
+# The Python module from the installed prefix.
+PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+  "import idbench; print('python module', idbench.__version__, 'from', idbench.__file__)" | tee "$work/python.txt"
+grep -q "from $work/prefix/" "$work/python.txt"

@@ -148,6 +148,8 @@ struct IdentifyResult {
   double cond = 0.0;
   double fit_relative_error = 0.0;
   std::optional<double> validation_relative_error;
+  py::dict torques;                     // {t, measured, predicted} on the identification log
+  std::optional<py::dict> validation_torques;  // the same on the held-out log
   std::string tables, json, urdf, joints_yaml;
   std::vector<std::string> warnings, notes;
 };
@@ -183,7 +185,18 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   r.standard = id.consistent.pi;
   r.cond = id.linear.cond;
   r.fit_relative_error = id.fit.relative_error;
-  if (report.validation) r.validation_relative_error = report.validation->relative_error;
+  auto series_dict = [](TorqueSeries series) {
+    py::dict out;
+    out["t"] = std::move(series.t);
+    out["measured"] = std::move(series.measured);
+    out["predicted"] = std::move(series.predicted);
+    return out;
+  };
+  r.torques = series_dict(PredictIdentifiedTorques(model, options, report, false));
+  if (report.validation) {
+    r.validation_relative_error = report.validation->relative_error;
+    r.validation_torques = series_dict(PredictIdentifiedTorques(model, options, report, true));
+  }
   r.tables = FormatIdentifyTables(model, options, report);
   r.json = FormatIdentifiedJson(model, options, report);
   r.urdf = FormatIdentifiedUrdf(model, options, report);
@@ -337,6 +350,9 @@ PYBIND11_MODULE(idbench, m) {
       .def_readonly("cond", &IdentifyResult::cond)
       .def_readonly("fit_relative_error", &IdentifyResult::fit_relative_error)
       .def_readonly("validation_relative_error", &IdentifyResult::validation_relative_error)
+      .def_readonly("torques", &IdentifyResult::torques,
+                    "{t, measured, predicted} on the identification log (n_kept × n_dof; parallel-filtered as scored)")
+      .def_readonly("validation_torques", &IdentifyResult::validation_torques, "The same on the held-out log")
       .def_readonly("tables", &IdentifyResult::tables, "What identify prints")
       .def_readonly("json", &IdentifyResult::json, "identified.json")
       .def_readonly("urdf", &IdentifyResult::urdf, "identified.urdf")

@@ -5,7 +5,9 @@ IDBENCH the built executable, IDBENCH_VERSION the project's version.
 """
 import json
 import os
+import signal
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -91,6 +93,12 @@ def test_identify_matches_the_command_line(puma, tmp_path):
     np.testing.assert_allclose(from_arrays.beta, from_file.beta, rtol=1e-12, equal_nan=True)
     np.testing.assert_allclose(from_arrays.standard, from_file.standard, rtol=1e-9, atol=1e-12)
 
+    # Measured against predicted torque: the same relative error the result reports.
+    torques = from_file.torques
+    residual = np.linalg.norm(torques["predicted"] - torques["measured"]) / np.linalg.norm(torques["measured"])
+    assert residual == pytest.approx(from_file.fit_relative_error, rel=1e-9)
+    np.testing.assert_array_equal(torques["measured"], columns[:, 19:25])
+
 
 def test_unidentifiable_parameters_are_nan_never_numbers(puma):
     # The paper's motion turns joints 1 and 2 only: the other joints' friction is not excited.
@@ -143,3 +151,26 @@ def test_render_gives_the_figure_as_an_array_and_png(tmp_path):
     assert image.shape == (48, 128, 3) and image.dtype == np.uint8
     assert image.std() > 1.0  # the robot is drawn, not a blank panel
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_ctrl_c_stops_a_design_and_keeps_the_best(tmp_path):
+    # A design far longer than the test, interrupted by SIGINT once a start has a feasible point.
+    script = tmp_path / "design.py"
+    script.write_text("""
+import json, sys, idbench
+limits = [{"qd_max": 1.5, "qdd_max": 4}] * 3 + [{"qd_max": 3, "qdd_max": 8}] * 3
+open("limits.json", "w").write(json.dumps({"joints": limits}))
+def progress(start, evaluations, best, feasible):
+    if feasible:
+        print("feasible", flush=True)
+r = idbench.design(idbench.Robot("puma560"), harmonics=3, f0=0.5, samples=40, starts=1, threads=1,
+                   max_evaluations=1000000, clearance=-1, limits="limits.json", progress=progress)
+print("result", r.stopped, r.feasible, r.value <= r.initial_value, flush=True)
+""")
+    env = dict(os.environ)
+    child = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, stdout=subprocess.PIPE, text=True, env=env)
+    assert child.stdout.readline().strip() == "feasible"
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=60)
+    assert child.returncode == 0
+    assert out.strip().splitlines()[-1] == "result True True True"

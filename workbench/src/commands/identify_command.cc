@@ -104,6 +104,16 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
   return report;
 }
 
+TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
+                                      const IdentifyReport& report, bool held_out) {
+  JointTorqueOptions prediction;
+  prediction.friction = options.friction_model();
+  prediction.parallel_filter = held_out ? report.held_out_filter : report.parallel_filter;
+  const JointTorqueIdentification& id = report.identification;
+  if (held_out && !report.held_out_log) throw std::invalid_argument("no held-out log was identified with");
+  return PredictTorqueSeries(model, prediction, id.base, id.beta, held_out ? *report.held_out_log : report.log);
+}
+
 std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
   const JointTorqueIdentification& id = report.identification;

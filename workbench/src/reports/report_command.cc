@@ -398,24 +398,19 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
        SpectrumPlot("Singular-value spectrum of the base regressor", {{"W", NormalizedSingularValues(W)}})}};
   // Measured against predicted torque, τ̂ = W β of the chosen estimator, on
   // the equations the RMS numbers score (parallel-filtered as they are).
-  JointTorqueOptions prediction;
-  prediction.friction = options.friction_model();
   const std::string how = " (τ̂ = W β, " + options.estimator + "): ";
   const auto filtered = [](const std::optional<ParallelFilter>& filter) {
     return filter ? "both parallel-filtered, the filter's ends dropped, as in the torque RMS." : "as in the torque RMS.";
   };
-  prediction.parallel_filter = report.parallel_filter;
   content.plots.push_back({"torques", "Measured and predicted joint torque on the identification log" + how +
                                           filtered(report.parallel_filter),
-                           TorqueComparisonPlot(PredictTorqueSeries(model, prediction, id.base, id.beta, report.log),
+                           TorqueComparisonPlot(PredictIdentifiedTorques(model, options, report, false),
                                                 "identification log")});
   if (report.held_out_log) {
-    prediction.parallel_filter = report.held_out_filter;
     content.plots.push_back(
         {"validation_torques", "Measured and predicted joint torque on the held-out log " + options.validate + how +
                                    filtered(report.held_out_filter),
-         TorqueComparisonPlot(PredictTorqueSeries(model, prediction, id.base, id.beta, *report.held_out_log),
-                              "held-out log")});
+         TorqueComparisonPlot(PredictIdentifiedTorques(model, options, report, true), "held-out log")});
   }
   return content;
 }

@@ -63,6 +63,12 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
                                     std::optional<PreparedLog> held_out);
 
+// Measured and predicted torque (τ̂ = W β of the chosen estimator) on the
+// identification log or the held-out one, parallel-filtered as the RMS
+// numbers score them (PredictTorqueSeries).
+TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
+                                      const IdentifyReport& report, bool held_out);
+
 std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);
 // identified.json (README.md).
