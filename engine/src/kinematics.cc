@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "idbench/engine/dual.h"
+#include "idbench/engine/adjoint.h"
 
 namespace idbench {
 
@@ -34,8 +34,8 @@ void CheckSize(const char* what, const Vector& v, int n) {
 }
 
 // Small products written out: Eigen's vectorised 3×3 kernels stall on
-// values just stored, and the dual-number path gains from touching each
-// entry once (measured: the regressor's share of kinematics halves).
+// values just stored, and the adjoint path records fewer operations when each
+// entry is touched once (measured: the regressor's share of kinematics halves).
 // A·v; v may be a constant double vector (then the products are cheaper).
 template <typename Scalar, typename V>
 [[gnu::always_inline]] inline Eigen::Matrix<Scalar, 3, 1> Times(const Eigen::Matrix<Scalar, 3, 3>& A, const V& v) {
@@ -131,12 +131,11 @@ void ComputeKinematics(const RobotModel& model, const Eigen::VectorXd& q, const 
 }
 
 template struct KinematicsData<double>;
-template struct KinematicsData<DualState>;
+template struct KinematicsData<Adjoint>;
 template void ComputeKinematicsT<double>(const RobotModel&, const Eigen::VectorXd&, const Eigen::VectorXd&,
                                          const Eigen::VectorXd&, KinematicsData<double>*);
-template void ComputeKinematicsT<DualState>(const RobotModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-                                            const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-                                            const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-                                            KinematicsData<DualState>*);
+template void ComputeKinematicsT<Adjoint>(const RobotModel&, const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+                                          const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+                                          const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&, KinematicsData<Adjoint>*);
 
 }  // namespace idbench

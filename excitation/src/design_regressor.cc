@@ -16,7 +16,7 @@ const char* const kMomentNames[3] = {"J11", "J22", "J33"};
 
 DesignRegressor::Workspace::Workspace(const RobotModel& model)
     : kinematics(model),
-      dual_kinematics(model),
+      adjoint_kinematics(model),
       q(model.n_dof()),
       qd(model.n_dof()),
       qdd(model.n_dof()) {}
@@ -123,34 +123,31 @@ void DesignRegressor::StateGradient(const JointState& x, const Eigen::Ref<const 
     ws->G_standard.setZero(n, NumStandardParameters(*model_, friction_));
     for (int c = 0; c < n_parameters(); ++c) ws->G_standard.col(base_.independent[static_cast<size_t>(c)]) = G.col(c);
   }
-  // The 3n state directions, kDualDirections at a time.
-  for (int first = 0; first < 3 * n; first += kDualDirections) {
-    for (int j = 0; j < n; ++j) {
-      ws->q[j] = DualState(x.q[j]);
-      ws->qd[j] = DualState(x.qd[j]);
-      ws->qdd[j] = DualState(x.qdd[j]);
-    }
-    const int count = std::min(kDualDirections, 3 * n - first);
-    for (int k = 0; k < count; ++k) {
-      const int dir = first + k, j = dir % n;
-      DualState& v = dir < n ? ws->q[j] : dir < 2 * n ? ws->qd[j] : ws->qdd[j];
-      v.d[k] = 1.0;
-    }
-    DualState::Tangent sum = DualState::Tangent::Zero();
-    if (torque) {
-      sum = ContractJointTorqueRegressorT<DualState>(*model_, friction_, ws->q, ws->qd, ws->qdd, ws->G_standard,
-                                                     &ws->dual_kinematics)
-                .d;
-    } else {
-      ComputeKinematicsT<DualState>(*model_, ws->q, ws->qd, ws->qdd, &ws->dual_kinematics);
-      PerBodyRows<DualState>(ws->dual_kinematics, &ws->dual_Y);
-      for (int c = 0; c < n_parameters(); ++c) {
-        for (int r = 0; r < rows_per_sample_; ++r) {
-          if (G(r, c) != 0.0) sum += G(r, c) * ws->dual_Y(r, c).d;
-        }
+  // Record ⟨G, Rows(x)⟩ on the tape with the 3n state entries as inputs,
+  // then one backward sweep.
+  AdjointTape& tape = ws->tape;
+  tape.Clear();
+  for (int j = 0; j < n; ++j) ws->q[j] = tape.Input(x.q[j]);
+  for (int j = 0; j < n; ++j) ws->qd[j] = tape.Input(x.qd[j]);
+  for (int j = 0; j < n; ++j) ws->qdd[j] = tape.Input(x.qdd[j]);
+  Adjoint sum(0.0);
+  if (torque) {
+    sum = ContractJointTorqueRegressorT<Adjoint>(*model_, friction_, ws->q, ws->qd, ws->qdd, ws->G_standard,
+                                                 &ws->adjoint_kinematics);
+  } else {
+    ComputeKinematicsT<Adjoint>(*model_, ws->q, ws->qd, ws->qdd, &ws->adjoint_kinematics);
+    PerBodyRows<Adjoint>(ws->adjoint_kinematics, &ws->adjoint_Y);
+    for (int c = 0; c < n_parameters(); ++c) {
+      for (int r = 0; r < rows_per_sample_; ++r) {
+        if (G(r, c) != 0.0) sum += G(r, c) * ws->adjoint_Y(r, c);
       }
     }
-    g.segment(first, count) = sum.head(count);
+  }
+  tape.Backward(sum);
+  for (int j = 0; j < n; ++j) {
+    g[j] = tape.adjoint(ws->q[j]);
+    g[n + j] = tape.adjoint(ws->qd[j]);
+    g[2 * n + j] = tape.adjoint(ws->qdd[j]);
   }
 }
 

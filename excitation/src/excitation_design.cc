@@ -21,6 +21,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kFeasibilityTolerance = 1e-9;  // of a normalised constraint
+// SLSQP takes the grid rows within this fraction of their limit's scale
+// (joint range, velocity or acceleration limit) of being active.
+constexpr double kNearActive = 0.3;
 
 std::string Format(const char* fmt, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
   char buf[256];
@@ -43,6 +46,45 @@ struct StartRun {
 
   Eigen::VectorXd pending_theta;  // see Objective
   double pending_value = kInf;
+
+  // SLSQP's linear rows: those within kNearActive of their limit at the
+  // points it was (re)started from. Its quadratic subproblem costs in
+  // proportion to the rows, and most grid rows are far from any limit.
+  // When SLSQP steps outside a row it did not take, the run stops there
+  // (reselect) and resumes with the rows near that point added.
+  std::vector<int> rows;
+  std::vector<char> taken;  // per grid row
+  bool reselect = false;
+  Eigen::VectorXd reselect_theta;  // where it stepped outside
+
+  void SelectRows(const double* theta) {
+    if (options->algorithm != DesignAlgorithm::kSlsqp) return;
+    const std::vector<LinearRow>& all = problem->rows();
+    taken.assign(all.size(), 0);
+    rows.clear();
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (problem->LinearValue(all[i], theta) > -kNearActive) taken[i] = 1;
+      if (taken[i]) rows.push_back(static_cast<int>(i));
+    }
+  }
+
+  bool ViolatesUntakenRow(const double* theta) const {
+    const std::vector<LinearRow>& all = problem->rows();
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (!taken[i] && problem->LinearValue(all[i], theta) > kFeasibilityTolerance) return true;
+    }
+    return false;
+  }
+
+  static bool Resumable(nlopt_result result) {
+    return result != NLOPT_FORCED_STOP && result != NLOPT_MAXTIME_REACHED && result != NLOPT_MAXEVAL_REACHED;
+  }
+
+  // Runs the optimizer from *theta (left at its last point) for at most
+  // max_evaluations; SLSQP resumes with more rows while its result violates
+  // rows it did not take.
+  nlopt_result Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                        std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta);
 
   // Evaluates the nonlinear constraints into nonlinear_values.
   bool NonlinearFeasible(const double* theta) {
@@ -83,6 +125,11 @@ struct StartRun {
     if (control->stop && control->stop->load()) nlopt_force_stop(opt);
     const double c = problem->Criterion(theta, grad, &*ws);
     const bool linear_ok = problem->MaxLinearViolation(theta) <= kFeasibilityTolerance;
+    if (!linear_ok && !taken.empty() && ViolatesUntakenRow(theta)) {
+      reselect = true;
+      reselect_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
+      nlopt_force_stop(opt);
+    }
     const bool sbplx = options->algorithm == DesignAlgorithm::kSbplx;
     pending_theta.resize(0);
     bool feasible = linear_ok;
@@ -104,13 +151,13 @@ struct StartRun {
     return static_cast<StartRun*>(data)->Objective(x, grad);
   }
 
-  // All grid rows (gradient-based methods).
+  // The selected grid rows (SLSQP).
   static void NloptLinear(unsigned m, double* result, unsigned n, const double* x, double* grad, void* data) {
     const auto* self = static_cast<StartRun*>(data);
     const DesignProblem& p = *self->problem;
     if (grad) std::fill(grad, grad + static_cast<size_t>(m) * n, 0.0);
     for (unsigned i = 0; i < m; ++i) {
-      const LinearRow& row = p.rows()[i];
+      const LinearRow& row = p.rows()[static_cast<size_t>(self->rows[i])];
       result[i] = p.LinearValue(row, x);
       if (grad) {
         std::copy(row.coefficients.data(), row.coefficients.data() + p.block(),
@@ -153,6 +200,67 @@ struct StartRun {
     self->pending_theta.resize(0);
   }
 };
+
+nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta) {
+  const nlopt_algorithm algorithm = options->algorithm == DesignAlgorithm::kSlsqp    ? NLOPT_LD_SLSQP
+                                    : options->algorithm == DesignAlgorithm::kMma    ? NLOPT_LD_MMA
+                                    : options->algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
+                                                                                     : NLOPT_LN_SBPLX;
+  const unsigned n_theta = static_cast<unsigned>(problem->n_unknowns());
+  nlopt_result result = NLOPT_SUCCESS;
+  const int first_evaluation = evaluations;
+  for (;;) {
+    opt = nlopt_create(algorithm, n_theta);
+    nlopt_set_min_objective(opt, &StartRun::NloptObjective, this);
+    nlopt_set_lower_bounds(opt, lower.data());
+    nlopt_set_upper_bounds(opt, upper.data());
+    // SLSQP with one max-row per limit stalls (cond 170 where the rows reach
+    // 42 for puma560); MMA's dual is too slow with many rows, so it and
+    // COBYLA take the max.
+    if (algorithm == NLOPT_LD_SLSQP) {
+      const std::vector<double> tol(rows.size(), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptLinear, this,
+                                       tol.data());
+    } else if (algorithm != NLOPT_LN_SBPLX) {
+      const std::vector<double> tol(static_cast<size_t>(problem->n_groups()), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptGrouped, this,
+                                       tol.data());
+    }
+    if (problem->n_nonlinear_constraints() > 0 && algorithm != NLOPT_LN_SBPLX) {
+      const std::vector<double> tol(static_cast<size_t>(problem->n_nonlinear_constraints()), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptNonlinear, this,
+                                       tol.data());
+    }
+    if (algorithm == NLOPT_LN_COBYLA || algorithm == NLOPT_LN_SBPLX) {
+      // A first step of 10 % of each unknown's box (COBYLA's and SBPLX's scale).
+      const Eigen::VectorXd step = 0.1 * (upper - lower).cwiseMin(2.0 * theta->cwiseAbs().cwiseMax(1e-2));
+      nlopt_set_initial_step(opt, step.data());
+    }
+    nlopt_set_maxeval(opt, std::max(1, options->max_evaluations - (evaluations - first_evaluation)));
+    nlopt_set_ftol_rel(opt, 1e-10);  // looser (1e-7) stops SLSQP on plateaus: cond 50 instead of 43
+    nlopt_set_xtol_rel(opt, 1e-10);
+    if (options->max_seconds > 0.0) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+      nlopt_set_maxtime(opt, std::max(1e-3, options->max_seconds - elapsed));
+    }
+    double value = 0.0;
+    reselect = false;
+    result = nlopt_optimize(opt, theta->data(), &value);
+    nlopt_destroy(opt);
+    opt = nullptr;
+    if (!reselect || (control->stop && control->stop->load()) ||
+        evaluations - first_evaluation >= options->max_evaluations) {
+      break;
+    }
+    *theta = reselect_theta;
+    SelectRows(theta->data());
+  }
+  if (reselect && result == NLOPT_FORCED_STOP && !(control->stop && control->stop->load())) {
+    result = NLOPT_MAXEVAL_REACHED;  // stopped to resume, but out of evaluations
+  }
+  return result;
+}
 
 }  // namespace
 
@@ -317,7 +425,6 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   CheckDesignLimits(regressor.model(), limits);
   const auto t_begin = std::chrono::steady_clock::now();
   const DesignProblem problem(regressor, limits, options);
-  const int n_theta = problem.n_unknowns();
   Eigen::VectorXd lower, upper;
   problem.Bounds(&lower, &upper);
 
@@ -338,52 +445,15 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       run.best_value = kInf;
       if (run.Feasible(theta.data())) run.best_value = summary.initial_value, run.best_theta = theta;
 
-      const nlopt_algorithm algorithm = options.algorithm == DesignAlgorithm::kSlsqp  ? NLOPT_LD_SLSQP
-                                        : options.algorithm == DesignAlgorithm::kMma  ? NLOPT_LD_MMA
-                                        : options.algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
-                                                                                       : NLOPT_LN_SBPLX;
-      run.opt = nlopt_create(algorithm, static_cast<unsigned>(n_theta));
-      nlopt_set_min_objective(run.opt, &StartRun::NloptObjective, &run);
-      nlopt_set_lower_bounds(run.opt, lower.data());
-      nlopt_set_upper_bounds(run.opt, upper.data());
-      const bool gradient_based = algorithm == NLOPT_LD_SLSQP || algorithm == NLOPT_LD_MMA;
-      // SLSQP takes every grid row (measured: with one max-row per limit it
-      // stalls at cond 170 where all rows reach 42 for puma560); MMA's dual
-      // is too slow with thousands of rows, so it and COBYLA take the max.
-      if (algorithm == NLOPT_LD_SLSQP) {
-        const std::vector<double> tol(problem.rows().size(), 1e-10);
-        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptLinear, &run,
-                                         tol.data());
-      } else if (algorithm != NLOPT_LN_SBPLX) {
-        const std::vector<double> tol(static_cast<size_t>(problem.n_groups()), 1e-10);
-        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptGrouped, &run,
-                                         tol.data());
-      }
-      if (problem.n_nonlinear_constraints() > 0 && algorithm != NLOPT_LN_SBPLX) {
-        const std::vector<double> tol(static_cast<size_t>(problem.n_nonlinear_constraints()), 1e-10);
-        nlopt_add_inequality_mconstraint(run.opt, static_cast<unsigned>(tol.size()), &StartRun::NloptNonlinear, &run,
-                                         tol.data());
-      }
-      if (!gradient_based) {
-        // A first step of 10 % of each unknown's box (COBYLA's and SBPLX's scale).
-        const Eigen::VectorXd step = 0.1 * (upper - lower).cwiseMin(2.0 * theta.cwiseAbs().cwiseMax(1e-2));
-        nlopt_set_initial_step(run.opt, step.data());
-      }
-      nlopt_set_maxeval(run.opt, options.max_evaluations);
-      nlopt_set_ftol_rel(run.opt, 1e-10);  // looser (1e-7) stops SLSQP on plateaus: cond 50 instead of 43
-      nlopt_set_xtol_rel(run.opt, 1e-10);
-      if (options.max_seconds > 0.0) {
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
-        nlopt_set_maxtime(run.opt, std::max(1e-3, options.max_seconds - elapsed));
-      }
-      // Clearance is constrained on the grid; where the fine check finds the
-      // links closer between grid instants, those instants join this start's
-      // grid and the search resumes from its best point (at most twice).
-      double value = 0.0;
-      nlopt_result result = nlopt_optimize(run.opt, theta.data(), &value);
-      for (int round = 0; round < 2 && problem.clearance() && run.best_theta.size() > 0 &&
-                          result != NLOPT_FORCED_STOP && result != NLOPT_MAXTIME_REACHED;
+      // SLSQP takes the grid rows near the limits (see SelectRows), MMA and
+      // COBYLA one max-row per limit. When SLSQP ends outside rows it did
+      // not take, they join and it resumes from there; clearance is
+      // constrained on the grid, and where the fine check finds the links
+      // closer between grid instants, those instants join this start's grid
+      // and the search resumes from its best point (at most twice).
+      run.SelectRows(theta.data());
+      nlopt_result result = run.Optimize(lower, upper, t_begin, &theta);
+      for (int round = 0; round < 2 && problem.clearance() && run.best_theta.size() > 0 && run.Resumable(result);
            ++round) {
         const FeasibilityCheck fine = CheckTrajectoryLimits(regressor.model(), limits,
                                                             problem.Trajectory(run.best_theta),
@@ -396,9 +466,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
         theta = run.best_theta;
         run.best_value = kInf;
         run.best_theta.resize(0);
-        result = nlopt_optimize(run.opt, theta.data(), &value);
+        run.SelectRows(theta.data());
+        result = run.Optimize(lower, upper, t_begin, &theta);
       }
-      nlopt_destroy(run.opt);
       summary.best_value = run.best_value;
       summary.evaluations = run.evaluations;
       summary.status = result == NLOPT_FORCED_STOP ? "stopped" : nlopt_result_to_string(result);

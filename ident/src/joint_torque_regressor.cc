@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "idbench/engine/dual.h"
+#include "idbench/engine/adjoint.h"
 
 namespace idbench {
 namespace {
@@ -276,13 +276,13 @@ template double ContractJointTorqueRegressorT<double>(const RobotModel&, const F
                                                      const Eigen::VectorXd&, const Eigen::VectorXd&,
                                                      const Eigen::Ref<const Eigen::MatrixXd>&,
                                                      KinematicsData<double>*);
-template DualState ContractJointTorqueRegressorT<DualState>(
-    const RobotModel&, const FrictionModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-    const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-    const Eigen::Ref<const Eigen::MatrixXd>&, KinematicsData<DualState>*);
-template void ComputeJointTorqueRegressorT<DualState>(
-    const RobotModel&, const FrictionModel&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-    const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&, const Eigen::Matrix<DualState, Eigen::Dynamic, 1>&,
-    KinematicsData<DualState>*, Eigen::Matrix<DualState, Eigen::Dynamic, Eigen::Dynamic>*);
+template Adjoint ContractJointTorqueRegressorT<Adjoint>(
+    const RobotModel&, const FrictionModel&, const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+    const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&, const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+    const Eigen::Ref<const Eigen::MatrixXd>&, KinematicsData<Adjoint>*);
+template void ComputeJointTorqueRegressorT<Adjoint>(
+    const RobotModel&, const FrictionModel&, const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+    const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&, const Eigen::Matrix<Adjoint, Eigen::Dynamic, 1>&,
+    KinematicsData<Adjoint>*, Eigen::Matrix<Adjoint, Eigen::Dynamic, Eigen::Dynamic>*);
 
 }  // namespace idbench

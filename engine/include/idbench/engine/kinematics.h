@@ -10,7 +10,7 @@
 namespace idbench {
 
 // Poses, velocities and accelerations of every link, on a scalar type: double,
-// or Dual<N> (dual.h) for exact derivatives with respect to the joint state.
+// or Adjoint (adjoint.h) for exact derivatives with respect to the joint state.
 // Vectors are indexed by link.
 template <typename Scalar>
 struct KinematicsData {
@@ -40,7 +40,7 @@ struct RobotData : KinematicsData<double> {
   Eigen::VectorXd tau;                     // joint torques [N m] (n_dof)
 };
 
-// The same on any scalar (instantiated for double and DualState).
+// The same on any scalar (instantiated for double and Adjoint).
 template <typename Scalar>
 void ComputeKinematicsT(const RobotModel& model, const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,
                         const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,

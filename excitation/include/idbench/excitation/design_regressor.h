@@ -12,15 +12,17 @@
 //                 left out).
 //
 // StateGradient differentiates ⟨G, Rows(x)⟩ exactly with respect to x by
-// forward-mode automatic differentiation (dual.h), for the design's gradient
-// (joint torque: through ContractJointTorqueRegressorT, without forming Y).
+// reverse-mode automatic differentiation (adjoint.h): the function is recorded
+// once on a tape and one backward sweep gives all 3n derivatives, for the
+// design's gradient (joint torque: through ContractJointTorqueRegressorT,
+// without forming Y).
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
-#include "idbench/engine/dual.h"
+#include "idbench/engine/adjoint.h"
 #include "idbench/engine/kinematics.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
@@ -37,10 +39,11 @@ class DesignRegressor {
   struct Workspace {
     explicit Workspace(const RobotModel& model);
     KinematicsData<double> kinematics;
-    KinematicsData<DualState> dual_kinematics;
+    KinematicsData<Adjoint> adjoint_kinematics;
     Eigen::MatrixXd Y, G_standard;
-    Eigen::Matrix<DualState, Eigen::Dynamic, Eigen::Dynamic> dual_Y;
-    Eigen::Matrix<DualState, Eigen::Dynamic, 1> q, qd, qdd;
+    AdjointTape tape;
+    Eigen::Matrix<Adjoint, Eigen::Dynamic, Eigen::Dynamic> adjoint_Y;
+    Eigen::Matrix<Adjoint, Eigen::Dynamic, 1> q, qd, qdd;
   };
 
   static DesignRegressor JointTorque(const RobotModel& model, const FrictionModel& friction,

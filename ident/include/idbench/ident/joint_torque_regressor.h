@@ -59,7 +59,7 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                  const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y);
 
-// The same on any scalar (instantiated for double and DualState, whose
+// The same on any scalar (instantiated for double and Adjoint, whose
 // derivatives give ∂Y/∂(q, qd, qdd) exactly; Coulomb's sign has derivative 0).
 template <typename Scalar>
 void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
@@ -71,9 +71,9 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
 
 // ⟨G, Y(q, qd, qdd)⟩ = Σ G ∘ Y for a G of Y's size, without forming Y: the
 // G-weighted moment arms are gathered per link, then contracted once with the
-// link's wrench terms. On DualState its derivatives are ∂⟨G, Y⟩/∂(q, qd, qdd),
-// what the excitation design's gradient needs (instantiated for double and
-// DualState).
+// link's wrench terms. On Adjoint (adjoint.h) one backward sweep gives
+// ∂⟨G, Y⟩/∂(q, qd, qdd), what the excitation design's gradient needs
+// (instantiated for double and Adjoint).
 template <typename Scalar>
 Scalar ContractJointTorqueRegressorT(const RobotModel& model, const FrictionModel& friction,
                                      const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& q,

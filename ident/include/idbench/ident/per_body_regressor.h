@@ -21,7 +21,7 @@ namespace idbench {
 //   S = 2 diag(L Λ'') + 4 L L'ᵀ diag(L Λ').
 Eigen::Matrix3d EulerRegressorQuaternion(const QuaternionRates& rates);
 // The same from body-frame ω, ω̇ (eq. 5): S = diag(ω̇) + [ω]× diag(ω).
-// Any scalar (double, or Dual for derivatives).
+// Any scalar (double, or Adjoint for derivatives).
 template <typename Scalar>
 Eigen::Matrix<Scalar, 3, 3> EulerRegressorOmega(const Eigen::Matrix<Scalar, 3, 1>& w_B,
                                                 const Eigen::Matrix<Scalar, 3, 1>& wd_B) {
