@@ -75,7 +75,6 @@ class AdjointTape {
     double* adjoints = adjoints_.data();
     for (int k = output.node; k >= 0; --k) {
       const double w = adjoints[k];
-      if (w == 0.0) continue;
       const Node& n = nodes[k];
       if (n.a >= 0) adjoints[n.a] += n.da * w;
       if (n.b >= 0) adjoints[n.b] += n.db * w;
