@@ -29,6 +29,14 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
       rest_to_rest_(options.rest_to_rest),
       times_(DesignSampleTimes(options)) {
   n_ = regressor.model().n_dof();
+  home_ = options.home;
+  if (home_.size() != n_) {
+    home_ = Eigen::VectorXd::Zero(n_);
+    for (int j = 0; j < n_; ++j) {
+      const JointLimits& l = limits_[static_cast<size_t>(j)];
+      if (std::isfinite(l.q_min) && std::isfinite(l.q_max)) home_[j] = 0.5 * (l.q_min + l.q_max);
+    }
+  }
   H_ = options.harmonics;
   block_ = 2 * H_ + 1;
   for (double t : times_) bases_.push_back(FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_));
@@ -215,13 +223,12 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
   }
 }
 
-Eigen::VectorXd DesignProblem::StartPoint(unsigned seed) const {
+Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws) const {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(n_unknowns());
   for (int j = 0; j < n_; ++j) {
-    const JointLimits& l = limits_[static_cast<size_t>(j)];
-    theta[j * block_] = std::isfinite(l.q_min) && std::isfinite(l.q_max) ? 0.5 * (l.q_min + l.q_max) : 0.0;
+    theta[j * block_] = home_[j];
     for (int h = 0; h < H_; ++h) {
       theta[j * block_ + 1 + h] = normal(rng) / (h + 1);
       theta[j * block_ + 1 + H_ + h] = normal(rng) / (h + 1);
@@ -237,8 +244,29 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed) const {
     double& s = scale[static_cast<size_t>(row.joint)];
     if (slope > 0.0) s = std::min(s, (row.rhs - offset) / slope);
   }
-  for (int j = 0; j < n_; ++j) theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * scale[static_cast<size_t>(j)];
-  return theta;
+  for (int j = 0; j < n_; ++j) {
+    theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * std::max(0.0, scale[static_cast<size_t>(j)]);
+  }
+  if (n_nonlinear_constraints() == 0) return theta;
+  // The motion scaled by s about the home pose: the largest s in [1/1024, 1]
+  // (bisection) whose torque and clearance constraints hold on the grid.
+  std::vector<double> values(static_cast<size_t>(n_nonlinear_constraints()));
+  auto scaled = [&](double s) {
+    Eigen::VectorXd t = theta;
+    for (int j = 0; j < n_; ++j) t.segment(j * block_ + 1, 2 * H_) *= s;
+    return t;
+  };
+  auto feasible = [&](const Eigen::VectorXd& t) {
+    NonlinearConstraints(t.data(), values.data(), nullptr, ws);
+    return *std::max_element(values.begin(), values.end()) <= 0.0;
+  };
+  if (feasible(theta)) return theta;
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 10; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (feasible(scaled(mid)) ? lo : hi) = mid;
+  }
+  return scaled(std::max(lo, 1.0 / 1024.0));
 }
 
 void DesignProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {

@@ -14,6 +14,7 @@
 
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/excitation/design_problem.h"
+#include "idbench/excitation/home_pose.h"
 #include "idbench/ident/least_squares.h"
 
 namespace idbench {
@@ -40,8 +41,10 @@ struct StartRun {
   std::optional<DesignProblem::Workspace> ws;
   nlopt_opt opt = nullptr;
   int evaluations = 0;
+  int feasible_at = -1;  // see DesignStartSummary
   double best_value = kInf;
   Eigen::VectorXd best_theta;
+  Eigen::VectorXd start_theta, last_theta;  // the start point; where the search ended
   std::vector<double> nonlinear_values;
 
   Eigen::VectorXd pending_theta;  // see Objective
@@ -111,6 +114,7 @@ struct StartRun {
   }
 
   void Consider(const double* theta, double value) {
+    if (feasible_at < 0) feasible_at = evaluations;
     if (value >= best_value) return;
     best_value = value;
     best_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
@@ -418,15 +422,127 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
   return check;
 }
 
+InfeasibleDesign::InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
+                                   bool before_search)
+    : std::runtime_error([&] {
+        std::string what = summary + "\n" + check.Explain();
+        if (!advice.empty()) what += "to relax:\n";
+        for (const std::string& a : advice) what += "  " + a + "\n";
+        if (!what.empty() && what.back() == '\n') what.pop_back();
+        return what;
+      }()),
+      check_(std::move(check)),
+      advice_(std::move(advice)),
+      before_search_(before_search) {}
+
+std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
+                                          bool before_search) {
+  std::vector<std::string> advice;
+  auto add = [&](const std::string& line) {
+    if (std::find(advice.begin(), advice.end(), line) == advice.end()) advice.push_back(line);
+  };
+  for (const ConstraintMargin& m : check.margins) {
+    if (m.margin >= 0.0) continue;
+    const std::string joint = "joint " + std::to_string(m.joint + 1);
+    if (m.quantity == "clearance") {
+      add(Format("--clearance (now %g m), or a --home pose with the links further apart", options.clearance));
+    } else if (m.quantity == "q_min" || m.quantity == "q_max") {
+      add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a --home inside it" : ""));
+    } else if (m.quantity == "tau") {
+      add(joint + "'s torque limit tau_max in the limits file, or a --home where gravity loads it less");
+    } else {
+      add(joint + "'s " + (m.quantity == "qd" ? "velocity limit qd_max" : "acceleration limit qdd_max") +
+          " in the limits file, or fewer --harmonics, a lower --f0 or a longer --duration");
+    }
+  }
+  if (!before_search) add(Format("--margin (now %g), which tightens every limit during the search", options.margin));
+  return advice;
+}
+
+namespace {
+
+// The home pose: options.home when given (it must meet every limit, the
+// ranges tightened by the margin, and the clearance), else FindHomePose.
+// Throws InfeasibleDesign (before the search) when there is none; returns
+// the home's source.
+std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& limits, const DesignOptions& options,
+                       DesignProblem* problem) {
+  const int n = model.n_dof();
+  HomePose home;
+  if (options.home.size() > 0) {
+    if (options.home.size() != n) {
+      throw std::invalid_argument("--home: expected " + std::to_string(n) + " joint angles, got " +
+                                  std::to_string(options.home.size()));
+    }
+    home.q = options.home;
+    home.source = "given";
+  } else {
+    home = FindHomePose(model, limits, options.margin, problem->clearance());
+  }
+  // The ranges as the search tightens them: the home must be inside.
+  std::vector<JointLimits> tightened = limits;
+  for (JointLimits& l : tightened) {
+    const double range = l.q_max - l.q_min;
+    if (std::isfinite(range)) l.q_min += options.margin * range, l.q_max -= options.margin * range;
+  }
+  FeasibilityCheck check = CheckPose(model, tightened, home.q, problem->clearance());
+  if (!check.feasible()) {
+    std::string pose;
+    for (int j = 0; j < n; ++j) pose += (j ? "," : "") + Format("%.4g", home.q[j]);
+    const std::string what = home.source == "given" ? "the --home pose " + pose
+                                                    : "no pose with room to move was found; the nearest to the "
+                                                      "middle of the joint ranges, " + pose + ",";
+    std::vector<std::string> advice = RelaxationAdvice(check, options, true);
+    throw InfeasibleDesign("no motion is possible with these settings: " + what +
+                               " violates the limits (ranges tightened by the margin " + Format("%g", options.margin) +
+                               ") or the clearance held still:",
+                           std::move(check), std::move(advice), true);
+  }
+  problem->set_home(home.q);
+  return home.source;
+}
+
+// The least-violating point any start ended at, checked at the check rate:
+// thrown as InfeasibleDesign after the search.
+[[noreturn]] void ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                         const DesignOptions& options, const DesignProblem& problem,
+                                         std::vector<StartRun>* runs) {
+  int least = 0;
+  double least_violation = kInf;
+  for (size_t s = 0; s < runs->size(); ++s) {
+    StartRun& run = (*runs)[s];
+    if (run.last_theta.size() == 0) continue;
+    const double* theta = run.last_theta.data();
+    double violation = problem.MaxLinearViolation(theta);
+    if (problem.n_nonlinear_constraints() > 0) {
+      run.NonlinearFeasible(theta);
+      violation = std::max(violation, *std::max_element(run.nonlinear_values.begin(), run.nonlinear_values.end()));
+    }
+    if (violation < least_violation) least_violation = violation, least = static_cast<int>(s);
+  }
+  const StartRun& run = (*runs)[static_cast<size_t>(least)];
+  FeasibilityCheck check = CheckTrajectoryLimits(model, limits, problem.Trajectory(run.last_theta),
+                                                 options.check_rate_hz, problem.clearance());
+  std::vector<std::string> advice = RelaxationAdvice(check, options, false);
+  throw InfeasibleDesign("no feasible design: no start met the limits (tightened by the margin " +
+                             Format("%g", options.margin) + ") and the clearance on the sample grid; where start " +
+                             std::to_string(least + 1) + " ended, checked at " + Format("%g", options.check_rate_hz) +
+                             " Hz:",
+                         std::move(check), std::move(advice), false);
+}
+
+}  // namespace
+
 DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
                               const DesignOptions& options, const DesignControl& control) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   CheckDesignLimits(regressor.model(), limits);
   const auto t_begin = std::chrono::steady_clock::now();
-  const DesignProblem problem(regressor, limits, options);
+  DesignProblem problem(regressor, limits, options);
   Eigen::VectorXd lower, upper;
   problem.Bounds(&lower, &upper);
+  const std::string home_source = ChooseHome(regressor.model(), limits, options, &problem);
 
   std::vector<StartRun> runs(static_cast<size_t>(options.starts));
   std::vector<DesignStartSummary> summaries(runs.size());
@@ -439,7 +555,8 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       run.control = &control;
       run.index = s;
       run.ws.emplace(problem);
-      Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s));
+      Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws);
+      run.start_theta = theta;
       DesignStartSummary& summary = summaries[static_cast<size_t>(s)];
       summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
       run.best_value = kInf;
@@ -469,8 +586,10 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
         run.SelectRows(theta.data());
         result = run.Optimize(lower, upper, t_begin, &theta);
       }
+      run.last_theta = theta;
       summary.best_value = run.best_value;
       summary.evaluations = run.evaluations;
+      summary.feasible_at = run.feasible_at;
       summary.status = result == NLOPT_FORCED_STOP ? "stopped" : nlopt_result_to_string(result);
     }
   };
@@ -488,14 +607,12 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       best = s;
     }
   }
-  if (best < 0) {
-    throw std::runtime_error("no feasible design: no start satisfied the limits (tightened by the margin " +
-                             Format("%g", options.margin) + ") on the sample grid");
-  }
+  if (best < 0) ExplainNoFeasibleStart(regressor.model(), limits, options, problem, &runs);
   const StartRun& winner = runs[static_cast<size_t>(best)];
-  DesignResult result(problem.Trajectory(winner.best_theta),
-                      problem.Trajectory(problem.StartPoint(options.seed + static_cast<unsigned>(best))));
+  DesignResult result(problem.Trajectory(winner.best_theta), problem.Trajectory(winner.start_theta));
   result.starts = summaries;
+  result.home = problem.home();
+  result.home_source = home_source;
   for (const DesignStartSummary& s : summaries) result.evaluations += s.evaluations;
   result.initial_value = summaries[static_cast<size_t>(best)].initial_value;
   result.value = winner.best_value;

@@ -38,7 +38,7 @@ void BenchmarkCriterion(benchmark::State& state, bool gradient) {
   const PumaDesignCase c;
   const DesignProblem problem(c.regressor, c.limits, c.options);
   DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(1);
+  const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
   Eigen::VectorXd grad(problem.n_unknowns());
   for (auto _ : state) {
     benchmark::DoNotOptimize(problem.Criterion(theta.data(), gradient ? grad.data() : nullptr, &ws));

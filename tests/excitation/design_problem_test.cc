@@ -24,7 +24,7 @@ DesignOptions SmallOptions(bool rest_to_rest) {
 // derivatives, Fourier chain rule) against central differences.
 void ExpectGradientMatchesFiniteDifferences(const DesignProblem& problem, unsigned seed) {
   DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(seed);
+  const Eigen::VectorXd theta = problem.StartPoint(seed, &ws);
   Eigen::VectorXd grad(problem.n_unknowns()), fd(problem.n_unknowns());
   const double c = problem.Criterion(theta.data(), grad.data(), &ws);
   ASSERT_LT(c, DesignProblem::kRankDeficientValue);
@@ -66,7 +66,8 @@ TEST(DesignProblemTest, LinearRowsAreTheMotionAgainstItsLimits) {
   DesignOptions o = SmallOptions(true);
   const std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
   const DesignProblem problem(r, limits, o);
-  const Eigen::VectorXd theta = problem.StartPoint(7);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(7, &ws);
   const FourierSeriesTrajectory trajectory = problem.Trajectory(theta);
   const std::vector<double>& times = problem.times();
   ASSERT_EQ(problem.rows().size(), times.size() * 6 * 6);
@@ -108,7 +109,7 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
   ASSERT_EQ(problem.n_torque_constraints(), 2);
   ASSERT_EQ(problem.n_nonlinear_constraints(), 2);
   DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(5);
+  const Eigen::VectorXd theta = problem.StartPoint(5, &ws);
   double value[2], grad[2 * 200];
   ASSERT_LE(problem.n_unknowns(), 200);
   problem.NonlinearConstraints(theta.data(), value, grad, &ws);
@@ -144,7 +145,7 @@ TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
   const int m = problem.n_nonlinear_constraints();
   ASSERT_EQ(m, static_cast<int>(problem.clearance()->pairs().size()));
   DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(9);
+  const Eigen::VectorXd theta = problem.StartPoint(9, &ws);
   std::vector<double> value(static_cast<size_t>(m)), grad(static_cast<size_t>(m * problem.n_unknowns()));
   problem.NonlinearConstraints(theta.data(), value.data(), grad.data(), &ws);
   // Values: the 1 kHz check over the same instants agrees.

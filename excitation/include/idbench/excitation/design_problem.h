@@ -82,9 +82,16 @@ class DesignProblem {
   // finer check found the links closer than the grid did).
   void AddClearanceInstant(double t, Workspace* ws) const;
 
-  // A seeded random start around the middle of the joint ranges, each joint
-  // scaled to 90 % of its tightest kinematic limit (feasible on the grid).
-  Eigen::VectorXd StartPoint(unsigned seed) const;
+  // The pose the starts oscillate about [rad] (n_dof): options.home if
+  // given, else the middle of the joint ranges until set_home.
+  const Eigen::VectorXd& home() const { return home_; }
+  void set_home(const Eigen::VectorXd& q) { home_ = q; }
+
+  // A seeded random series about the home pose, each joint scaled to 90 % of
+  // its tightest kinematic limit, then the whole motion scaled down (by
+  // bisection, to 1/1024 at least) until the torque and clearance constraints
+  // hold on the grid: feasible on the grid when the home pose has room.
+  Eigen::VectorXd StartPoint(unsigned seed, Workspace* ws) const;
   // Box bounds: q0 inside the joint range, coefficients within twice the
   // velocity limit (a harmonic's velocity amplitude is √(a² + b²)).
   void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const;
@@ -99,6 +106,7 @@ class DesignProblem {
 
   const DesignRegressor& regressor_;
   std::vector<JointLimits> limits_;
+  Eigen::VectorXd home_;
   DesignCriterion criterion_;
   double f0_, duration_, margin_;
   bool rest_to_rest_;

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct DesignOptions {
   double clearance = 0.01;         // [m] between links that no joint connects, and to the ground z = 0
                                    // (link_clearance.h); negative: not checked
   double check_rate_hz = 1000.0;   // re-check of the result
+  Eigen::VectorXd home;            // [rad] (n_dof): the pose the starts oscillate about;
+                                   // empty: FindHomePose (home_pose.h)
 
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
   // Checks ranges; names the bad option in *why.
@@ -102,9 +105,11 @@ struct DesignControl {
 };
 
 struct DesignStartSummary {
-  double initial_value = 0.0;  // criterion at the start point (feasible by construction)
-  double best_value = 0.0;     // best feasible value visited
+  double initial_value = 0.0;  // criterion at the start point
+  double best_value = 0.0;     // best feasible value visited (inf: none)
   int evaluations = 0;
+  int feasible_at = -1;        // evaluation at which it first met every limit on the grid
+                               // (0: the start point itself); −1: never
   std::string status;          // NLopt's result or "stopped"
 };
 
@@ -118,6 +123,8 @@ struct DesignResult {
   Identifiability initial, final;    // of W on the design grid
   FeasibilityCheck check;            // at check_rate_hz
   std::vector<DesignStartSummary> starts;
+  Eigen::VectorXd home;              // [rad] (n_dof): the pose the starts oscillated about
+  std::string home_source;           // "mid-range", "searched", "given"
   int evaluations = 0;               // all starts
   double wall_seconds = 0.0;
   bool stopped = false;              // stopped early by the control flag
@@ -126,8 +133,35 @@ struct DesignResult {
 // The sample times of the criterion and the constraint grid.
 std::vector<double> DesignSampleTimes(const DesignOptions& options);
 
+// No feasible design, explained: every violated constraint (FeasibilityCheck
+// form) and which settings to relax. before_search: the settings admit no
+// motion at all (the home pose itself violates a limit or the clearance, or no
+// pose with room was found), seen before any search ran; otherwise the search
+// ran and no start met every limit, and check is the 1 kHz check of the
+// least-violating point it reached.
+class InfeasibleDesign : public std::runtime_error {
+ public:
+  InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
+                   bool before_search);
+  const FeasibilityCheck& check() const { return check_; }
+  const std::vector<std::string>& advice() const { return advice_; }
+  bool before_search() const { return before_search_; }
+
+ private:
+  FeasibilityCheck check_;
+  std::vector<std::string> advice_;
+  bool before_search_;
+};
+
+// What to relax for each violated constraint of check: the joint's limit in
+// the limits file, --clearance, --margin, --home, --harmonics/--f0/--duration.
+std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
+                                          bool before_search);
+
 // Runs the design. Throws std::invalid_argument for invalid options or
-// limits (see above), std::runtime_error if no start found a feasible point.
+// limits (see above), InfeasibleDesign when the settings admit no motion or
+// no start reached a feasible point, std::runtime_error when the feasible
+// design leaves parameters unexcited.
 DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
                               const DesignOptions& options, const DesignControl& control = {});
 

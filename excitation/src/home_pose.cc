@@ -1,0 +1,86 @@
+#include "idbench/excitation/home_pose.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "idbench/excitation/constant_acceleration.h"
+
+namespace idbench {
+namespace {
+
+constexpr double kRangeRoom = 0.1;      // of the joint range
+constexpr double kClearanceRoom = 0.1;  // [m] beyond the minimum clearance
+constexpr double kClearanceScale = 0.1; // [m]
+
+bool FiniteRange(const JointLimits& l) { return std::isfinite(l.q_min) && std::isfinite(l.q_max); }
+
+}  // namespace
+
+FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimits>& limits, const Eigen::VectorXd& q,
+                           const ClearanceModel* clearance) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  // Held still for an instant: one sample at t = 0.
+  const ConstantAccelerationTrajectory still(q, zero, zero, 1e-6);
+  return CheckTrajectoryLimits(model, limits, still, 1.0, clearance);
+}
+
+double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
+                const Eigen::VectorXd& q, const ClearanceModel* clearance) {
+  const FeasibilityCheck check = CheckPose(model, limits, q, clearance);
+  double room = std::numeric_limits<double>::infinity();
+  for (const ConstraintMargin& m : check.margins) {
+    if (m.quantity == "clearance") {
+      room = std::min(room, (m.margin - kClearanceRoom) / kClearanceScale);
+    } else if (m.quantity == "tau") {
+      room = std::min(room, m.margin / m.limit - margin);
+    } else if (m.quantity == "q_min" || m.quantity == "q_max") {
+      const JointLimits& l = limits[static_cast<size_t>(m.joint)];
+      if (FiniteRange(l)) room = std::min(room, m.margin / (l.q_max - l.q_min) - kRangeRoom);
+    }
+  }
+  return room;
+}
+
+HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
+                      const ClearanceModel* clearance) {
+  const int n = model.n_dof();
+  HomePose home;
+  home.q = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd step = Eigen::VectorXd::Constant(n, 0.5);  // [rad]
+  for (int j = 0; j < n; ++j) {
+    const JointLimits& l = limits[static_cast<size_t>(j)];
+    if (!FiniteRange(l)) continue;
+    home.q[j] = 0.5 * (l.q_min + l.q_max);
+    step[j] = std::min(0.5, 0.25 * (l.q_max - l.q_min));
+  }
+  home.source = "mid-range";
+  home.room = HomeRoom(model, limits, margin, home.q, clearance);
+  // Pattern search: per joint, a step either way while it adds room; the
+  // steps halve when none does. The first pose with room ends it.
+  constexpr double kSmallestStep = 1e-3;  // [rad]
+  while (home.room < 0.0 && step.maxCoeff() >= kSmallestStep) {
+    bool moved = false;
+    for (int j = 0; j < n && home.room < 0.0; ++j) {
+      for (double sign : {1.0, -1.0}) {
+        Eigen::VectorXd q = home.q;
+        q[j] += sign * step[j];
+        const JointLimits& l = limits[static_cast<size_t>(j)];
+        if (FiniteRange(l)) {
+          const double inset = kRangeRoom * (l.q_max - l.q_min);
+          q[j] = std::clamp(q[j], l.q_min + inset, l.q_max - inset);
+        }
+        const double room = HomeRoom(model, limits, margin, q, clearance);
+        if (room > home.room) {
+          home.q = q, home.room = room, home.source = "searched", moved = true;
+          break;
+        }
+      }
+    }
+    if (!moved) step *= 0.5;
+  }
+  home.found = home.room >= 0.0;
+  return home;
+}
+
+}  // namespace idbench

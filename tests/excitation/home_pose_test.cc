@@ -1,0 +1,83 @@
+#include "idbench/excitation/home_pose.h"
+
+#include <gtest/gtest.h>
+
+#include "excitation/design_test_util.h"
+#include "idbench/engine/urdf.h"
+
+namespace idbench {
+namespace {
+
+// tests/data/ur10e_like (make_robot.py): a UR10e-sized arm with mesh links,
+// effort and velocity limits; at mid-range (q = 0) it is horizontal, the
+// shoulder axis 0.16 m up and wrist 3 hanging 0.11 m below it with radius
+// 0.035 m, so its lowest point is 0.015 m above the floor.
+RobotModel UrLike() { return LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/ur10e_like/ur10e_like.urdf").model; }
+
+std::vector<JointLimits> UrLimits(const RobotModel& model) {
+  std::vector<JointLimits> limits;
+  const double qdd[6] = {3, 3, 5, 5, 5, 5};  // the acceleration limits [rad/s²]
+  for (int j = 0; j < model.n_dof(); ++j) {
+    limits.push_back(model.link(j).limits);
+    limits.back().qdd_max = qdd[j];
+  }
+  return limits;
+}
+
+// The static check at mid-range against the geometry above: wrist 3 to the
+// ground 0.015 m less the 1 mm inflation of its mesh hull; no room to move.
+TEST(HomePoseTest, MidRangeOfTheUrLikeArmIsJustAboveTheFloor) {
+  const RobotModel model = UrLike();
+  const std::vector<JointLimits> limits = UrLimits(model);
+  const ClearanceModel clearance(model, 0.01);
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n_dof());
+  const FeasibilityCheck check = CheckPose(model, limits, q, &clearance);
+  EXPECT_TRUE(check.feasible()) << check.Explain();
+  bool seen = false;
+  for (const ConstraintMargin& m : check.margins) {
+    if (m.pair != "wrist_3_link–ground") continue;
+    seen = true;
+    EXPECT_NEAR(m.value, 0.015 - 0.001, 1e-6);
+  }
+  EXPECT_TRUE(seen);
+  EXPECT_LT(HomeRoom(model, limits, 0.02, q, &clearance), 0.0);
+  // The search lifts the wrist off the floor.
+  const HomePose home = FindHomePose(model, limits, 0.02, &clearance);
+  EXPECT_EQ(home.source, "searched");
+  EXPECT_GT(home.room, HomeRoom(model, limits, 0.02, q, &clearance));
+  for (const ConstraintMargin& m : CheckPose(model, limits, home.q, &clearance).margins) {
+    if (m.pair == "wrist_3_link–ground") {
+      EXPECT_GT(m.value, 0.1);
+    }
+  }
+}
+
+// A shoulder range that holds the upper arm in the floor (lift 0.3..0.5 rad
+// tilts the 0.61 m upper arm down: its far end at 0.16 − 0.61 sin q < 0)
+// admits no motion: said before any search, per constraint, with what to
+// relax.
+TEST(HomePoseTest, ShoulderRangeInTheFloorIsExplainedBeforeTheSearch) {
+  const RobotModel model = UrLike();
+  std::vector<JointLimits> limits = UrLimits(model);
+  limits[1].q_min = 0.3, limits[1].q_max = 0.5;
+  const FrictionModel friction = testing::ViscousCoulomb();
+  const DesignRegressor regressor = DesignRegressor::JointTorque(model, friction);
+  DesignOptions options;
+  try {
+    DesignExcitation(regressor, limits, options);
+    FAIL() << "expected InfeasibleDesign";
+  } catch (const InfeasibleDesign& e) {
+    EXPECT_TRUE(e.before_search());
+    bool ground = false;
+    for (const ConstraintMargin& m : e.check().margins) {
+      if (m.margin < 0.0 && m.pair.find("–ground") != std::string::npos) ground = true;
+    }
+    EXPECT_TRUE(ground) << e.what();
+    EXPECT_NE(std::string(e.what()).find("below the minimum"), std::string::npos) << e.what();
+    ASSERT_FALSE(e.advice().empty());
+    EXPECT_NE(e.advice()[0].find("--clearance"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace idbench
