@@ -565,6 +565,12 @@ int main(int argc, char** argv) {
     }
   } catch (const UsageException& e) {
     return UsageError(e.what());
+  } catch (const idbench::InfeasibleDesign& e) {
+    // Settings that admit no motion are wrong input (nothing ran); a search
+    // that found nothing feasible ran and failed.
+    if (e.before_search()) return UsageError(e.what());
+    std::fprintf(stderr, "idbench: error: %s\n", e.what());
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return kExitFailure;

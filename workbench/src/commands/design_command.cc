@@ -176,6 +176,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
     starts.push_back({{"initial", s.initial_value},
                       {"best", std::isfinite(s.best_value) ? json(s.best_value) : json(nullptr)},
                       {"evaluations", s.evaluations},
+                      {"feasible_at", s.feasible_at >= 0 ? json(s.feasible_at) : json(nullptr)},
                       {"status", s.status}});
   }
   const json result = {
@@ -201,6 +202,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
       {"check", {{"rate_hz", r.check.rate_hz}, {"feasible", r.check.feasible()}, {"margins", margins}}},
       {"starts", starts},
+      {"home", {{"q", std::vector<double>(r.home.data(), r.home.data() + r.home.size())}, {"source", r.home_source}}},
       {"evaluations", r.evaluations},
       {"wall_seconds", r.wall_seconds},
       {"stopped", r.stopped},
