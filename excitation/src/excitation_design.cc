@@ -60,14 +60,18 @@ struct StartRun {
   bool reselect = false;
   Eigen::VectorXd reselect_theta;  // where it stepped outside
 
-  void SelectRows(const double* theta) {
+  // The rows near theta, and near also (when given) the other point.
+  void SelectRows(const double* theta, const double* also = nullptr) {
     if (options->algorithm != DesignAlgorithm::kSlsqp) return;
     const std::vector<LinearRow>& all = problem->rows();
     taken.assign(all.size(), 0);
     rows.clear();
     for (size_t i = 0; i < all.size(); ++i) {
-      if (problem->LinearValue(all[i], theta) > -kNearActive) taken[i] = 1;
-      if (taken[i]) rows.push_back(static_cast<int>(i));
+      if (problem->LinearValue(all[i], theta) > -kNearActive ||
+          (also && problem->LinearValue(all[i], also) > -kNearActive)) {
+        taken[i] = 1;
+        rows.push_back(static_cast<int>(i));
+      }
     }
   }
 
@@ -79,9 +83,8 @@ struct StartRun {
     return false;
   }
 
-  static bool Resumable(nlopt_result result) {
-    return result != NLOPT_FORCED_STOP && result != NLOPT_MAXTIME_REACHED && result != NLOPT_MAXEVAL_REACHED;
-  }
+  // Whether another Optimize may follow (each has its own evaluation budget).
+  static bool Resumable(nlopt_result result) { return result != NLOPT_FORCED_STOP && result != NLOPT_MAXTIME_REACHED; }
 
   // Runs the optimizer from *theta (left at its last point) for at most
   // max_evaluations; SLSQP resumes with more rows while its result violates
@@ -257,8 +260,11 @@ nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::Vecto
         evaluations - first_evaluation >= options->max_evaluations) {
       break;
     }
-    *theta = reselect_theta;
-    SelectRows(theta->data());
+    // Resume from the best feasible point (else where it stepped out) with
+    // the rows near both.
+    if (best_theta.size() > 0) *theta = best_theta;
+    else *theta = reselect_theta;
+    SelectRows(theta->data(), reselect_theta.data());
   }
   if (reselect && result == NLOPT_FORCED_STOP && !(control->stop && control->stop->load())) {
     result = NLOPT_MAXEVAL_REACHED;  // stopped to resume, but out of evaluations
@@ -560,7 +566,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       DesignStartSummary& summary = summaries[static_cast<size_t>(s)];
       summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
       run.best_value = kInf;
-      if (run.Feasible(theta.data())) run.best_value = summary.initial_value, run.best_theta = theta;
+      if (run.Feasible(theta.data())) {
+        run.best_value = summary.initial_value, run.best_theta = theta, run.feasible_at = 0;
+      }
 
       // SLSQP takes the grid rows near the limits (see SelectRows), MMA and
       // COBYLA one max-row per limit. When SLSQP ends outside rows it did
