@@ -40,12 +40,21 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
   H_ = options.harmonics;
   block_ = 2 * H_ + 1;
   for (double t : times_) bases_.push_back(FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_));
-  // The limit rows need fewer instants than the criterion: 25 per period of
-  // the highest harmonic miss a sinusoid's peak by at most 1 − cos(π/25) =
-  // 0.8 %, inside the margin (and the result is re-checked at 1 kHz). Fewer
-  // rows make SLSQP's quadratic subproblems cheaper.
+  // The limit rows need 25 instants per period of the highest harmonic: they
+  // miss a sinusoid's peak by at most 1 − cos(π/25) = 0.8 %, inside the margin
+  // (and the result is re-checked at 1 kHz). Every stride-th sample when the
+  // criterion has that many (fewer rows make SLSQP's quadratic subproblems
+  // cheaper), else a grid of their own.
   const double top_periods = f0_ * H_ * duration_;
-  limit_stride_ = std::max(1, static_cast<int>(times_.size() / std::ceil(25.0 * top_periods)));
+  const int wanted = static_cast<int>(std::ceil(25.0 * top_periods));
+  if (static_cast<int>(times_.size()) >= wanted) {
+    const size_t stride = times_.size() / static_cast<size_t>(wanted);
+    for (size_t k = 0; k < times_.size(); k += stride) row_times_.push_back(times_[k]);
+  } else {
+    DesignOptions row_grid = options;
+    row_grid.samples = wanted;
+    row_times_ = DesignSampleTimes(row_grid);
+  }
   BuildLinearRows();
   if (options.clearance >= 0.0 && std::any_of(regressor.model().links().begin(), regressor.model().links().end(),
                                               [](const Link& l) { return !l.CollisionShapes().empty(); })) {
@@ -286,8 +295,8 @@ void DesignProblem::BuildLinearRows() {
   for (int j = 0; j < n_; ++j) {
     const JointLimits& l = limits_[static_cast<size_t>(j)];
     const double range = l.q_max - l.q_min;
-    for (size_t k = 0; k < bases_.size(); k += static_cast<size_t>(limit_stride_)) {
-      const FourierBasis& w = bases_[k];
+    for (double t : row_times_) {
+      const FourierBasis w = FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_);
       auto add = [&](int quantity, double sign, double offset_coefficient, const Eigen::VectorXd& weights,
                      double limit, double scale) {
         LinearRow row;

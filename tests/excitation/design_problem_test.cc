@@ -69,7 +69,8 @@ TEST(DesignProblemTest, LinearRowsAreTheMotionAgainstItsLimits) {
   DesignProblem::Workspace ws(problem);
   const Eigen::VectorXd theta = problem.StartPoint(7, &ws);
   const FourierSeriesTrajectory trajectory = problem.Trajectory(theta);
-  const std::vector<double>& times = problem.times();
+  const std::vector<double>& times = problem.row_times();
+  ASSERT_EQ(times.size(), 50u);  // 25 per period of the top harmonic: 0.5 Hz over 4 s (40 samples are fewer)
   ASSERT_EQ(problem.rows().size(), times.size() * 6 * 6);
   double worst = -1e9;
   size_t i = 0;

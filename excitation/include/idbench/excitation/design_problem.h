@@ -1,8 +1,8 @@
 // The excitation design as a finite-dimensional problem in the unknowns θ,
 // per joint j the block [q0_j, a_j1..a_jH, b_j1..b_jH] of a Fourier series
 // (fourier_series.h): the criterion with its exact gradient, the kinematic
-// limits as linear rows (q, qd and qdd are linear in θ) on the sample grid
-// thinned to 25 instants per period of the highest harmonic,
+// limits as linear rows (q, qd and qdd are linear in θ) at 25 instants per
+// period of the highest harmonic (a subset of the samples when they suffice),
 // torque limits, start points and box bounds. The optimizer
 // (excitation_design.h) drives it; tests and benchmarks use it directly.
 #pragma once
@@ -57,6 +57,8 @@ class DesignProblem {
   int n_nonlinear_constraints() const;
   const ClearanceModel* clearance() const { return clearance_ ? &*clearance_ : nullptr; }
   const std::vector<double>& times() const { return times_; }
+  // The instants of the linear limit rows (rows(): per joint, per instant, 6 rows).
+  const std::vector<double>& row_times() const { return row_times_; }
   const std::vector<LinearRow>& rows() const { return rows_; }
   const DesignRegressor& regressor() const { return regressor_; }
 
@@ -117,7 +119,7 @@ class DesignProblem {
   std::optional<DesignRegressor> torque_regressor_;  // model with all joint dynamics, when τ is limited
   std::optional<ClearanceModel> clearance_;          // when the options ask for clearance and links have shapes
   int clearance_stride_ = 1;
-  int limit_stride_ = 1;  // every limit_stride_-th sample carries the linear limit rows
+  std::vector<double> row_times_;  // [s]: the instants of the linear limit rows
 };
 
 }  // namespace idbench
