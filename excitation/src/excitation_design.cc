@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <random>
 #include <stdexcept>
@@ -302,7 +303,14 @@ bool DesignOptions::IsValid(std::string* why) const {
   if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
   if (!std::isfinite(clearance) || clearance > 1.0) return fail(Format("--clearance must be at most 1 m, got %g", clearance));
   if (!(check_rate_hz > 0.0)) return fail("the check rate must be > 0 Hz");
+  if (!(ramp_seconds >= 0.0 && ramp_seconds <= kMaxRampSeconds)) {
+    return fail(Format("--ramp must be in [0, %g] s, got ", kMaxRampSeconds) + Format("%g", ramp_seconds));
+  }
   return true;
+}
+
+RampedTrajectory DesignResult::RobotTrajectory() const {
+  return RampedTrajectory(std::make_shared<FourierSeriesTrajectory>(trajectory), home, ramp_seconds);
 }
 
 std::vector<double> DesignSampleTimes(const DesignOptions& options) {
@@ -447,9 +455,17 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
   auto add = [&](const std::string& line) {
     if (std::find(advice.begin(), advice.end(), line) == advice.end()) advice.push_back(line);
   };
+  const double ramp = options.ramp_seconds, motion_end = ramp + options.period_duration();
+  bool in_motion = false;  // a violation outside the ramps
   for (const ConstraintMargin& m : check.margins) {
     if (m.margin >= 0.0) continue;
     const std::string joint = "joint " + std::to_string(m.joint + 1);
+    if (!before_search && ramp > 0.0 && (m.time < ramp || m.time > motion_end)) {
+      add(Format("--ramp (now %g s): longer ramps from and to the home pose (violated during t < %g s", ramp, ramp) +
+          Format(" or t > %g s)", motion_end));
+      continue;
+    }
+    in_motion = true;
     if (m.quantity == "clearance") {
       add(Format("--clearance (now %g m), or a --home pose with the links further apart", options.clearance));
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
@@ -461,7 +477,9 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
           " in the limits file, or fewer --harmonics, a lower --f0 or a longer --duration");
     }
   }
-  if (!before_search) add(Format("--margin (now %g), which tightens every limit during the search", options.margin));
+  if (!before_search && (in_motion || advice.empty())) {
+    add(Format("--margin (now %g), which tightens every limit during the search", options.margin));
+  }
   return advice;
 }
 
@@ -499,6 +517,17 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
                                                     : "no pose with room to move was found; the nearest to the "
                                                       "middle of the joint ranges, " + pose + ",";
     std::vector<std::string> advice = RelaxationAdvice(check, options, true);
+    // A searched home that ended at a joint's range (kept 10 % inside it,
+    // home_pose.h): that range is what holds the pose where it is.
+    for (int j = 0; j < n && home.source != "given"; ++j) {
+      const JointLimits& l = limits[static_cast<size_t>(j)];
+      const double range = l.q_max - l.q_min, inset = kHomeRangeRoom * range;
+      if (!std::isfinite(range)) continue;
+      if (std::abs(home.q[j] - (l.q_min + inset)) <= 1e-9 * range || std::abs(home.q[j] - (l.q_max - inset)) <= 1e-9 * range) {
+        advice.push_back("joint " + std::to_string(j + 1) + "'s range q_min..q_max (" + Format("%g", l.q_min) + ".." +
+                         Format("%g", l.q_max) + " rad) in the limits file: the search for a clear home stopped at it");
+      }
+    }
     throw InfeasibleDesign("no motion is possible with these settings: " + what +
                                " violates the limits (ranges tightened by the margin " + Format("%g", options.margin) +
                                ") or the clearance held still:",
@@ -640,7 +669,8 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                              std::to_string(result.final.rank) + " of " + std::to_string(regressor.n_parameters()) +
                              "); check the limits of the joints involved:" + unexcited);
   }
-  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.trajectory, options.check_rate_hz,
+  result.ramp_seconds = options.ramp_seconds;
+  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.RobotTrajectory(), options.check_rate_hz,
                                        problem.clearance());
   result.stopped = control.stop && control.stop->load();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();

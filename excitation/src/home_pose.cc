@@ -9,7 +9,7 @@
 namespace idbench {
 namespace {
 
-constexpr double kRangeRoom = 0.1;      // of the joint range
+constexpr double kRangeRoom = kHomeRangeRoom;
 constexpr double kClearanceRoom = 0.1;  // [m] beyond the minimum clearance
 constexpr double kClearanceScale = 0.1; // [m]
 

@@ -149,5 +149,42 @@ TEST(ExcitationDesignTest, UnexcitableParametersAreNamed) {
   }
 }
 
+// The re-check covers the ramps from and to the home: too short a ramp
+// exceeds qdd_max during it (the check's worst qdd is the ramped motion's,
+// found again here on the same 1 kHz grid) and the advice names --ramp; a
+// long one keeps the design feasible. The motion itself is the same.
+TEST(ExcitationDesignTest, RecheckCoversTheRamps) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  DesignOptions o = QuickOptions();
+  o.ramp_seconds = 0.05;
+  const DesignResult sharp = DesignExcitation(r, limits, o);
+  const RampedTrajectory robot = sharp.RobotTrajectory();
+  EXPECT_DOUBLE_EQ(robot.duration(), 5.0 + 0.1);
+  EXPECT_EQ(robot.home(), sharp.home);
+  ASSERT_FALSE(sharp.check.feasible());
+  Eigen::VectorXd qdd_peak = Eigen::VectorXd::Zero(6);
+  for (int k = 0; k <= 5100; ++k) qdd_peak = qdd_peak.cwiseMax(robot.At(k / 1000.0).qdd.cwiseAbs());
+  int violated = 0;
+  for (const ConstraintMargin& m : sharp.check.margins) {
+    if (m.quantity != "qdd") continue;
+    EXPECT_NEAR(m.value, qdd_peak[m.joint], 1e-9 * qdd_peak[m.joint]) << "joint " << m.joint + 1;
+    if (m.margin < 0.0) {
+      ++violated;
+      EXPECT_TRUE(m.time < 0.05 || m.time > 5.05) << "joint " << m.joint + 1 << " at " << m.time;
+    }
+  }
+  EXPECT_GT(violated, 0);
+  const std::vector<std::string> advice = RelaxationAdvice(sharp.check, o, false);
+  ASSERT_FALSE(advice.empty());
+  EXPECT_EQ(advice[0].rfind("--ramp (now 0.05 s)", 0), 0u) << advice[0];
+
+  o.ramp_seconds = 12.0;
+  const DesignResult smooth = DesignExcitation(r, limits, o);
+  EXPECT_TRUE(smooth.check.feasible()) << smooth.check.Explain();
+  EXPECT_EQ(smooth.trajectory.a(), sharp.trajectory.a());  // the ramps do not change the search
+}
+
 }  // namespace
 }  // namespace idbench

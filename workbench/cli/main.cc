@@ -204,6 +204,7 @@ int DesignCommand(const idbench::DesignCommandOptions& options, const idbench::U
   std::string why;
   if (!options.IsValid(&why)) return UsageError(why);
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.IsValidFor(model, &why)) return UsageError(why);
   std::signal(SIGINT, RequestStop);
   const idbench::DesignCommandReport report = idbench::RunDesign(model, options, &g_stop_requested);
   std::signal(SIGINT, SIG_DFL);
@@ -212,7 +213,7 @@ int DesignCommand(const idbench::DesignCommandOptions& options, const idbench::U
   idbench::EnsureOutputDirectory(dir);
   std::vector<std::pair<std::filesystem::path, std::string>> files{
       {dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},
-      {dir / "trajectory.csv", idbench::FormatTrajectoryCsv(report.result.trajectory, options.csv_rate_hz)},
+      {dir / "trajectory.csv", idbench::FormatDesignTrajectoryCsv(model, options, report)},
       {dir / "design.json", idbench::FormatDesignJson(model, options, report)}};
   if (with_report) {
     for (auto& file : idbench::FormatReportFiles(idbench::MakeDesignReportContent(model, options, report), dir))
@@ -476,6 +477,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   design_cmd->add_option("--limits", design.limits, "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
   design_cmd->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
+  design_cmd->add_option("--csv-columns", design.csv_columns, "trajectory.csv columns: q or q,qd,qdd")
+      ->capture_default_str();
+  design_cmd->add_option("--ramp", design.design.ramp_seconds,
+                         "Rest-to-rest ramps from and to the home pose in trajectory.csv and the re-check [s]; 0: none")
+      ->capture_default_str();
+  design_cmd->add_option("--home", design.home, "Home pose q1,...,qn [rad] the motion oscillates about")
+      ->delimiter(',');
   design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
   bool design_report = false;
   design_cmd->add_flag("--report", design_report, "Also write report.html, report.pdf and the plots");

@@ -1,6 +1,7 @@
 // `idbench design` and `idbench compare`, run as a user would.
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -51,7 +52,9 @@ TEST_F(DesignCliTest, WritesTrajectoryAndReportThatSimulateReads) {
   EXPECT_EQ(design["limits"][0]["qd_max"].get<double>(), 1.5);
   // trajectory.csv: the log columns at 1 kHz over one period (2 s).
   const std::string csv = Slurp(dir_ / "d" / "trajectory.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "t,q.joint1,q.joint2,q.joint3,q.joint4,q.joint5,q.joint6,qd.joint1,qd.joint2,qd.joint3,qd.joint4,qd.joint5,"
+            "qd.joint6,qdd.joint1,qdd.joint2,qdd.joint3,qdd.joint4,qdd.joint5,qdd.joint6");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2001);
   // The JSON drives a simulation.
   const Result sim = Run("simulate --robot puma560 --trajectory " + (dir_ / "d" / "trajectory.json").string() +
@@ -66,6 +69,45 @@ TEST_F(DesignCliTest, DeterministicForASeed) {
   ASSERT_EQ(Run(common + (dir_ / "b").string() + " --threads 2").exit_code, 0);
   EXPECT_EQ(Slurp(dir_ / "a" / "trajectory.json"), Slurp(dir_ / "b" / "trajectory.json"));
   EXPECT_EQ(Slurp(dir_ / "a" / "trajectory.csv"), Slurp(dir_ / "b" / "trajectory.csv"));
+}
+
+// Ready for the robot: positions only at the controller's rate, ramps from
+// and to the home pose (given with --home: the one the first run found),
+// read back by simulate; too short a ramp is reported (exit 1, --ramp named).
+TEST_F(DesignCliTest, RobotReadyCsvWithRampsFromAndToTheHome) {
+  const std::string common = "design --robot puma560 --limits " + PumaLimits() + " " + kQuick + " --out ";
+  ASSERT_EQ(Run(common + (dir_ / "a").string()).exit_code, 0);
+  const std::vector<double> home = json::parse(Slurp(dir_ / "a" / "design.json"))["home"]["q"];
+  std::string home_arg;
+  for (double q : home) {
+    char text[32];
+    home_arg += (home_arg.empty() ? "" : ",") + std::string(text, std::to_chars(text, text + sizeof text, q).ptr);
+  }
+  const Result r = Run(common + (dir_ / "b").string() + " --home " + home_arg +
+                       " --ramp 12 --rate 250 --csv-columns q");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const json design = json::parse(Slurp(dir_ / "b" / "design.json"));
+  EXPECT_EQ(design["home"]["source"], "given");
+  EXPECT_EQ(design["home"]["q"].get<std::vector<double>>(), home);
+  EXPECT_EQ(design["csv"]["duration"].get<double>(), 2.0 + 2 * 12.0);
+  EXPECT_EQ(Slurp(dir_ / "a" / "trajectory.json"), Slurp(dir_ / "b" / "trajectory.json"));  // same motion
+  const std::string csv = Slurp(dir_ / "b" / "trajectory.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,q.joint1,q.joint2,q.joint3,q.joint4,q.joint5,q.joint6");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 26 * 250 + 1);
+  // The first and last rows are the home pose.
+  const std::string first = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1, csv.size() - csv.rfind('\n', csv.size() - 2) - 2);
+  EXPECT_EQ(first, "0," + home_arg);
+  EXPECT_EQ(last, "26," + home_arg);
+  const Result sim = Run("simulate --robot puma560 --trajectory " + (dir_ / "b" / "trajectory.csv").string() +
+                         " --rate 100 --out " + (dir_ / "log.csv").string());
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_NE(sim.out.find("for 26 s"), std::string::npos) << sim.out;
+
+  const Result sharp = Run(common + (dir_ / "c").string() + " --ramp 0.05");
+  EXPECT_EQ(sharp.exit_code, 1);
+  EXPECT_NE(sharp.out.find("INFEASIBLE"), std::string::npos) << sharp.out;
+  EXPECT_NE(sharp.out.find("  --ramp (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
 }
 
 TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
@@ -90,6 +132,15 @@ TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
   EXPECT_NE(r.err.find("joints[0]: q_min = 1 must be below q_max = -1 rad"), std::string::npos) << r.err;
   r = Run("design --robot puma560 --algorithm newton" + out);
   EXPECT_EQ(r.exit_code, 2);
+  r = Run("design --robot puma560 --home 0,0,0" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--home: expected 6 joint angles (one per joint of puma560), got 3"), std::string::npos) << r.err;
+  r = Run("design --robot puma560 --csv-columns q,qd" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--csv-columns: expected 'q' or 'q,qd,qdd', got 'q,qd'"), std::string::npos) << r.err;
+  r = Run("design --robot puma560 --ramp -1" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--ramp must be in [0, 600] s, got -1"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "d"));
 }
 

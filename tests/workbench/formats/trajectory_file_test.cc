@@ -14,6 +14,7 @@
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
+#include "idbench/excitation/ramped_trajectory.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 
 namespace idbench {
@@ -159,6 +160,45 @@ TEST(TrajectoryFileTest, CsvRoundTripFollowsTheOriginal) {
                                                     Eigen::VectorXd::Constant(6, 0.1), 0.3);
   EXPECT_EQ(ParseTrajectoryCsv(FormatTrajectoryCsv(short_motion, 10.0), puma, "c.csv").n_samples(), 4);
   EXPECT_THROW(FormatTrajectoryCsv(short_motion, 0.0), std::invalid_argument);
+}
+
+// What `design` writes: a motion framed by ramps from and to a home pose,
+// headed with the joint names, with or without qd and qdd. Read back, the
+// samples are exactly the trajectory evaluated (shortest round-trip numbers;
+// the interpolation passes through its knots).
+TEST(TrajectoryFileTest, CsvWithJointNamesReadsBackTheRampedMotion) {
+  const RobotModel puma = MakePuma560();
+  std::vector<std::string> names;
+  for (const Link& link : puma.links()) names.push_back(link.joint_name);
+  const Eigen::VectorXd home = Eigen::VectorXd::LinSpaced(6, -0.3, 0.2);
+  const RampedTrajectory robot(std::make_shared<FourierSeriesTrajectory>(MakeSeries(false, 2.0)), home, 0.5);
+  for (const bool derivatives : {true, false}) {
+    const std::string text = FormatTrajectoryCsv(robot, 250.0, derivatives, names);
+    std::string header = "t";
+    for (const char* prefix : {"q", "qd", "qdd"}) {
+      for (const std::string& name : names) {
+        if (derivatives || prefix == std::string("q")) header += "," + std::string(prefix) + "." + name;
+      }
+    }
+    EXPECT_EQ(text.substr(0, text.find('\n')), header);
+    const SampledTrajectory sampled = ParseTrajectoryCsv(text, puma, "traj.csv");
+    ASSERT_EQ(sampled.n_samples(), 751);  // 3 s at 250 Hz, both ends
+    for (int k = 0; k < sampled.n_samples(); k += 7) {
+      const JointState x = sampled.At(sampled.t()[k]), y = robot.At(k / 250.0);
+      EXPECT_EQ(x.q, y.q) << k;
+      if (derivatives) EXPECT_EQ(x.qd, y.qd) << k;
+    }
+    EXPECT_EQ(sampled.At(0.0).q, home);  // starts and ends at home
+    EXPECT_EQ(sampled.At(3.0).q, home);
+  }
+  // Columns are matched by name, in any order; an unknown name is refused.
+  const std::string swapped = "t,q." + names[1] + ",q." + names[0] + ",q3,q4,q5,q6\n0,0.25,0.5,0,0,0,0\n1,0.25,0.5,0,0,0,0\n";
+  EXPECT_EQ(ParseTrajectoryCsv(swapped, puma, "s.csv").At(0.5).q.head(2), Eigen::Vector2d(0.5, 0.25));
+  EXPECT_EQ(ExpectInvalid([&] { ParseTrajectoryCsv("\nt,q.elbow,q2\n", puma, "u.csv"); }),
+            "u.csv:2: column 2 ('q.elbow'): no joint 'elbow' in " + puma.name());
+  EXPECT_THROW(FormatTrajectoryCsv(robot, 250.0, true, {"a", "b"}), std::invalid_argument);
+  names[2] = "a,b";
+  EXPECT_THROW(FormatTrajectoryCsv(robot, 250.0, true, names), std::invalid_argument);
 }
 
 TEST(TrajectoryFileTest, CsvWithPositionsAloneOrWithTorques) {

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/design_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/workbench/formats/limits_file.h"
+#include "idbench/workbench/formats/trajectory_file.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -44,6 +46,12 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
   }
   if (!design.IsValid(why)) return false;
   if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("--rate: must be > 0 Hz");
+  if (csv_columns != "q" && csv_columns != "q,qd,qdd") {
+    return fail("--csv-columns: expected 'q' or 'q,qd,qdd', got '" + csv_columns + "'");
+  }
+  for (double q : home) {
+    if (!std::isfinite(q)) return fail("--home: expected finite joint angles [rad]");
+  }
   if (out_dir.empty()) return fail("--out: empty path");
   std::error_code ec;
   if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
@@ -51,8 +59,19 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
   return true;
 }
 
+bool DesignCommandOptions::IsValidFor(const RobotModel& robot, std::string* why) const {
+  if (home.empty() || static_cast<int>(home.size()) == robot.n_dof()) return true;
+  if (why) {
+    *why = "--home: expected " + std::to_string(robot.n_dof()) + " joint angles (one per joint of " + robot.name() +
+           "), got " + std::to_string(home.size());
+  }
+  return false;
+}
+
 DesignOptions DesignCommandOptions::Resolved() const {
   DesignOptions d = design;
+  if (!home.empty()) d.home = Eigen::Map<const Eigen::VectorXd>(home.data(), static_cast<Eigen::Index>(home.size()));
+  d.check_rate_hz = std::max(d.check_rate_hz, csv_rate_hz);
   d.criterion = !criterion.empty() ? *ParseDesignCriterion(criterion)
                 : model == "per-body" ? DesignCriterion::kLogDet
                                       : DesignCriterion::kLogCond;
@@ -134,6 +153,14 @@ nlohmann::json IdentifiabilityJson(const Identifiability& id) {
           {"rows", id.rows},                   {"parameters", id.cols}};
 }
 
+std::string FormatDesignTrajectoryCsv(const RobotModel& model, const DesignCommandOptions& options,
+                                      const DesignCommandReport& report) {
+  std::vector<std::string> joint_names;
+  for (const Link& link : model.links()) joint_names.push_back(link.joint_name);
+  return FormatTrajectoryCsv(report.result.RobotTrajectory(), options.csv_rate_hz, options.csv_columns != "q",
+                             joint_names);
+}
+
 std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report) {
   const DesignResult& r = report.result;
   const DesignOptions design = options.Resolved();
@@ -151,7 +178,16 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
                 r.initial.sigma_min, r.final.sigma_min, r.evaluations, r.wall_seconds,
                 r.check.feasible() ? "feasible" : "INFEASIBLE", r.check.rate_hz);
   out = buf;
+  if (r.ramp_seconds > 0.0) {
+    std::snprintf(buf, sizeof buf, "with %g s ramps from and to the home pose: %g s in trajectory.csv\n", r.ramp_seconds,
+                  r.RobotTrajectory().duration());
+    out += buf;
+  }
   out += r.check.Explain();
+  if (!r.check.feasible()) {
+    out += "to relax:\n";
+    for (const std::string& a : RelaxationAdvice(r.check, design, false)) out += "  " + a + "\n";
+  }
   return out;
 }
 
@@ -193,6 +229,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
         {"f0", design.f0},
         {"duration", design.period_duration()},
         {"rest_to_rest", design.rest_to_rest},
+        {"ramp", design.ramp_seconds},
         {"samples", design.samples}}},
       {"search", {{"starts", design.starts}, {"seed", design.seed}, {"threads", design.threads},
                   {"max_evaluations", design.max_evaluations}, {"margin", design.margin},
@@ -201,6 +238,8 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
       {"check", {{"rate_hz", r.check.rate_hz}, {"feasible", r.check.feasible()}, {"margins", margins}}},
+      {"csv", {{"rate_hz", options.csv_rate_hz}, {"columns", options.csv_columns},
+               {"duration", r.RobotTrajectory().duration()}}},
       {"starts", starts},
       {"home", {{"q", std::vector<double>(r.home.data(), r.home.data() + r.home.size())}, {"source", r.home_source}}},
       {"evaluations", r.evaluations},

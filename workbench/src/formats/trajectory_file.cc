@@ -108,6 +108,42 @@ class KeyReader {
   std::string source_;
 };
 
+// The text with a header's q.<joint name>, qd.<..>, qdd.<..>, tau.<..>
+// columns renamed to the joint's number (q3); other lines unchanged.
+std::string NumberNamedColumns(const std::string& text, const RobotModel& model, const std::string& source) {
+  size_t begin = 0;
+  int line = 1;
+  while (begin < text.size() && text.find_first_not_of(" \t\r\n", begin) != std::string::npos) {
+    const size_t end = std::min(text.find('\n', begin), text.size());
+    if (text.find_first_not_of(" \t\r", begin) < end) break;  // the first non-blank line
+    begin = end + 1, ++line;
+  }
+  if (begin >= text.size()) return text;
+  const size_t end = std::min(text.find('\n', begin), text.size());
+  std::string header;
+  int column = 0;
+  for (size_t field = begin; field <= end; ++column) {
+    const size_t comma = std::min(text.find(',', field), end);
+    std::string name = text.substr(field, comma - field);
+    const size_t dot = name.find('.');
+    const std::string prefix = name.substr(0, dot);
+    if (dot != std::string::npos && (prefix == "q" || prefix == "qd" || prefix == "qdd" || prefix == "tau")) {
+      std::string joint = name.substr(dot + 1);
+      if (!joint.empty() && joint.back() == '\r') joint.pop_back();
+      int j = 0;
+      while (j < model.n_dof() && model.links()[static_cast<size_t>(j)].joint_name != joint) ++j;
+      if (j == model.n_dof()) {
+        throw std::invalid_argument(source + ":" + std::to_string(line) + ": column " + std::to_string(column + 1) +
+                                    " ('" + name + "'): no joint '" + joint + "' in " + model.name());
+      }
+      name = prefix + std::to_string(j + 1);
+    }
+    header += (column ? "," : "") + name;
+    field = comma + 1;
+  }
+  return text.substr(0, begin) + header + text.substr(end);
+}
+
 }  // namespace
 
 std::string FormatTrajectoryJson(const Trajectory& trajectory) {
@@ -157,9 +193,18 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
   keys.Fail("family", "expected \"fourier\" or \"constant-acceleration\", got " + family.dump());
 }
 
-std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz) {
+std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz, bool derivatives,
+                                const std::vector<std::string>& joint_names) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz))
     throw std::invalid_argument("trajectory CSV: expected a rate > 0 Hz, got " + std::to_string(rate_hz));
+  if (!joint_names.empty() && static_cast<int>(joint_names.size()) != trajectory.n_dof()) {
+    throw std::invalid_argument("trajectory CSV: expected " + std::to_string(trajectory.n_dof()) + " joint names, got " +
+                                std::to_string(joint_names.size()));
+  }
+  for (const std::string& name : joint_names) {
+    if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos)
+      throw std::invalid_argument("trajectory CSV: joint name '" + name + "' cannot head a CSV column");
+  }
   const int n_samples = static_cast<int>(std::floor(trajectory.duration() * rate_hz + 1e-9)) + 1;
   JointLog log;  // no torques: FormatJointLogCsv then writes t, q, qd, qdd
   log.t.resize(n_samples);
@@ -174,11 +219,20 @@ std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz) {
     log.qd.row(k) = state.qd.transpose();
     log.qdd.row(k) = state.qdd.transpose();
   }
-  return FormatJointLogCsv(log);
+  if (!derivatives) log.qd.resize(0, 0), log.qdd.resize(0, 0);
+  std::string csv = FormatJointLogCsv(log);
+  if (joint_names.empty()) return csv;
+  // The header with names: q3 -> q.<name of joint 3>.
+  std::string header = "t";
+  for (const char* prefix : {"q", "qd", "qdd"}) {
+    if (!derivatives && prefix[1] == 'd') continue;
+    for (const std::string& name : joint_names) header += "," + std::string(prefix) + "." + name;
+  }
+  return header + csv.substr(csv.find('\n'));
 }
 
 SampledTrajectory ParseTrajectoryCsv(const std::string& text, const RobotModel& model, const std::string& source) {
-  const JointLog log = ParseJointLogCsv(text, model, source, TorqueColumns::kOptional);
+  const JointLog log = ParseJointLogCsv(NumberNamedColumns(text, model, source), model, source, TorqueColumns::kOptional);
   if (log.n_samples() < 2) {
     throw std::invalid_argument(source + ": " + std::to_string(log.n_samples()) +
                                 " sample, expected at least 2 to interpolate");

@@ -27,6 +27,7 @@
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/fourier_series.h"
+#include "idbench/excitation/ramped_trajectory.h"
 
 namespace idbench {
 
@@ -54,6 +55,9 @@ struct DesignOptions {
   double check_rate_hz = 1000.0;   // re-check of the result
   Eigen::VectorXd home;            // [rad] (n_dof): the pose the starts oscillate about;
                                    // empty: FindHomePose (home_pose.h)
+  double ramp_seconds = 0.0;       // [s] in [0, kMaxRampSeconds]: rest-to-rest ramps from the home
+                                   // to the motion and back (ramped_trajectory.h), in the re-check
+  static constexpr double kMaxRampSeconds = 600.0;
 
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
   // Checks ranges; names the bad option in *why.
@@ -121,13 +125,18 @@ struct DesignResult {
   double initial_value = 0.0;        // criterion of the best start's initial point
   double value = 0.0;                // criterion of the result
   Identifiability initial, final;    // of W on the design grid
-  FeasibilityCheck check;            // at check_rate_hz
+  FeasibilityCheck check;            // of RobotTrajectory() at check_rate_hz (times from its start)
   std::vector<DesignStartSummary> starts;
   Eigen::VectorXd home;              // [rad] (n_dof): the pose the starts oscillated about
   std::string home_source;           // "mid-range", "searched", "given"
   int evaluations = 0;               // all starts
   double wall_seconds = 0.0;
   bool stopped = false;              // stopped early by the control flag
+  double ramp_seconds = 0.0;         // [s] DesignOptions::ramp_seconds
+
+  // What the robot runs: the trajectory framed by the ramps from and to the
+  // home (the trajectory itself when ramp_seconds is 0).
+  RampedTrajectory RobotTrajectory() const;
 };
 
 // The sample times of the criterion and the constraint grid.
@@ -154,7 +163,8 @@ class InfeasibleDesign : public std::runtime_error {
 };
 
 // What to relax for each violated constraint of check: the joint's limit in
-// the limits file, --clearance, --margin, --home, --harmonics/--f0/--duration.
+// the limits file, --clearance, --margin, --home, --harmonics/--f0/--duration,
+// --ramp for a violation during a ramp (check times from the first ramp's start).
 std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
                                           bool before_search);
 

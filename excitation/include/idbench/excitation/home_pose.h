@@ -19,6 +19,9 @@
 
 namespace idbench {
 
+// How far inside each joint's range a home stays, as a fraction of the range.
+inline constexpr double kHomeRangeRoom = 0.1;
+
 // The limits and the clearance of the pose q [rad] (n_dof) held still; its
 // margins have time 0.
 FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimits>& limits, const Eigen::VectorXd& q,

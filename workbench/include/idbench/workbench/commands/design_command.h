@@ -27,13 +27,18 @@ struct DesignCommandOptions {
   std::string algorithm = "slsqp";
   std::string limits;                                // limits JSON (optional)
   DesignOptions design;
-  double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate
+  double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate; the re-check runs at
+                                                     // the larger of it and design.check_rate_hz
+  std::string csv_columns = "q,qd,qdd";              // trajectory.csv: "q" (positions) or "q,qd,qdd"
+  std::vector<double> home;                          // [rad] --home (n_dof); empty: found (home_pose.h)
   bool quiet = false;                                // no progress on stderr
   std::string out_dir = "out/design";
   std::string command_line;                          // recorded in design.json
 
   // Checks the options alone (not the robot); *why names the bad one.
   bool IsValid(std::string* why) const;
+  // And against the robot: --home has one angle per joint.
+  bool IsValidFor(const RobotModel& model, std::string* why) const;
   // The regressor of the chosen identification model.
   DesignRegressor MakeRegressor(const RobotModel& model) const;
   // design with criterion and algorithm parsed.
@@ -61,6 +66,12 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
 // worker threads besides the stderr lines.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::vector<JointLimits>& limits, const DesignControl& control);
+
+// trajectory.csv: what the robot runs (DesignResult::RobotTrajectory, the
+// ramps included) at csv_rate_hz, the columns csv_columns names, headed with
+// the robot's joint names (trajectory_file.h).
+std::string FormatDesignTrajectoryCsv(const RobotModel& model, const DesignCommandOptions& options,
+                                      const DesignCommandReport& report);
 
 std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report);
 std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,

@@ -7,12 +7,14 @@
 //   {"family": "constant-acceleration", "duration": s,
 //    "q0": [rad × n], "qd0": [rad/s × n], "qdd": [rad/s² × n]}
 // CSV, samples at a controller rate: the joint-log columns without torques,
-//   t, q1..qn, qd1..qdn, qdd1..qddn  (qd, qdd optional when reading),
-// read back as a SampledTrajectory.
+//   t, q1..qn, qd1..qdn, qdd1..qddn  (qd, qdd optional),
+// or with the robot's joint names, t, q.<name1>..q.<namen>, qd.<name1>.., qdd.<name1>..
+// (what `design` writes), read back as a SampledTrajectory.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
@@ -33,11 +35,17 @@ std::string FormatTrajectoryJson(const Trajectory& trajectory);
 std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_dof, const std::string& source);
 
 // Samples at t = k/rate_hz for k = 0..⌊duration·rate_hz⌋ (a last sample within
-// 1e-9 of the end counts), columns t, q1..qn, qd1..qdn, qdd1..qddn. Throws
-// std::invalid_argument unless rate_hz > 0 and finite.
-std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz);
+// 1e-9 of the end counts), columns t, q1..qn, qd1..qdn, qdd1..qddn (without
+// derivatives: t, q1..qn). With joint_names (n_dof of them) the columns are
+// named q.<name>, qd.<name>, qdd.<name>. Throws std::invalid_argument unless
+// rate_hz > 0 and finite, for a count of names other than n_dof, or a name
+// that is empty or holds a comma, quote or line break.
+std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz, bool derivatives = true,
+                                const std::vector<std::string>& joint_names = {});
 
-// Parses a trajectory CSV with the joint-log parser (same messages,
+// Parses a trajectory CSV with the joint-log parser (header names q.<joint
+// name> etc. read as the joint's number q<j>; an unknown joint name throws
+// "source:line: column c ('q.x'): no joint 'x' in <robot>"; same messages,
 // "source:line: column c ('name'): what"; positions within the joint limits;
 // tau columns allowed and ignored) into its interpolation: quintic Hermite
 // when qd and qdd are given, else the natural cubic spline. At least 2 samples.
