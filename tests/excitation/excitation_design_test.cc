@@ -6,6 +6,7 @@
 
 #include <numbers>
 
+#include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/builtin_motions.h"
@@ -184,6 +185,36 @@ TEST(ExcitationDesignTest, RecheckCoversTheRamps) {
   const DesignResult smooth = DesignExcitation(r, limits, o);
   EXPECT_TRUE(smooth.check.feasible()) << smooth.check.Explain();
   EXPECT_EQ(smooth.trajectory.a(), sharp.trajectory.a());  // the ramps do not change the search
+}
+
+// A home whose gravity torque on joint 2 is 99 % of its limit passes the
+// check held still (the limit itself), but the search tightens torque limits
+// by the 2 % margin, so no start can meet them: the search runs and fails
+// (after the search), the 1 kHz check of where it ended, and --margin advised.
+TEST(ExcitationDesignTest, NoFeasibleStartIsExplainedAfterTheSearch) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  DesignOptions o = QuickOptions();
+  o.starts = 2;
+  o.max_evaluations = 10;
+  o.home = (Eigen::VectorXd(6) << 0.0, 0.6, -0.4, 0.0, 0.5, 0.0).finished();
+  RobotData data(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  const double tau_gravity = std::abs(InverseDynamics(model, o.home, zero, zero, &data)[1]);
+  ASSERT_GT(tau_gravity, 10.0);  // the shoulder holds the arm out
+  limits[1].tau_max = tau_gravity / 0.99;
+  try {
+    DesignExcitation(r, limits, o);
+    FAIL() << "expected InfeasibleDesign";
+  } catch (const InfeasibleDesign& e) {
+    EXPECT_FALSE(e.before_search()) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no feasible design"), std::string::npos) << e.what();
+    EXPECT_EQ(e.check().rate_hz, 1000.0);
+    bool margin = false;
+    for (const std::string& a : e.advice()) margin |= a.rfind("--margin (now 0.02)", 0) == 0;
+    EXPECT_TRUE(margin) << e.what();
+  }
 }
 
 }  // namespace

@@ -206,10 +206,20 @@ int DesignCommand(const idbench::DesignCommandOptions& options, const idbench::U
   const idbench::RobotModel model = LoadRobotOrThrow(options.robot, load);
   if (!options.IsValidFor(model, &why)) return UsageError(why);
   std::signal(SIGINT, RequestStop);
-  const idbench::DesignCommandReport report = idbench::RunDesign(model, options, &g_stop_requested);
+  const std::filesystem::path dir(options.out_dir);
+  const idbench::DesignCommandReport report = [&] {
+    try {
+      return idbench::RunDesign(model, options, &g_stop_requested);
+    } catch (const idbench::InfeasibleDesign& e) {  // the search ran: design.json explains it
+      if (!e.before_search()) {
+        idbench::EnsureOutputDirectory(dir);
+        idbench::WriteFileAtomically(dir / "design.json", idbench::FormatInfeasibleDesignJson(model, options, e));
+      }
+      throw;
+    }
+  }();
   std::signal(SIGINT, SIG_DFL);
   std::fputs(idbench::FormatDesignSummary(options, report).c_str(), stdout);
-  const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
   std::vector<std::pair<std::filesystem::path, std::string>> files{
       {dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},

@@ -8,6 +8,9 @@
 
 #include "workbench/cli/cli_fixture.h"
 
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/puma560.h"
+
 namespace idbench {
 namespace {
 
@@ -108,6 +111,34 @@ TEST_F(DesignCliTest, RobotReadyCsvWithRampsFromAndToTheHome) {
   EXPECT_EQ(sharp.exit_code, 1);
   EXPECT_NE(sharp.out.find("INFEASIBLE"), std::string::npos) << sharp.out;
   EXPECT_NE(sharp.out.find("  --ramp (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
+}
+
+// The search ran and found nothing feasible (a home whose gravity torque is
+// 99 % of joint 2's limit; the search tightens it by the 2 % margin): exit 1,
+// design.json with the explanation and the advice, no trajectory written.
+TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
+  const RobotModel puma = MakePuma560();
+  const Eigen::VectorXd home = (Eigen::VectorXd(6) << 0.0, 0.6, -0.4, 0.0, 0.5, 0.0).finished();
+  RobotData data(puma);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  const double tau_gravity = std::abs(InverseDynamics(puma, home, zero, zero, &data)[1]);
+  std::ofstream(dir_ / "tau.json") << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4, "tau_max": )"
+                                   << tau_gravity / 0.99 << R"(}, {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 3, "qdd_max": 8},
+      {"qd_max": 3, "qdd_max": 8}, {"qd_max": 3, "qdd_max": 8}]})";
+  const Result r = Run("design --robot puma560 --limits " + (dir_ / "tau.json").string() + " " + kQuick +
+                       " --home 0,0.6,-0.4,0,0.5,0 --out " + (dir_ / "d").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("no feasible design"), std::string::npos) << r.err;
+  const json design = json::parse(Slurp(dir_ / "d" / "design.json"));
+  EXPECT_FALSE(design["infeasible"]["before_search"].get<bool>());
+  EXPECT_EQ(design["infeasible"]["explanation"].get<std::string>().rfind("no feasible design", 0), 0u);
+  EXPECT_NEAR(design["limits"][1]["tau_max"].get<double>(), tau_gravity / 0.99, 1e-4);  // 6 digits in the file
+  EXPECT_EQ(design["check"]["rate_hz"].get<double>(), 1000.0);
+  bool margin = false;
+  for (const std::string a : design["infeasible"]["advice"]) margin |= a.rfind("--margin (now 0.02)", 0) == 0;
+  EXPECT_TRUE(margin) << design["infeasible"].dump();
+  EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.json"));
 }
 
 TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {

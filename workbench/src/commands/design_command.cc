@@ -191,36 +191,25 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
   return out;
 }
 
-std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
-                             const DesignCommandReport& report) {
+namespace {
+
+// What design.json says of the settings, whatever the outcome.
+nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions& options,
+                            const std::vector<JointLimits>& used, const std::vector<std::string>& parameter_names) {
   using nlohmann::json;
-  const DesignResult& r = report.result;
   const DesignOptions design = options.Resolved();
   auto limit = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json limits = json::array();
-  for (const JointLimits& l : report.limits) {
+  for (const JointLimits& l : used) {
     limits.push_back({{"q_min", limit(l.q_min)}, {"q_max", limit(l.q_max)}, {"qd_max", limit(l.qd_max)},
                       {"qdd_max", limit(l.qdd_max)}, {"tau_max", limit(l.tau_max)}});
   }
-  json margins = json::array();
-  for (const ConstraintMargin& m : r.check.margins) {
-    margins.push_back({{"joint", m.joint + 1}, {"quantity", m.quantity}, {"time", m.time}, {"value", m.value},
-                       {"limit", m.limit}, {"margin", m.margin}});
-  }
-  json starts = json::array();
-  for (const DesignStartSummary& s : r.starts) {
-    starts.push_back({{"initial", s.initial_value},
-                      {"best", std::isfinite(s.best_value) ? json(s.best_value) : json(nullptr)},
-                      {"evaluations", s.evaluations},
-                      {"feasible_at", s.feasible_at >= 0 ? json(s.feasible_at) : json(nullptr)},
-                      {"status", s.status}});
-  }
-  const json result = {
+  return {
       {"command", options.command_line},
       {"robot", model.name()},
       {"model", options.model},
       {"friction", options.model == "torque" ? json(options.friction) : json::array()},
-      {"parameters", report.parameter_names},
+      {"parameters", parameter_names},
       {"criterion", DesignCriterionName(design.criterion)},
       {"algorithm", DesignAlgorithmName(design.algorithm)},
       {"trajectory",
@@ -235,9 +224,39 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
                   {"max_evaluations", design.max_evaluations}, {"margin", design.margin},
                   {"clearance", design.clearance >= 0.0 ? json(design.clearance) : json(nullptr)}}},
       {"limits", limits},
+  };
+}
+
+// The check's margins (a clearance margin names its pair).
+nlohmann::json CheckJson(const FeasibilityCheck& check) {
+  nlohmann::json margins = nlohmann::json::array();
+  for (const ConstraintMargin& m : check.margins) {
+    margins.push_back({{"joint", m.joint + 1}, {"quantity", m.quantity}, {"time", m.time}, {"value", m.value},
+                       {"limit", m.limit}, {"margin", m.margin}});
+    if (!m.pair.empty()) margins.back()["pair"] = m.pair;
+  }
+  return {{"rate_hz", check.rate_hz}, {"feasible", check.feasible()}, {"margins", margins}};
+}
+
+}  // namespace
+
+std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                             const DesignCommandReport& report) {
+  using nlohmann::json;
+  const DesignResult& r = report.result;
+  json starts = json::array();
+  for (const DesignStartSummary& s : r.starts) {
+    starts.push_back({{"initial", s.initial_value},
+                      {"best", std::isfinite(s.best_value) ? json(s.best_value) : json(nullptr)},
+                      {"evaluations", s.evaluations},
+                      {"feasible_at", s.feasible_at >= 0 ? json(s.feasible_at) : json(nullptr)},
+                      {"status", s.status}});
+  }
+  json result = SettingsJson(model, options, report.limits, report.parameter_names);
+  result.update({
       {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
-      {"check", {{"rate_hz", r.check.rate_hz}, {"feasible", r.check.feasible()}, {"margins", margins}}},
+      {"check", CheckJson(r.check)},
       {"csv", {{"rate_hz", options.csv_rate_hz}, {"columns", options.csv_columns},
                {"duration", r.RobotTrajectory().duration()}}},
       {"starts", starts},
@@ -245,7 +264,18 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"evaluations", r.evaluations},
       {"wall_seconds", r.wall_seconds},
       {"stopped", r.stopped},
-  };
+  });
+  return result.dump(2) + "\n";
+}
+
+std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                                       const InfeasibleDesign& infeasible) {
+  nlohmann::json result = SettingsJson(model, options, DesignLimits(model, options),
+                                       options.MakeRegressor(model).parameter_names());
+  result["check"] = CheckJson(infeasible.check());
+  result["infeasible"] = {{"before_search", infeasible.before_search()},
+                          {"explanation", infeasible.what()},
+                          {"advice", infeasible.advice()}};
   return result.dump(2) + "\n";
 }
 

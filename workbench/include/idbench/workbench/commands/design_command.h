@@ -77,6 +77,12 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
 std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                              const DesignCommandReport& report);
 
+// design.json when no feasible design was found (InfeasibleDesign): the
+// settings as FormatDesignJson writes them, "check" (the explained point's
+// margins) and "infeasible": {before_search, explanation, advice}.
+std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                                       const InfeasibleDesign& infeasible);
+
 // cond, cond_normalised, log_det, sigma_min, sigma_max, rank (shared with compare).
 nlohmann::json IdentifiabilityJson(const Identifiability& id);
 
