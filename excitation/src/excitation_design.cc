@@ -62,13 +62,15 @@ struct StartRun {
   Eigen::VectorXd reselect_theta;  // where it stepped outside
 
   // The rows near theta, and near also (when given) the other point.
-  void SelectRows(const double* theta, const double* also = nullptr) {
+  // keep: also the rows already taken (a resume within one Optimize, so that
+  // two points outside different rows cannot alternate forever).
+  void SelectRows(const double* theta, const double* also = nullptr, bool keep = false) {
     if (options->algorithm != DesignAlgorithm::kSlsqp) return;
     const std::vector<LinearRow>& all = problem->rows();
-    taken.assign(all.size(), 0);
+    if (!keep || taken.size() != all.size()) taken.assign(all.size(), 0);
     rows.clear();
     for (size_t i = 0; i < all.size(); ++i) {
-      if (problem->LinearValue(all[i], theta) > -kNearActive ||
+      if (taken[i] || problem->LinearValue(all[i], theta) > -kNearActive ||
           (also && problem->LinearValue(all[i], also) > -kNearActive)) {
         taken[i] = 1;
         rows.push_back(static_cast<int>(i));
@@ -265,7 +267,7 @@ nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::Vecto
     // the rows near both.
     if (best_theta.size() > 0) *theta = best_theta;
     else *theta = reselect_theta;
-    SelectRows(theta->data(), reselect_theta.data());
+    SelectRows(theta->data(), reselect_theta.data(), true);
   }
   if (reselect && result == NLOPT_FORCED_STOP && !(control->stop && control->stop->load())) {
     result = NLOPT_MAXEVAL_REACHED;  // stopped to resume, but out of evaluations

@@ -25,13 +25,50 @@ FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimit
   return CheckTrajectoryLimits(model, limits, still, 1.0, clearance);
 }
 
+std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                       const Eigen::VectorXd& q, const ClearanceModel* clearance) {
+  constexpr double kStep = 0.5;          // [rad]
+  constexpr double kUnchanged = 0.005;   // [m]
+  if (!clearance) return {};
+  // The distance of every pair (margins in pair order, after the joints').
+  auto distances = [&](const Eigen::VectorXd& pose) {
+    std::vector<double> d;
+    for (const ConstraintMargin& m : CheckPose(model, limits, pose, clearance).margins) {
+      if (m.quantity == "clearance") d.push_back(m.value);
+    }
+    return d;
+  };
+  const std::vector<double> at_q = distances(q);
+  std::vector<double> change(at_q.size(), 0.0), most = at_q;
+  for (int j = 0; j < model.n_dof(); ++j) {
+    for (double sign : {1.0, -1.0}) {
+      Eigen::VectorXd moved = q;
+      moved[j] += sign * kStep;
+      const std::vector<double> d = distances(moved);
+      for (size_t i = 0; i < d.size(); ++i) {
+        change[i] = std::max(change[i], std::abs(d[i] - at_q[i]));
+        most[i] = std::max(most[i], d[i]);
+      }
+    }
+  }
+  std::vector<double> asked(change.size(), 0.0);
+  for (size_t i = 0; i < change.size(); ++i) {
+    if (change[i] >= kUnchanged) {
+      asked[i] = std::clamp(0.5 * (most[i] - clearance->min_clearance()), 0.0, kClearanceRoom);
+    }
+  }
+  return asked;
+}
+
 double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
-                const Eigen::VectorXd& q, const ClearanceModel* clearance) {
+                const Eigen::VectorXd& q, const ClearanceModel* clearance, const std::vector<double>* room_asked) {
   const FeasibilityCheck check = CheckPose(model, limits, q, clearance);
   double room = std::numeric_limits<double>::infinity();
   for (const ConstraintMargin& m : check.margins) {
     if (m.quantity == "clearance") {
-      room = std::min(room, (m.margin - kClearanceRoom) / kClearanceScale);
+      const size_t pair = static_cast<size_t>(m.joint);
+      const double asked = room_asked && pair < room_asked->size() ? (*room_asked)[pair] : kClearanceRoom;
+      room = std::min(room, (m.margin - asked) / kClearanceScale);
     } else if (m.quantity == "tau") {
       room = std::min(room, m.margin / m.limit - margin);
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
@@ -55,7 +92,8 @@ HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& l
     step[j] = std::min(0.5, 0.25 * (l.q_max - l.q_min));
   }
   home.source = "mid-range";
-  home.room = HomeRoom(model, limits, margin, home.q, clearance);
+  const std::vector<double> asked = ClearanceRoomAsked(model, limits, home.q, clearance);
+  home.room = HomeRoom(model, limits, margin, home.q, clearance, &asked);
   // Pattern search: per joint, a step either way while it adds room; the
   // steps halve when none does. The first pose with room ends it.
   constexpr double kSmallestStep = 1e-3;  // [rad]
@@ -70,7 +108,7 @@ HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& l
           const double inset = kRangeRoom * (l.q_max - l.q_min);
           q[j] = std::clamp(q[j], l.q_min + inset, l.q_max - inset);
         }
-        const double room = HomeRoom(model, limits, margin, q, clearance);
+        const double room = HomeRoom(model, limits, margin, q, clearance, &asked);
         if (room > home.room) {
           home.q = q, home.room = room, home.source = "searched", moved = true;
           break;

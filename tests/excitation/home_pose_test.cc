@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "excitation/design_test_util.h"
 #include "idbench/engine/urdf.h"
 
@@ -50,6 +52,43 @@ TEST(HomePoseTest, MidRangeOfTheUrLikeArmIsJustAboveTheFloor) {
       EXPECT_GT(m.value, 0.1);
     }
   }
+}
+
+// A pair is asked no room where no joint changes its distance (the UR-like
+// shoulder link turns on its vertical axis above the floor), at most half
+// what the joints can give it (the upper arm's shoulder end stays at
+// 0.16 m − its radius, so never 10 cm beyond the clearance), and 10 cm where
+// they can (the wrist swings up with the shoulder lift). So asked, the search
+// finds a home with room.
+TEST(HomePoseTest, PairsAreAskedTheRoomTheJointsCanGive) {
+  const RobotModel model = UrLike();
+  const std::vector<JointLimits> limits = UrLimits(model);
+  const ClearanceModel clearance(model, 0.01);
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n_dof());
+  const std::vector<double> asked = ClearanceRoomAsked(model, limits, q, &clearance);
+  ASSERT_EQ(asked.size(), clearance.pairs().size());
+  int seen = 0;
+  for (const ConstraintMargin& m : CheckPose(model, limits, q, &clearance).margins) {
+    if (m.quantity != "clearance") continue;
+    const double a = asked[static_cast<size_t>(m.joint)];
+    if (m.pair == "shoulder_link–ground") {
+      EXPECT_EQ(a, 0.0);
+      ++seen;
+    } else if (m.pair == "upper_arm_link–ground") {
+      EXPECT_GT(a, 0.0);
+      EXPECT_LT(a, 0.1);
+      ++seen;
+    } else if (m.pair == "wrist_3_link–ground") {
+      EXPECT_EQ(a, 0.1);
+      ++seen;
+    }
+  }
+  EXPECT_EQ(seen, 3);
+  const HomePose home = FindHomePose(model, limits, 0.02, &clearance);
+  EXPECT_TRUE(home.found) << home.room;
+  EXPECT_EQ(home.room, HomeRoom(model, limits, 0.02, home.q, &clearance, &asked));
+  EXPECT_GE(home.room, 0.0);
+  EXPECT_TRUE(CheckPose(model, limits, home.q, &clearance).feasible());
 }
 
 // A shoulder range that holds the upper arm in the floor (lift 0.3..0.5 rad

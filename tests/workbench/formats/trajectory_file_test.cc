@@ -186,7 +186,9 @@ TEST(TrajectoryFileTest, CsvWithJointNamesReadsBackTheRampedMotion) {
     for (int k = 0; k < sampled.n_samples(); k += 7) {
       const JointState x = sampled.At(sampled.t()[k]), y = robot.At(k / 250.0);
       EXPECT_EQ(x.q, y.q) << k;
-      if (derivatives) EXPECT_EQ(x.qd, y.qd) << k;
+      if (derivatives) {
+        EXPECT_EQ(x.qd, y.qd) << k;
+      }
     }
     EXPECT_EQ(sampled.At(0.0).q, home);  // starts and ends at home
     EXPECT_EQ(sampled.At(3.0).q, home);

@@ -5,8 +5,9 @@
 // torque limits (gravity) and the clearance (CheckPose). It is a home with
 // room when, besides, each joint is at least 10 % of its range inside it, the
 // gravity torque at most 1 − margin of its limit, and every clearance pair at
-// least 10 cm beyond the minimum clearance: a first dip of a joint then does
-// not reach the floor or another link.
+// least 10 cm beyond the minimum clearance (less where the joints cannot give
+// a pair that much, ClearanceRoomAsked): a first dip of a joint then does not
+// reach the floor or another link.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,13 +28,25 @@ inline constexpr double kHomeRangeRoom = 0.1;
 FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimits>& limits, const Eigen::VectorXd& q,
                            const ClearanceModel* clearance);
 
+// The room a home asks of each clearance pair (one entry per pair of
+// clearance; none without it) [m]: 0.1 m, but at most half of what the joints
+// can give the pair — the most its distance exceeds the minimum clearance at
+// q or with any one joint moved ±0.5 rad from q — and none for a pair whose
+// distance such moves change by less than 5 mm (a base link turning on the
+// floor, wrist links a few cm apart by construction, an upper arm whose
+// shoulder end stays 0.11 m above the floor).
+std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                       const Eigen::VectorXd& q, const ClearanceModel* clearance);
+
 // How much room q has, in units of each constraint's scale: the smallest of
 //   (distance to the nearer range end)/range − 0.1,
 //   1 − margin − |τ_gravity|/τ_max,
-//   (clearance − minimum − 0.1 m)/0.1 m;
+//   (clearance − minimum − asked)/0.1 m, asked = room_asked[pair] (0.1 m
+//   when not given, see ClearanceRoomAsked);
 // ≥ 0 for a home with room.
 double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
-                const Eigen::VectorXd& q, const ClearanceModel* clearance);
+                const Eigen::VectorXd& q, const ClearanceModel* clearance,
+                const std::vector<double>* room_asked = nullptr);
 
 struct HomePose {
   Eigen::VectorXd q;         // [rad] (n_dof)
@@ -42,8 +55,8 @@ struct HomePose {
   bool found = false;        // false: no pose with room; q is the best tried
 };
 
-// The middle of the joint ranges when it has room; otherwise a pose with room
-// near it, found by a deterministic pattern search from it that maximises
+// The middle of the joint ranges when it has room (each pair asked the room
+// ClearanceRoomAsked gives there); otherwise a pose with room near it, found by a deterministic pattern search from it that maximises
 // HomeRoom (per joint a step either way, 0.5 rad or a quarter of the range at
 // first, halved down to 1 mrad; each joint kept 10 % inside its range).
 HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
