@@ -223,6 +223,7 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const RobotModel& model = *robot.model;
+  if (!options.IsValidFor(model, &why)) throw std::invalid_argument(why);
   DesignControl control;
   control.stop = &g_design_stop;
   if (!progress.is_none()) {
@@ -254,7 +255,7 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
   out.feasible = result.check.feasible();
   out.stopped = result.stopped;
   out.trajectory_json = FormatTrajectoryJson(result.trajectory);
-  out.trajectory_csv = FormatTrajectoryCsv(result.trajectory, options.csv_rate_hz);
+  out.trajectory_csv = FormatDesignTrajectoryCsv(model, options, *report);
   out.design_json = FormatDesignJson(model, options, *report);
   out.summary = FormatDesignSummary(options, *report);
   return out;
@@ -471,7 +472,7 @@ PYBIND11_MODULE(idbench, m) {
          const std::string& criterion, const std::string& algorithm, int harmonics, double f0, double duration,
          bool rest_to_rest, int samples, int starts, unsigned seed, int threads, int max_evaluations,
          double max_time, double margin, double clearance, const std::string& limits, double rate,
-         const py::object& progress) {
+         const std::string& csv_columns, double ramp, const std::vector<double>& home, const py::object& progress) {
         DesignCommandOptions options;
         options.robot = robot.source;
         options.model = model;
@@ -492,6 +493,9 @@ PYBIND11_MODULE(idbench, m) {
         options.design.clearance = clearance;
         options.limits = limits;
         options.csv_rate_hz = rate;
+        options.csv_columns = csv_columns;
+        options.design.ramp_seconds = ramp;
+        options.home = home;
         options.quiet = true;
         options.command_line = "python: idbench.design";
         return Design(robot, options, progress);
@@ -506,7 +510,9 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("max_evaluations") = design_defaults.design.max_evaluations,
       py::arg("max_time") = design_defaults.design.max_seconds, py::arg("margin") = design_defaults.design.margin,
       py::arg("clearance") = design_defaults.design.clearance, py::arg("limits") = design_defaults.limits,
-      py::arg("rate") = design_defaults.csv_rate_hz, py::arg("progress") = py::none(),
+      py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = design_defaults.csv_columns,
+      py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
+      py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). progress(start, evaluations, best_value, feasible) "
       "is called as the starts run; Ctrl-C stops and returns the best design so far (stopped = True).");
 

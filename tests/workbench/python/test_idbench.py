@@ -3,6 +3,7 @@
 Run from CTest (tests/CMakeLists.txt): PYTHONPATH holds the built module,
 IDBENCH the built executable, IDBENCH_VERSION the project's version.
 """
+import io
 import json
 import os
 import signal
@@ -142,6 +143,18 @@ def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
     assert design["trajectory"]["harmonics"] == 2
     assert design["after"]["criterion"] == pytest.approx(result.value, rel=1e-12)
     assert isinstance(json.loads(result.trajectory_json), dict)
+    # Ready for the robot, as `idbench design`: positions only, ramps from and to the given home.
+    home = design["home"]["q"]
+    ramped = idbench.design(puma, harmonics=2, f0=0.5, samples=40, starts=1, max_evaluations=25, clearance=-1,
+                            friction=["viscous"], limits=str(tmp_path / "limits.json"), rate=100,
+                            csv_columns="q", ramp=12.0, home=home)
+    rows = np.genfromtxt(io.StringIO(ramped.trajectory_csv), delimiter=",", names=True)
+    assert rows.dtype.names == ("t",) + tuple(f"qjoint{j}" for j in range(1, 7))  # q.joint1: numpy drops the dot
+    assert len(rows) == 26 * 100 + 1
+    first, last = np.array(list(rows[0]))[1:], np.array(list(rows[-1]))[1:]
+    assert np.array_equal(first, home) and np.array_equal(last, home)
+    with pytest.raises(ValueError, match="--home: expected 6 joint angles"):
+        idbench.design(puma, home=[0.0, 0.0], limits=str(tmp_path / "limits.json"))
 
 
 def test_render_gives_the_figure_as_an_array_and_png(tmp_path):
