@@ -269,6 +269,17 @@ PYBIND11_MODULE(idbench, m) {
   m.doc() = "idbench: excitation design and dynamic parameter identification of serial robots";
   m.attr("__version__") = Version();
   m.attr("__git_revision__") = GitRevision();
+  // As the command line's exit codes: settings that admit no motion are wrong
+  // input (ValueError, exit 2); a search that found nothing feasible failed
+  // (RuntimeError, exit 1). Other exceptions: pybind11's mapping
+  // (std::invalid_argument → ValueError, std::runtime_error → RuntimeError).
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const InfeasibleDesign& e) {
+      PyErr_SetString(e.before_search() ? PyExc_ValueError : PyExc_RuntimeError, e.what());
+    }
+  });
 
   py::class_<Robot>(m, "Robot", "A robot model (built-in or from a URDF file); immutable")
       .def(py::init(&LoadRobotForPython), py::arg("robot"), py::arg("lock") = std::map<std::string, double>{},

@@ -187,3 +187,19 @@ print("result", r.stopped, r.feasible, r.value <= r.initial_value, flush=True)
     out, _ = child.communicate(timeout=60)
     assert child.returncode == 0
     assert out.strip().splitlines()[-1] == "result True True True"
+
+
+def test_an_impossible_design_is_a_value_error_with_the_command_lines_explanation(tmp_path):
+    # The UR10e-like arm with a shoulder range that holds the upper arm in the floor (home_pose_test):
+    # the settings admit no motion, seen before the search (exit 2 on the command line).
+    urdf = os.path.join(SOURCE_DIR, "tests/data/ur10e_like/ur10e_like.urdf")
+    robot = idbench.Robot(urdf)
+    limits = [{"qdd_max": 3.0}] * robot.n_dof
+    limits[1] = {"q_min": 0.3, "q_max": 0.5, "qdd_max": 3.0}
+    (tmp_path / "limits.json").write_text(json.dumps({"joints": limits}))
+    code, _, err = cli("design", "--robot", urdf, "--limits", "limits.json", "--quiet", "--out", "d", cwd=tmp_path)
+    assert code == 2, err
+    with pytest.raises(ValueError) as raised:
+        idbench.design(robot, limits=str(tmp_path / "limits.json"))
+    assert str(raised.value) == err.strip().split("idbench: error: ", 1)[1]
+    assert "ground" in str(raised.value)
