@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -18,10 +17,15 @@
 #include <stdexcept>
 #include <utility>
 
+#include "idbench/engine/input_file.h"
+#include "idbench/engine/printable_text.h"
+#include "urdf_document.h"
+
 namespace idbench {
 namespace {
 
-std::string Quote(const std::string& name) { return "'" + name + "'"; }
+// A name from the file as a message shows it (escaped, cut).
+std::string Quote(const std::string& name) { return "'" + PrintableText(name) + "'"; }
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -66,7 +70,8 @@ LinkInertia Lump(const std::vector<PointInertia>& parts) {
 //     named P, or A/P/rest (a package next to or above the URDF);
 //   file:///abs → /abs; an absolute path as is; a relative path against the
 //   URDF's directory.
-// The first existing regular file; nullopt otherwise, with every candidate in
+// The first candidate that exists (a regular file or not: LoadTriangleMesh
+// says what is wrong with it); nullopt otherwise, with every candidate in
 // *looked.
 std::optional<std::filesystem::path> ResolveMeshUri(const std::string& uri, const std::filesystem::path& base_directory,
                                                     std::vector<std::string>* looked) {
@@ -98,7 +103,7 @@ std::optional<std::filesystem::path> ResolveMeshUri(const std::string& uri, cons
   }
   for (const fs::path& c : candidates) {
     std::error_code error;
-    if (fs::is_regular_file(c, error)) return fs::absolute(c, error).lexically_normal();
+    if (fs::exists(c, error)) return fs::absolute(c, error).lexically_normal();
     looked->push_back(c.string());
   }
   return std::nullopt;
@@ -260,44 +265,72 @@ class Loader {
     }
   }
 
+  // Whether a degree-of-freedom joint hangs anywhere below `link` (through
+  // joints of any role). The links form a tree (CheckUrdfDocument), so the
+  // walks here end; they use their own stack, not the call stack, so a long
+  // chain cannot overflow it.
   bool HasDofBelow(const urdf::Link& link) const {
-    for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      if (RoleOf(*joint) == Role::kDof) return true;
-    }
-    for (const urdf::LinkSharedPtr& child : link.child_links) {
-      if (HasDofBelow(*child)) return true;
+    std::vector<const urdf::Link*> stack{&link};
+    while (!stack.empty()) {
+      const urdf::Link& l = *stack.back();
+      stack.pop_back();
+      for (const urdf::JointSharedPtr& joint : l.child_joints) {
+        if (RoleOf(*joint) == Role::kDof) return true;
+      }
+      for (const urdf::LinkSharedPtr& child : l.child_links) stack.push_back(child.get());
     }
     return false;
   }
 
   // Depth first from `link` through degree-of-freedom and rigid joints:
-  // appends the degree-of-freedom joints with none below them to *ends, and
-  // the other-kind joints with a degree of freedom below them to *blocked.
-  // Returns whether a degree-of-freedom joint was reached.
-  bool FindEnds(const urdf::Link& link, std::vector<const urdf::Joint*>* ends,
+  // appends the degree-of-freedom joints with none below them to *ends (after
+  // those below their siblings before them), and the other-kind joints with a
+  // degree of freedom below them to *blocked.
+  void FindEnds(const urdf::Link& link, std::vector<const urdf::Joint*>* ends,
                 std::vector<const urdf::Joint*>* blocked) const {
-    bool reached = false;
-    for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      const urdf::Link& child = *urdf_.getLink(joint->child_link_name);
-      const Role role = RoleOf(*joint);
-      if (role == Role::kOther) {
-        if (HasDofBelow(child)) blocked->push_back(joint.get());
+    // One frame per link on the current path: the next child joint to look
+    // at, whether a degree of freedom was reached below, and the joint it
+    // hangs from.
+    struct Frame {
+      const urdf::Link* link;
+      size_t next = 0;
+      bool reached = false;
+      const urdf::Joint* via = nullptr;
+    };
+    std::vector<Frame> path{{&link}};
+    while (!path.empty()) {
+      Frame& frame = path.back();
+      if (frame.next < frame.link->child_joints.size()) {
+        const urdf::Joint* joint = frame.link->child_joints[frame.next++].get();
+        const urdf::Link& child = *urdf_.getLink(joint->child_link_name);
+        if (RoleOf(*joint) != Role::kOther) {
+          path.push_back({&child, 0, false, joint});
+        } else if (HasDofBelow(child)) {
+          blocked->push_back(joint);
+        }
         continue;
       }
-      const bool below = FindEnds(child, ends, blocked);
-      if (role == Role::kDof && !below) ends->push_back(joint.get());
-      reached = reached || below || role == Role::kDof;
+      // All below this link seen: report to the link above.
+      const Frame done = frame;
+      path.pop_back();
+      if (done.via == nullptr) break;
+      const bool dof = RoleOf(*done.via) == Role::kDof;
+      if (dof && !done.reached) ends->push_back(done.via);
+      path.back().reached = path.back().reached || done.reached || dof;
     }
-    return reached;
   }
 
-  // The first other-kind joint below `link` (null if none).
+  // The first other-kind joint below `link` (null if none), looking at a
+  // link's joints before those below its children.
   const urdf::Joint* FindOtherJoint(const urdf::Link& link) const {
-    for (const urdf::JointSharedPtr& joint : link.child_joints) {
-      if (RoleOf(*joint) == Role::kOther) return joint.get();
-    }
-    for (const urdf::LinkSharedPtr& child : link.child_links) {
-      if (const urdf::Joint* joint = FindOtherJoint(*child)) return joint;
+    std::vector<const urdf::Link*> stack{&link};
+    while (!stack.empty()) {
+      const urdf::Link& l = *stack.back();
+      stack.pop_back();
+      for (const urdf::JointSharedPtr& joint : l.child_joints) {
+        if (RoleOf(*joint) == Role::kOther) return joint.get();
+      }
+      for (auto it = l.child_links.rbegin(); it != l.child_links.rend(); ++it) stack.push_back(it->get());
     }
     return nullptr;
   }
@@ -652,15 +685,16 @@ class Loader {
     if (uri.find("://") == std::string::npos && std::filesystem::path(uri).is_relative()) *written_uri = path->string();
     const std::string key = path->string() + " " + std::to_string(scale.x()) + " " + std::to_string(scale.y()) +
                             " " + std::to_string(scale.z());
+    // A file read (or refused, with its one warning) once: a mesh used by a
+    // <visual> and a <collision> is not read or reported twice.
     if (const auto it = meshes_.find(key); it != meshes_.end()) return it->second;
+    std::shared_ptr<const TriangleMesh>& mesh = meshes_[key];
     try {
-      auto mesh = std::make_shared<const TriangleMesh>(LoadTriangleMesh(path->string(), scale));
-      meshes_[key] = mesh;
-      return mesh;
-    } catch (const std::runtime_error& e) {
-      warnings_.push_back(where + e.what() + "; shape skipped");
-      return nullptr;
+      mesh = std::make_shared<const TriangleMesh>(LoadTriangleMesh(path->string(), scale));
+    } catch (const std::exception& e) {
+      warnings_.push_back(where + e.what() + "; the shapes using it are skipped");
     }
+    return mesh;
   }
 
   const urdf::ModelInterface& urdf_;
@@ -670,7 +704,7 @@ class Loader {
   std::set<std::string> chain_;           // names of the joints that are the model's degrees of freedom
   std::vector<Locked> locked_;            // joints held still, in the order they were merged
   std::vector<std::string> warnings_;
-  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;  // by path and scale
+  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;  // by path and scale; null: refused
 };
 
 // ---- Writing ----
@@ -793,6 +827,7 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
       if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && text.empty()) text = message;
     }
   } first_error;
+  internal::CheckUrdfDocument(xml, source_name);
   console_bridge::useOutputHandler(&first_error);
   urdf::ModelInterfaceSharedPtr urdf;
   try {
@@ -802,7 +837,9 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
     throw std::invalid_argument(source_name + ": not a valid URDF (" + e.what() + ")");
   }
   console_bridge::restorePreviousOutputHandler();
-  if (urdf == nullptr || urdf->getRoot() == nullptr) {
+  // urdfdom logs an element it cannot parse and loads the rest without it:
+  // any error it logs refuses the file.
+  if (urdf == nullptr || urdf->getRoot() == nullptr || !first_error.text.empty()) {
     throw std::invalid_argument(source_name + ": not a valid URDF" +
                                 (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
   }
@@ -811,15 +848,7 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
 }
 
 UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& options) {
-  std::error_code error;
-  std::ifstream file(path, std::ios::binary);
-  if (!file || !std::filesystem::is_regular_file(path, error)) {
-    throw std::invalid_argument(path + ": cannot open the file for reading");
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw std::invalid_argument(path + ": error while reading the file");
-  return LoadUrdfString(text.str(), path, std::filesystem::path(path).parent_path().string(), options);
+  return LoadUrdfString(ReadInputFile(path), path, std::filesystem::path(path).parent_path().string(), options);
 }
 
 std::string WriteUrdf(const RobotModel& model) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <Eigen/Eigenvalues>
@@ -149,7 +150,7 @@ void ExpectRejected(const std::string& xml, const std::vector<std::string>& frag
     ADD_FAILURE() << "expected std::invalid_argument for:\n" << xml;
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
-    EXPECT_EQ(message.rfind(source + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.rfind(source + ":", 0), 0u) << message;  // "SOURCE: " or "SOURCE:LINE: "
     for (const std::string& fragment : fragments) {
       EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << message;
     }
@@ -985,6 +986,147 @@ TEST(UrdfTest, CollisionGeometryIsKeptApartFromVisuals) {
   ASSERT_EQ(again.link(0).shapes.size(), 1u);
   ASSERT_EQ(again.link(0).collision_shapes.size(), 2u);
   ExpectNear(again.link(0).collision_shapes[1].size, l.collision_shapes[1].size, 0.0, "cylinder after the round trip");
+}
+
+// ---- Hostile and broken files (issue 14) ----
+
+// Links joined in a loop: refused naming the joints and the line, not a
+// stack overflow in the walk from the root (this test crashed with SIGSEGV
+// before; the CTest timeout catches a hang).
+TEST(UrdfTest, LoopsAreRefusedNamingTheJointsAndTheLine) {
+  const std::string chain = BareLink("base") + MassLink("a") + MassLink("b") + Joint("j1", "revolute", "base", "a") +
+                            Joint("j2", "revolute", "a", "b");
+  // base → a → b → a: a hangs from two joints (line 7 is j3, line 5 is j1).
+  ExpectRejected(Robot(chain + Joint("j3", "revolute", "b", "a")),
+                 {"<string>:7: joint 'j3': its child link 'a' already hangs from joint 'j1' (line 5)"});
+  // a → b → a apart from the root: each link hangs from one joint.
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + MassLink("b") + Joint("j2", "revolute", "a", "b") +
+                       Joint("j3", "revolute", "b", "a")),
+                 {"<string>:6: joints 'j3', 'j2' form a loop: link 'a' ← 'b' ← 'a'"});
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("self", "revolute", "a", "a")),
+                 {"<string>:4:", "joints 'self' form a loop"});
+}
+
+// A long chain is walked without recursion: 20 000 links on fixed joints
+// below the one revolute joint load as one lumped link of 20 001 kg.
+TEST(UrdfTest, LongChainsLoadWithoutDeepRecursion) {
+  std::string body = BareLink("base") + MassLink("l0") + Joint("j", "continuous", "base", "l0", "");
+  constexpr int kLinks = 20000;
+  for (int k = 1; k <= kLinks; ++k) {
+    const std::string name = "l" + std::to_string(k), parent = "l" + std::to_string(k - 1);
+    body += MassLink(name) + Joint("f" + std::to_string(k), "fixed", parent, name, "");
+  }
+  const RobotModel model = LoadUrdfString(Robot(body)).model;
+  ASSERT_EQ(model.n_links(), 1);
+  EXPECT_EQ(model.link(0).inertia.mass, kLinks + 1.0);
+}
+
+// Every number urdfdom reads is one finite number of the right sign, else
+// the file is refused naming the element, the attribute, the text and the
+// line (urdfdom dropped such elements and loaded the rest, or said "mass must
+// be > 0, got 0.000000" for all of them).
+TEST(UrdfTest, NumbersMustBeFiniteWithTheirSignNamingTheLine) {
+  const std::string links = BareLink("base") + MassLink("a") + Joint("j1", "revolute", "base", "a");
+  for (const std::string mass : {"nan", "inf", "1e400", "heavy", "-1", "1 2"}) {
+    ExpectRejected(Robot(links + MassLink("b", mass) + Joint("j2", "revolute", "a", "b")),
+                   {"<string>:5: link 'b': <mass value>: expected one finite number >= 0, got '" + mass + "'"});
+  }
+  ExpectRejected(Robot(links + MassLink("b", "1", "0.1 0 0 nan 0 0.1") + Joint("j2", "revolute", "a", "b")),
+                 {"<string>:5: link 'b': <inertia iyy>: expected one finite number, got 'nan'"});
+  const std::string b = MassLink("b");
+  for (const std::string limit : {"effort=\"-5\" velocity=\"2\"", "effort=\"5\" velocity=\"-2\""}) {
+    ExpectRejected(Robot(links + b + Joint("j2", "revolute", "a", "b",
+                                             "<limit lower=\"-1\" upper=\"1\" " + limit + "/>")),
+                   {"<string>:6: joint 'j2': <limit ", ">: expected one finite number >= 0, got '-"});
+  }
+  ExpectRejected(Robot(links + b + Joint("j2", "revolute", "a", "b", "<axis xyz=\"0 nan 1\"/>" + kLimit)),
+                 {"<string>:6: joint 'j2': <axis xyz>: expected 3 finite numbers, got '0 nan 1'"});
+  // Geometry urdfdom dropped (so clearance checks never saw it).
+  const auto with_collision = [&](const std::string& geometry) {
+    return Robot(links + "<link name=\"b\">\n<collision><geometry>" + geometry +
+                 "</geometry></collision></link>\n" + Joint("j2", "revolute", "a", "b"));
+  };
+  ExpectRejected(with_collision("<box size=\"-1 nan 1e308\"/>"),
+                 {"<string>:6: link 'b': <box size>: expected 3 finite numbers > 0, got '-1 nan 1e308'"});
+  ExpectRejected(with_collision("<box size=\"1 1 0\"/>"), {"<box size>", "> 0"});
+  ExpectRejected(with_collision("<cylinder radius=\"nan\" length=\"1\"/>"),
+                 {"<string>:6: link 'b': <cylinder radius>: expected one finite number > 0, got 'nan'"});
+  ExpectRejected(with_collision("<sphere radius=\"-0.1\"/>"), {"<sphere radius>", "> 0"});
+  ExpectRejected(with_collision("<mesh filename=\"m.stl\" scale=\"1 0 1\"/>"), {"<mesh scale>", "not 0"});
+}
+
+// What urdfdom cannot parse, even where it loads the rest, refuses the file.
+TEST(UrdfTest, AnElementUrdfdomCannotParseRefusesTheFile) {
+  // A joint of unknown type: urdfdom logs an error.
+  ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("j1", "revolute", "base", "a") + MassLink("b") +
+                       Joint("j2", "sliding", "a", "b")),
+                 {"not a valid URDF", "sliding"});
+}
+
+// Text that is not XML says so with a line, and binary is not echoed raw.
+TEST(UrdfTest, TextThatIsNotXmlIsNamedWithItsLine) {
+  ExpectRejected(std::string("\x00\x01\x02 binary", 10), {"not XML: a NUL byte at offset 0 (a binary file?)"});
+  ExpectRejected("solid cube\nfacet normal", {"not XML: no element in it; it starts with 'solid cube\\nfacet normal'"});
+  ExpectRejected("<robot name=\"r\">\n<link name=\"a\">\n</robot>", {"not XML (line 3"});
+  ExpectRejected("<world/>", {"root element is not <robot>, got <world>"});
+  // A link name with control bytes is echoed escaped.
+  ExpectRejected(Robot("<link name=\"a&#1;b\"><inertial><mass value=\"nan\"/></inertial></link>\n"),
+                 {"link 'a\\x01b'"});
+}
+
+// Input files that are not regular files are refused before reading: a FIFO
+// would block (hang) the reader, /dev/zero never ends.
+TEST(UrdfTest, NonRegularFilesAreRefusedNamingWhatTheyAre) {
+  namespace fs = std::filesystem;
+  const fs::path fifo = fs::temp_directory_path() / ("idbench_urdf_fifo_" + std::to_string(::getpid()));
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const auto& [path, kind] : std::vector<std::pair<std::string, std::string>>{
+           {fifo.string(), "is a FIFO"}, {"/dev/zero", "is a character device"}, {"/tmp", "is a directory"}}) {
+    try {
+      LoadUrdfFile(path);
+      ADD_FAILURE() << "expected std::invalid_argument for " << path;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": " + kind, 0), 0u) << e.what();
+    }
+  }
+  fs::remove(fifo);
+}
+
+// A mesh that is a FIFO, a device or a directory is named as such (it was
+// "not found"), and a bad mesh used by a visual and a collision warns once.
+TEST(UrdfTest, BadMeshesWarnOnceSayingWhatIsWrong) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("idbench_urdf_badmesh_" + std::to_string(::getpid()));
+  fs::create_directories(root / "dir.stl");
+  ASSERT_EQ(::mkfifo((root / "fifo.stl").c_str(), 0600), 0);
+  {
+    // Binary STL: one triangle, a NaN in its second vertex.
+    std::ofstream stl(root / "nan.stl", std::ios::binary);
+    const std::string header(80, ' ');
+    const std::uint32_t count = 1;
+    const float triangle[12] = {0, 0, 1, 0, 0, 0, 1, std::numeric_limits<float>::quiet_NaN(), 0, 0, 1, 0};
+    const std::uint16_t attribute = 0;
+    stl.write(header.data(), 80).write(reinterpret_cast<const char*>(&count), 4);
+    stl.write(reinterpret_cast<const char*>(triangle), sizeof(triangle)).write(reinterpret_cast<const char*>(&attribute), 2);
+  }
+  for (const auto& [file, why] : std::vector<std::pair<std::string, std::string>>{
+           {(root / "fifo.stl").string(), "is a FIFO"},
+           {"/dev/zero", "is a character device"},
+           {(root / "dir.stl").string(), "is a directory"},
+           {(root / "nan.stl").string(), "is not finite"}}) {
+    const std::string mesh = "<geometry><mesh filename=\"" + file + "\"/></geometry>";
+    const std::string xml = Robot(BareLink("base") +
+                                  "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" "
+                                  "ixz=\"0\" iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial><visual>" + mesh +
+                                  "</visual><collision>" + mesh + "</collision></link>\n" +
+                                  Joint("j1", "revolute", "base", "a"));
+    const UrdfLoadResult loaded = LoadUrdfString(xml);
+    ASSERT_EQ(loaded.warnings.size(), 1u) << file;
+    EXPECT_NE(loaded.warnings[0].find(why), std::string::npos) << loaded.warnings[0];
+    EXPECT_EQ(loaded.warnings[0].find("not found"), std::string::npos) << loaded.warnings[0];
+    EXPECT_TRUE(loaded.model.link(0).shapes.empty() && loaded.model.link(0).collision_shapes.empty());
+  }
+  fs::remove_all(root);
 }
 
 }  // namespace

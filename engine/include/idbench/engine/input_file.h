@@ -1,0 +1,32 @@
+// Reading a user's input file within bounds. Only a regular file is read: a
+// FIFO, a device or a directory would block, never end, or mislead. A file
+// larger than MaxInputFileBytes() is refused before anything is read.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace idbench {
+
+// The largest input file idbench reads [bytes]: 1/16 of the machine's
+// physical memory (a parser holds the text and a few times its size in
+// parsed form), or IDBENCH_MAX_INPUT_MB megabytes when that environment
+// variable is set (a positive integer).
+std::uint64_t MaxInputFileBytes();
+
+// The limit as a message shows it: "1536 MB (1/16 of this machine's memory;
+// IDBENCH_MAX_INPUT_MB=N raises it)".
+std::string InputLimitDescription();
+
+// Throws std::invalid_argument starting with `path` when it does not exist, is
+// not a regular file (saying what it is: a directory, FIFO, device, socket),
+// or is larger than MaxInputFileBytes() (naming both sizes and how to raise
+// the limit).
+void CheckInputFile(const std::string& path);
+
+// The whole file after CheckInputFile. Opened without blocking, and checked
+// again once open, so a FIFO swapped in after the check does not hang it.
+// Throws std::invalid_argument as CheckInputFile, and when reading fails.
+std::string ReadInputFile(const std::string& path);
+
+}  // namespace idbench
