@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -15,15 +16,18 @@ namespace {
 constexpr std::uint64_t kMegabyte = 1024 * 1024;
 constexpr const char* kVariable = "IDBENCH_MAX_INPUT_MB";
 
-// The value of IDBENCH_MAX_INPUT_MB in bytes; 0 when unset or not a positive integer.
-std::uint64_t LimitFromEnvironment() {
-  const char* text = std::getenv(kVariable);
+constexpr const char* kLineVariable = "IDBENCH_MAX_LINE_KB";
+
+// The value of an environment variable times `unit` [bytes]; 0 when unset or
+// not a positive integer.
+std::uint64_t LimitFromEnvironment(const char* variable = kVariable, std::uint64_t unit = kMegabyte) {
+  const char* text = std::getenv(variable);
   if (text == nullptr || *text == '\0') return 0;
   char* end = nullptr;
   errno = 0;
-  const unsigned long long megabytes = std::strtoull(text, &end, 10);
-  if (errno != 0 || *end != '\0' || megabytes == 0 || megabytes > UINT64_MAX / kMegabyte) return 0;
-  return megabytes * kMegabyte;
+  const unsigned long long count = std::strtoull(text, &end, 10);
+  if (errno != 0 || *end != '\0' || count == 0 || count > UINT64_MAX / unit) return 0;
+  return count * unit;
 }
 
 // What a file that is not regular is, for a message.
@@ -70,20 +74,20 @@ std::string InputLimitDescription() {
 
 void CheckInputFile(const std::string& path) {
   struct stat status;
-  if (::stat(path.c_str(), &status) != 0) FailErrno(path, "cannot open the file for reading");
+  if (::stat(path.c_str(), &status) != 0) FailErrno(path, "cannot read the file");
   CheckStatus(path, status);
 }
 
 std::string ReadInputFile(const std::string& path) {
   CheckInputFile(path);
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) FailErrno(path, "cannot open the file for reading");
+  if (fd < 0) FailErrno(path, "cannot read the file");
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
   struct stat status;
-  if (::fstat(fd, &status) != 0) FailErrno(path, "cannot open the file for reading");
+  if (::fstat(fd, &status) != 0) FailErrno(path, "cannot read the file");
   CheckStatus(path, status);
   // Read up to one byte past the limit: a file that grew after fstat is caught.
   std::string text;
@@ -101,6 +105,29 @@ std::string ReadInputFile(const std::string& path) {
     }
   }
   return text;
+}
+
+std::size_t MaxLineBytes() {
+  const std::uint64_t bytes = LimitFromEnvironment(kLineVariable, 1024);
+  return bytes > 0 ? static_cast<std::size_t>(bytes) : 64 * 1024;
+}
+
+void CheckLineLengths(std::string_view text, const std::string& source) {
+  const std::size_t limit = MaxLineBytes();
+  int line = 1;
+  for (std::size_t start = 0; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (end - start > limit) {
+      throw std::invalid_argument(source + ":" + std::to_string(line) + ": the line is " +
+                                  std::to_string(end - start) + " bytes, longer than the limit for a line, " +
+                                  std::to_string(limit / 1024) + " KB (" +
+                                  (LimitFromEnvironment(kLineVariable, 1024) > 0
+                                       ? std::string(kLineVariable) + " sets it"
+                                       : std::string("1024 columns of 64 characters")) +
+                                  "; " + kLineVariable + "=N raises it to N KB)");
+    }
+    start = end + 1;
+  }
 }
 
 }  // namespace idbench

@@ -2,7 +2,9 @@
 
 #include <tinyxml.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -70,6 +72,16 @@ class DocumentCheck {
     if (const size_t nul = xml.find('\0'); nul != std::string::npos) {
       throw std::invalid_argument(source_ + ": not a valid URDF: not XML: a NUL byte at offset " + std::to_string(nul) +
                                   " (a binary file?); a URDF is an XML file with a <robot> element");
+    }
+    // TinyXML steps over a UTF-8 sequence by its first byte's length, also
+    // past the end of the text when the sequence is cut (a heap over-read
+    // libFuzzer found): only UTF-8 reaches it.
+    if (const size_t bad = FindInvalidUtf8(xml); bad != std::string::npos) {
+      const int line = 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + static_cast<long>(bad), '\n'));
+      char byte[8];
+      std::snprintf(byte, sizeof(byte), "0x%02x", static_cast<unsigned char>(xml[bad]));
+      Fail(line, std::string("not a valid URDF: byte ") + byte + " at offset " + std::to_string(bad) +
+                     " is not UTF-8; a URDF is UTF-8 text");
     }
     TiXmlDocument document;
     document.Parse(xml.c_str());

@@ -54,7 +54,7 @@ TEST_F(InputFileTest, RefusesWhatIsNotARegularFileSayingWhatItIs) {
   EXPECT_EQ(Refusal(fifo.string()), fifo.string() + ": is a FIFO (named pipe), not a regular file; pass a file");
   EXPECT_EQ(Refusal("/dev/zero"), "/dev/zero: is a character device, not a regular file; pass a file");
   EXPECT_EQ(Refusal(dir_.string()), dir_.string() + ": is a directory, not a regular file; pass a file");
-  EXPECT_EQ(Refusal((dir_ / "missing").string()).rfind((dir_ / "missing").string() + ": cannot open", 0), 0u);
+  EXPECT_EQ(Refusal((dir_ / "missing").string()).rfind((dir_ / "missing").string() + ": cannot read the file (No such file", 0), 0u);
 }
 
 // The limit is 1/16 of physical memory, or IDBENCH_MAX_INPUT_MB; a sparse

@@ -28,5 +28,15 @@ TEST(PrintableTextTest, CutsLongTextGivingItsLength) {
   EXPECT_EQ(PrintableText(std::string(65, 'a')), std::string(64, 'a') + "… (65 bytes)");
 }
 
+TEST(PrintableTextTest, FindsTheFirstByteThatIsNotUtf8) {
+  EXPECT_EQ(FindInvalidUtf8("plain Δq → τ \xef\xbb\xbf"), std::string_view::npos);
+  EXPECT_EQ(FindInvalidUtf8(std::string("a\0b", 3)), std::string_view::npos);  // NUL is UTF-8
+  EXPECT_EQ(FindInvalidUtf8("ab\xce"), 2u);          // a sequence cut by the end
+  EXPECT_EQ(FindInvalidUtf8("ab\xce<"), 2u);         // ... or by an ASCII byte
+  EXPECT_EQ(FindInvalidUtf8("a\x80"), 1u);           // a stray continuation byte
+  EXPECT_EQ(FindInvalidUtf8("Δ\xed\xa0\x80"), 2u);  // a surrogate
+  EXPECT_EQ(FindInvalidUtf8("\xf5\x80\x80\x80"), 0u);  // beyond U+10FFFF
+}
+
 }  // namespace
 }  // namespace idbench

@@ -1069,6 +1069,9 @@ TEST(UrdfTest, TextThatIsNotXmlIsNamedWithItsLine) {
   ExpectRejected("solid cube\nfacet normal", {"not XML: no element in it; it starts with 'solid cube\\nfacet normal'"});
   ExpectRejected("<robot name=\"r\">\n<link name=\"a\">\n</robot>", {"not XML (line 3"});
   ExpectRejected("<world/>", {"root element is not <robot>, got <world>"});
+  // Text that is not UTF-8 (a cut sequence at the end made TinyXML read past
+  // the text: found by tests/fuzz/urdf_fuzzer).
+  ExpectRejected("<robot name=\"r\">\n<link name=\"a\xce", {"<string>:2: not a valid URDF: byte 0xce at offset 30 is not UTF-8"});
   // A link name with control bytes is echoed escaped.
   ExpectRejected(Robot("<link name=\"a&#1;b\"><inertial><mass value=\"nan\"/></inertial></link>\n"),
                  {"link 'a\\x01b'"});

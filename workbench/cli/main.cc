@@ -1,5 +1,8 @@
 // idbench: design robot identification experiments, simulate them in Bullet,
-// identify dynamic parameters. Exit codes: 0 ok, 2 bad usage, 1 failure.
+// identify dynamic parameters. Exit codes, one rule for every command (README
+// "Exit codes"): 0 ok; 2 the options or an input file are wrong (a usage
+// error, or std::invalid_argument from reading or checking the inputs), nothing
+// written; 1 it ran and failed (any other error), nothing written.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
@@ -20,6 +23,7 @@
 #include "idbench/workbench/commands/identify_command.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/robot_library.h"
+#include "idbench/engine/input_file.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 #include "idbench/workbench/formats/log_csv.h"
 #include "idbench/workbench/commands/montecarlo_command.h"
@@ -265,7 +269,7 @@ int ReportCommand(const std::string& out_dir) {
     throw std::runtime_error(results.string() + ": no such file; `idbench report` reads the results.json of " +
                              "`idbench run --out " + out_dir + "` (for identify, use `idbench identify --report`)");
   }
-  idbench::RunOptions options = idbench::RunOptionsFromResultsJson(idbench::ReadTextFile(results), results.string());
+  idbench::RunOptions options = idbench::RunOptionsFromResultsJson(idbench::ReadInputFile(results), results.string());
   options.out_dir = out_dir;
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(results.string() + ": " + why);
@@ -581,7 +585,7 @@ int main(int argc, char** argv) {
       if (!gui.IsValid(&why)) return UsageError(why);
       return idbench::gui::RunGuiCommand(gui);
     }
-  } catch (const UsageException& e) {
+  } catch (const std::invalid_argument& e) {  // also UsageException: the input is wrong
     return UsageError(e.what());
   } catch (const idbench::InfeasibleDesign& e) {
     // Settings that admit no motion are wrong input (nothing ran); a search

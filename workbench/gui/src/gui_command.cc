@@ -5,6 +5,8 @@
 
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/engine/input_file.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 
 namespace idbench::gui {
@@ -15,27 +17,41 @@ bool GuiCommandOptions::IsValid(std::string* why) const {
     return false;
   };
   if (robot.empty()) return fail("--robot: empty");
-  if (out_dir.empty()) return fail("--out: empty path");
   if (width < 64 || width > 8192 || height < 64 || height > 8192)
     return fail("--size: expected WxH within [64, 8192] px, got " + std::to_string(width) + "x" + std::to_string(height));
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !screenshot.empty() && !IsUsableOutputFile(screenshot, "--screenshot", &out_why)) {
+    return fail(out_why);
+  }
   if (!headless && !script.empty()) return fail("--script needs --headless");
   if (frames < 0) return fail("--frames: must be >= 0, got " + std::to_string(frames));
   return true;
 }
 
+// Exit codes as the command line's (README "Exit codes"): 2 for a script or
+// option that is wrong (nothing ran), 1 when a step, a job or an export failed.
 int RunGuiCommand(const GuiCommandOptions& options) {
   if (!options.headless) return RunGuiWindow(options);
+  // Read the script first: a bad one fails before any work.
+  std::vector<ScriptStep> steps;
   try {
-    // Read the script first: a bad one fails before any work.
-    std::vector<ScriptStep> steps;
-    if (!options.script.empty()) steps = ParseGuiScript(ReadTextFile(options.script), options.script);
+    if (!options.script.empty()) steps = ParseGuiScript(ReadInputFile(options.script), options.script);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "idbench gui: %s\n", e.what());
+    return 2;
+  }
+  try {
     HeadlessGui gui({.width = options.width, .height = options.height,
                      .session = {.robot = options.robot, .out_dir = options.out_dir}});
     std::string why;
     const bool ok = RunGuiScript(gui, steps, options.script, &why);
     gui.session().WaitForJobs();
-    for (const SessionMessage& m : gui.session().messages())
-      std::printf("%s%s\n", m.level == SessionMessage::Level::kError ? "error: " : "", m.text.c_str());
+    int errors = 0;
+    for (const SessionMessage& m : gui.session().messages()) {
+      const bool error = m.level == SessionMessage::Level::kError;
+      errors += error ? 1 : 0;
+      std::printf("%s%s\n", error ? "error: " : "", m.text.c_str());
+    }
     if (!ok) {
       std::fprintf(stderr, "idbench gui: %s\n", why.c_str());
       return 1;
@@ -44,6 +60,10 @@ int RunGuiCommand(const GuiCommandOptions& options) {
       gui.RenderFrame();
       gui.WriteScreenshot(options.screenshot);
       std::printf("wrote %s\n", options.screenshot.c_str());
+    }
+    if (errors > 0) {
+      std::fprintf(stderr, "idbench gui: %d error%s in the Messages panel (above)\n", errors, errors == 1 ? "" : "s");
+      return 1;
     }
     return 0;
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/compare_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -110,7 +111,7 @@ bool CompareOptions::IsValid(std::string* why) const {
   if (wrench_noise.size() != 2 || !(wrench_noise[0] > 0.0) || !(wrench_noise[1] > 0.0)) {
     return fail("--wrench-noise: give force and moment sigma, both > 0 (N, N m)");
   }
-  if (out_dir.empty()) return fail("--out: empty path");
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

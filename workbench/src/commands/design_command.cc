@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/limits_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "number_format.h"
@@ -52,10 +53,7 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
   for (double q : home) {
     if (!std::isfinite(q)) return fail("--home: expected finite joint angles [rad]");
   }
-  if (out_dir.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
-    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/gains_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -56,10 +57,7 @@ bool GainsOptions::IsValid(std::string* why) const {
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   if (!preparation().IsValid(why)) return false;
-  if (out_dir.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
-    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

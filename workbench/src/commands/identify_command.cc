@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/identify_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -54,10 +55,7 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   if (!preparation(true).IsValid(why)) return false;
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
-  if (out_dir.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
-    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/montecarlo_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -40,6 +41,8 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
   }
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  std::string out_why;  // --out is optional here
+  if (!out_dir.empty() && !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/render_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -44,9 +45,7 @@ bool RenderOptions::IsValid(std::string* why) const {
   if (!std::isfinite(paper_accel_deg_s2) || paper_accel_deg_s2 <= 0.0) {
     return fail("--accel: must be > 0 deg/s^2, got " + Shortest(paper_accel_deg_s2));
   }
-  if (out.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::is_directory(out, ec)) return fail("--out: '" + out + "' is a directory; expected a .png file");
+  if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
   // Everything but the times against the trajectory, checked once it is known.
   return figure().IsValid(INFINITY, why);
 }

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/run_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -57,10 +58,7 @@ bool RunOptions::IsValid(std::string* why) const {
     return fail("--duration: " + Shortest(duration) + " s is not a whole number of --dt " + Shortest(dt) + " s steps");
   std::string sim_why;
   if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
-  if (out_dir.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
-    return fail("--out: '" + out_dir + "' exists and is not a directory");
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   if (all_samples) return true;
   // Samples lie on the step grid and need the next step for the
   // acceleration: t = n·dt with n in [0, steps − 1].

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/simulate_command.h"
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -25,9 +26,7 @@ bool SimulateOptions::IsValid(std::string* why) const {
   if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
   if (!std::isfinite(paper_accel_deg_s2) || paper_accel_deg_s2 <= 0.0)
     return fail("--accel: must be > 0 deg/s^2, got " + std::to_string(paper_accel_deg_s2));
-  if (out.empty()) return fail("--out: empty path");
-  std::error_code ec;
-  if (std::filesystem::is_directory(out, ec)) return fail("--out: '" + out + "' is a directory; give a file name");
+  if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -1,6 +1,8 @@
 #include "idbench/workbench/formats/joint_log_csv.h"
 
 #include "number_format.h"
+#include "idbench/engine/input_file.h"
+#include "idbench/engine/printable_text.h"
 
 #include <charconv>
 #include <cmath>
@@ -14,6 +16,11 @@
 
 namespace idbench {
 namespace {
+
+// "column C ('name')" for messages, C counted from 1, the name escaped and cut.
+std::string ColumnLabel(size_t c, const std::string& name) {
+  return "column " + std::to_string(c + 1) + " ('" + PrintableText(name) + "')";
+}
 
 // Splits one CSV line on commas (no quoting: every field is a name or a number).
 std::vector<std::string> SplitFields(const std::string& line) {
@@ -204,7 +211,11 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
   };
   std::string why;
   if (!format.IsValid(&why) || !format.IsValidFor(n_dof, &why)) throw std::invalid_argument(why);
-  std::istringstream in(text);
+  // A UTF-8 byte order mark (spreadsheets write one) is not part of the
+  // first column's name.
+  const std::string_view kBom = "\xef\xbb\xbf";
+  std::istringstream in(text.starts_with(kBom) ? text.substr(kBom.size()) : text);
+  CheckLineLengths(text, source);
   std::string line;
   int line_number = 0;
 
@@ -239,7 +250,7 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
   std::vector<ColumnTarget> targets;
   for (size_t c = 0; c < names.size(); ++c) {
     const std::string& name = names[c];
-    const std::string where = "column " + std::to_string(c + 1) + " ('" + name + "')";
+    const std::string where = ColumnLabel(c, name);
     ColumnTarget target{};
     if (!ParseColumnName(name, &target)) {
       fail_columns(where + ": unknown column; expected t, q1..q" + std::to_string(n_dof) +
@@ -320,7 +331,7 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
     // The first line is a header that --columns overrides: skipped.
   } else if (named) {
     in.clear();
-    in.str(text);  // the first line is data: read it again
+    in.str(text.starts_with(kBom) ? text.substr(kBom.size()) : text);  // the first line is data: read it again
     line_number = 0;
   }
   while (std::getline(in, line)) {
@@ -336,8 +347,8 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
       if (targets[c].kind < 0) continue;
       const std::string& f = fields[c];
       const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), values[c]);
-      const std::string where = "column " + std::to_string(c + 1) + " ('" + names[c] + "')";
-      if (f.empty() || ec != std::errc() || ptr != f.data() + f.size()) fail(line_number, where + ": '" + f + "' is not a number");
+      const std::string where = ColumnLabel(c, names[c]);
+      if (f.empty() || ec != std::errc() || ptr != f.data() + f.size()) fail(line_number, where + ": '" + PrintableText(f) + "' is not a number");
       if (!std::isfinite(values[c])) fail(line_number, where + ": " + f + " is not finite");
       if (targets[c].kind >= 1 && targets[c].kind <= 3) values[c] *= to_rad;
       if (targets[c].kind == 1) {
@@ -388,7 +399,7 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
 
 RecordedJointLog ReadRecordedJointLog(const std::string& path, const RobotModel& model, const JointLogFormat& format,
                                       TorqueColumns torques) {
-  return ParseRecordedJointLog(ReadTextFile(path), model, path, format, torques);
+  return ParseRecordedJointLog(ReadInputFile(path), model, path, format, torques);
 }
 
 JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source,
@@ -402,15 +413,6 @@ JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, cons
   }
   if (torques == TorqueColumns::kCurrents) log.tau.resize(0, 0);
   return std::move(log);
-}
-
-std::string ReadTextFile(const std::string& path) {
-  std::error_code ec;
-  std::ifstream file(path, std::ios::binary);
-  if (!file || std::filesystem::is_directory(path, ec)) throw std::invalid_argument(path + ": cannot read the file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
 }
 
 }  // namespace idbench

@@ -1,12 +1,12 @@
 #include "idbench/workbench/formats/limits_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "number_format.h"
+#include "idbench/engine/input_file.h"
+#include "idbench/engine/printable_text.h"
 
 namespace idbench {
 
@@ -28,7 +28,7 @@ std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotMod
     throw std::invalid_argument(source + ": expected an object with a \"joints\" array");
   }
   for (const auto& [key, value] : doc.items()) {
-    if (key != "joints") throw std::invalid_argument(source + ": unknown key '" + key + "'");
+    if (key != "joints") throw std::invalid_argument(source + ": unknown key '" + PrintableText(key) + "'");
   }
   const json& joints = doc["joints"];
   if (static_cast<int>(joints.size()) != model.n_dof()) {
@@ -48,10 +48,10 @@ std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotMod
                       : key == "tau_max" ? &l.tau_max
                                          : nullptr;
       if (!field) {
-        throw std::invalid_argument(where + "." + key + ": unknown key (q_min, q_max, qd_max, qdd_max, tau_max)");
+        throw std::invalid_argument(where + "." + PrintableText(key) + ": unknown key (q_min, q_max, qd_max, qdd_max, tau_max)");
       }
       if (!value.is_number() || !std::isfinite(value.get<double>())) {
-        throw std::invalid_argument(where + "." + key + ": expected a finite number, got " + value.dump());
+        throw std::invalid_argument(where + "." + key + ": expected a finite number, got " + PrintableText(value.dump()));
       }
       *field = value.get<double>();
       if (key != "q_min" && key != "q_max" && !(*field > 0.0)) {
@@ -67,11 +67,7 @@ std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotMod
 }
 
 std::vector<JointLimits> ReadLimitsFile(const std::string& path, const RobotModel& model) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseLimitsJson(text.str(), model, path);
+  return ParseLimitsJson(ReadInputFile(path), model, path);
 }
 
 }  // namespace idbench

@@ -10,8 +10,10 @@
 
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
+#include "idbench/engine/input_file.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 #include "number_format.h"
+#include "idbench/engine/printable_text.h"
 
 namespace idbench {
 namespace {
@@ -34,7 +36,7 @@ class KeyReader {
   KeyReader(const json& object, std::string source) : object_(object), source_(std::move(source)) {}
 
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
-    throw std::invalid_argument(source_ + ": key '" + key + "': " + what);
+    throw std::invalid_argument(source_ + ": key '" + PrintableText(key) + "': " + what);
   }
   const json& Get(const std::string& key) const {
     if (!object_.contains(key)) Fail(key, "missing");
@@ -43,15 +45,15 @@ class KeyReader {
   // A finite number; `positive` requires > 0.
   double Number(const std::string& key, bool positive) const {
     const json& v = Get(key);
-    if (!v.is_number()) Fail(key, "expected a number, got " + v.dump());
+    if (!v.is_number()) Fail(key, "expected a number, got " + PrintableText(v.dump()));
     const double x = v.get<double>();
-    if (positive && !(x > 0.0)) Fail(key, "must be > 0, got " + v.dump());
+    if (positive && !(x > 0.0)) Fail(key, "must be > 0, got " + PrintableText(v.dump()));
     return x;
   }
   bool Bool(const std::string& key, bool fallback) const {
     if (!object_.contains(key)) return fallback;
     const json& v = object_.at(key);
-    if (!v.is_boolean()) Fail(key, "expected true or false, got " + v.dump());
+    if (!v.is_boolean()) Fail(key, "expected true or false, got " + PrintableText(v.dump()));
     return v.get<bool>();
   }
   // An array of `size` numbers (one per joint).
@@ -59,11 +61,11 @@ class KeyReader {
     const json& v = Get(key);
     if (!v.is_array() || static_cast<int>(v.size()) != size) {
       Fail(key, "expected an array of " + std::to_string(size) + " numbers (one per joint of the robot), got " +
-                    (v.is_array() ? std::to_string(v.size()) + " entries" : v.dump()));
+                    (v.is_array() ? std::to_string(v.size()) + " entries" : PrintableText(v.dump())));
     }
     Eigen::VectorXd x(size);
     for (int i = 0; i < size; ++i) {
-      if (!v[static_cast<size_t>(i)].is_number()) Fail(key, "entry " + std::to_string(i + 1) + ": expected a number, got " + v[static_cast<size_t>(i)].dump());
+      if (!v[static_cast<size_t>(i)].is_number()) Fail(key, "entry " + std::to_string(i + 1) + ": expected a number, got " + PrintableText(v[static_cast<size_t>(i)].dump()));
       x[i] = v[static_cast<size_t>(i)].get<double>();
     }
     return x;
@@ -73,21 +75,21 @@ class KeyReader {
     const json& v = Get(key);
     if (!v.is_array() || static_cast<int>(v.size()) != rows) {
       Fail(key, "expected " + std::to_string(rows) + " rows (one per joint of the robot), got " +
-                    (v.is_array() ? std::to_string(v.size()) : v.dump()));
+                    (v.is_array() ? std::to_string(v.size()) : PrintableText(v.dump())));
     }
     if (cols < 0) cols = v[0].is_array() ? static_cast<int>(v[0].size()) : 0;
-    if (cols < 1) Fail(key, "row 1: expected an array of at least one coefficient, got " + v[0].dump());
+    if (cols < 1) Fail(key, "row 1: expected an array of at least one coefficient, got " + PrintableText(v[0].dump()));
     Eigen::MatrixXd m(rows, cols);
     for (int i = 0; i < rows; ++i) {
       const json& row = v[static_cast<size_t>(i)];
       const std::string where = "row " + std::to_string(i + 1) + ": ";
       if (!row.is_array() || static_cast<int>(row.size()) != cols) {
         Fail(key, where + "expected " + std::to_string(cols) + " numbers (one per harmonic), got " +
-                      (row.is_array() ? std::to_string(row.size()) : row.dump()));
+                      (row.is_array() ? std::to_string(row.size()) : PrintableText(row.dump())));
       }
       for (int c = 0; c < cols; ++c) {
         const json& x = row[static_cast<size_t>(c)];
-        if (!x.is_number()) Fail(key, where + "entry " + std::to_string(c + 1) + ": expected a number, got " + x.dump());
+        if (!x.is_number()) Fail(key, where + "entry " + std::to_string(c + 1) + ": expected a number, got " + PrintableText(x.dump()));
         m(i, c) = x.get<double>();
       }
     }
@@ -190,7 +192,7 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
     return std::make_unique<ConstantAccelerationTrajectory>(keys.Vector("q0", n_dof), keys.Vector("qd0", n_dof),
                                                             keys.Vector("qdd", n_dof), duration);
   }
-  keys.Fail("family", "expected \"fourier\" or \"constant-acceleration\", got " + family.dump());
+  keys.Fail("family", "expected \"fourier\" or \"constant-acceleration\", got " + PrintableText(family.dump()));
 }
 
 std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz, bool derivatives,
@@ -247,9 +249,9 @@ bool IsTrajectoryFile(const std::string& name_or_path) {
 
 std::unique_ptr<Trajectory> LoadTrajectoryArg(const std::string& name_or_path, const RobotModel& model,
                                               const BuiltinMotionOptions& builtin) {
-  if (EndsWith(name_or_path, ".json")) return ParseTrajectoryJson(ReadTextFile(name_or_path), model.n_dof(), name_or_path);
+  if (EndsWith(name_or_path, ".json")) return ParseTrajectoryJson(ReadInputFile(name_or_path), model.n_dof(), name_or_path);
   if (EndsWith(name_or_path, ".csv")) {
-    return std::make_unique<SampledTrajectory>(ParseTrajectoryCsv(ReadTextFile(name_or_path), model, name_or_path));
+    return std::make_unique<SampledTrajectory>(ParseTrajectoryCsv(ReadInputFile(name_or_path), model, name_or_path));
   }
   const std::vector<std::string> names = BuiltinMotionNames();
   if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {

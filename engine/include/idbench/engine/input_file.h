@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace idbench {
 
@@ -28,5 +30,15 @@ void CheckInputFile(const std::string& path);
 // again once open, so a FIFO swapped in after the check does not hang it.
 // Throws std::invalid_argument as CheckInputFile, and when reading fails.
 std::string ReadInputFile(const std::string& path);
+
+// The longest line idbench reads [bytes]: 64 KiB, room for the 1024 columns
+// a joint log may have at 64 characters each (a double needs at most 24), or
+// IDBENCH_MAX_LINE_KB kibibytes when that is set.
+std::size_t MaxLineBytes();
+
+// Throws std::invalid_argument "SOURCE:LINE: the line is N bytes, longer than
+// the limit ..." for the first line of `text` longer than MaxLineBytes()
+// (naming how to raise it), before a parser copies or splits it.
+void CheckLineLengths(std::string_view text, const std::string& source);
 
 }  // namespace idbench

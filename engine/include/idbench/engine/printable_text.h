@@ -14,4 +14,9 @@ namespace idbench {
 // most `max_bytes` of it kept, then "… (N bytes)" giving the full length.
 std::string PrintableText(std::string_view text, std::size_t max_bytes = 64);
 
+// The offset of the first byte of `text` that does not start a valid UTF-8
+// sequence (a stray continuation byte, a cut or overlong sequence, a
+// surrogate); npos when all of it is UTF-8.
+std::size_t FindInvalidUtf8(std::string_view text);
+
 }  // namespace idbench

@@ -88,8 +88,5 @@ RecordedJointLog ReadRecordedJointLog(const std::string& path, const RobotModel&
 JointLog ParseJointLogCsv(const std::string& text, const RobotModel& model, const std::string& source,
                           TorqueColumns torques = TorqueColumns::kRequired);
 
-// The whole content of a text file. Throws std::invalid_argument
-// "path: cannot read the file" when it is missing, a directory or unreadable.
-std::string ReadTextFile(const std::string& path);
 
 }  // namespace idbench
