@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/resource_limits.h"
 #include "idbench/excitation/design_problem.h"
 #include "idbench/excitation/home_pose.h"
 #include "idbench/ident/least_squares.h"
@@ -290,7 +291,10 @@ bool DesignOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (harmonics < 1 || harmonics > 50) return fail("--harmonics must be in 1..50, got " + std::to_string(harmonics));
+  if (harmonics < 1 || harmonics > FourierSeriesTrajectory::kMaxHarmonics) {
+    return fail("--harmonics must be in 1.." + std::to_string(FourierSeriesTrajectory::kMaxHarmonics) + ", got " +
+                std::to_string(harmonics));
+  }
   if (!(f0 > 0.0) || !(f0 <= 100.0)) return fail(Format("--f0 must be in (0, 100] Hz, got %g", f0));
   if (!(duration >= 0.0) || !std::isfinite(duration)) return fail(Format("--duration must be >= 0 s, got %g", duration));
   const double top = f0 * harmonics * period_duration();  // periods of the top harmonic
@@ -299,7 +303,10 @@ bool DesignOptions::IsValid(std::string* why) const {
                        std::ceil(8 * top), f0 * harmonics, samples));
   }
   if (starts < 1) return fail("--starts must be >= 1, got " + std::to_string(starts));
-  if (threads < 1) return fail("--threads must be >= 1, got " + std::to_string(threads));
+  if (threads < 1 || threads > MaxThreads()) {
+    return fail("--threads must be in 1.." + std::to_string(MaxThreads()) + " (4 per hardware thread), got " +
+                std::to_string(threads));
+  }
   if (max_evaluations < 1) return fail("--max-evaluations must be >= 1");
   if (!(max_seconds >= 0.0)) return fail("--max-time must be >= 0");
   if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
@@ -575,6 +582,17 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   CheckDesignLimits(regressor.model(), limits);
+  // What the samples and starts hold, against the memory budget, before any
+  // work: per sample the regressor rows of every thread's workspace (two
+  // copies: value and gradient), the limit rows and the basis; per start its
+  // coefficient vectors.
+  const double n = regressor.model().n_dof(), p = static_cast<double>(regressor.parameter_names().size());
+  const double coefficients = 2.0 * options.harmonics + 6.0;
+  CheckFitsInMemory("--samples", options.samples, "samples",
+                    8.0 * (2.0 * n * p * options.threads + 4.0 * n * coefficients + 3.0 * coefficients),
+                    "the regressor rows, limit rows and basis of one sample");
+  CheckFitsInMemory("--starts", options.starts, "starts", 8.0 * 4.0 * n * coefficients + 512.0,
+                    "the coefficients of one start");
   const auto t_begin = std::chrono::steady_clock::now();
   DesignProblem problem(regressor, limits, options);
   Eigen::VectorXd lower, upper;

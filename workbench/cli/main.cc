@@ -266,7 +266,7 @@ int ReportCommand(const std::string& out_dir) {
   const std::filesystem::path dir(out_dir);
   const std::filesystem::path results = dir / "results.json";
   if (!std::filesystem::is_regular_file(results)) {
-    throw std::runtime_error(results.string() + ": no such file; `idbench report` reads the results.json of " +
+    throw std::invalid_argument(results.string() + ": no such file; `idbench report` reads the results.json of " +
                              "`idbench run --out " + out_dir + "` (for identify, use `idbench identify --report`)");
   }
   idbench::RunOptions options = idbench::RunOptionsFromResultsJson(idbench::ReadInputFile(results), results.string());

@@ -219,10 +219,10 @@ TEST_F(CliTest, VendorUrdfWithGripperAndPointMassLinkLoads) {
   EXPECT_EQ(header.rfind("t,q1,q2,qd1,", 0), 0u) << header;
 
   r = Run(simulate + " --lock finger1=0.05");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // options that do not fit the file
   EXPECT_NE(r.err.find("vendor.urdf: --lock finger1=0.05: outside the <limit>"), std::string::npos) << r.err;
   r = Run(simulate + " --lock wrist=0");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // options that do not fit the file
   EXPECT_NE(r.err.find("joints that can be locked: 'finger1', 'finger2', 'j1', 'j2', 'j3'"), std::string::npos) << r.err;
   r = Run(simulate + " --lock finger1");
   EXPECT_EQ(r.exit_code, 2);

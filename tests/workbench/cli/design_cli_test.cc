@@ -144,7 +144,7 @@ TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
 TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
   const std::string out = " --out " + (dir_ / "d").string();
   Result r = Run("design --robot paper6r" + out);  // the robot file has no velocity limits
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // a wrong input file
   EXPECT_NE(r.err.find("joint 1 ('O1'): the velocity limit qd_max must be finite and > 0"), std::string::npos)
       << r.err;
   r = Run("design --robot puma560 --harmonics 0" + out);
@@ -155,11 +155,11 @@ TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
   EXPECT_NE(r.err.find("--f0"), std::string::npos) << r.err;
   std::ofstream(dir_ / "zero.json") << R"({"joints": [{}, {"qd_max": 0}, {}, {}, {}, {}]})";
   r = Run("design --robot puma560 --limits " + (dir_ / "zero.json").string() + out);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // a wrong input file
   EXPECT_NE(r.err.find("zero.json: joints[1].qd_max: must be > 0, got 0"), std::string::npos) << r.err;
   std::ofstream(dir_ / "order.json") << R"({"joints": [{"q_min": 1, "q_max": -1}, {}, {}, {}, {}, {}]})";
   r = Run("design --robot puma560 --limits " + (dir_ / "order.json").string() + out);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // a wrong input file
   EXPECT_NE(r.err.find("joints[0]: q_min = 1 must be below q_max = -1 rad"), std::string::npos) << r.err;
   r = Run("design --robot puma560 --algorithm newton" + out);
   EXPECT_EQ(r.exit_code, 2);

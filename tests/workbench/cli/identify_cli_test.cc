@@ -240,7 +240,7 @@ TEST_F(IdentifyCliTest, BadLogsNameLineAndColumn) {
     std::ofstream(path) << c.text;
     const fs::path out = dir_ / ("out_" + c.name);
     const Result r = Run("identify --robot puma560 --data " + path.string() + " --out " + out.string());
-    EXPECT_EQ(r.exit_code, 1) << c.name;
+    EXPECT_EQ(r.exit_code, 2) << c.name;  // the input is wrong
     EXPECT_NE(r.err.find(path.string()), std::string::npos) << c.name << ": " << r.err;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.name << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.name;
@@ -250,7 +250,7 @@ TEST_F(IdentifyCliTest, BadLogsNameLineAndColumn) {
   EXPECT_EQ(Run("identify --robot puma560 --data x.csv --friction sticky").exit_code, 2);
   EXPECT_EQ(Run("identify --robot puma560 --data x.csv --model per-body").exit_code, 2);
   const Result unknown = Run("identify --robot nosuch --data x.csv");
-  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("robot 'nosuch'"), std::string::npos);
   EXPECT_EQ(Run("simulate --robot puma560 --rate 300 --out " + (dir_ / "x.csv").string()).exit_code, 2);
 }
@@ -361,7 +361,7 @@ TEST_F(RealLogCliTest, HeaderlessCurrentsWithGainsAndTimeWindow) {
   const nlohmann::json c = Json(dir_ / "c" / "identified.json");
   std::printf("without the window: fit %.3g, base error %.3g\n", c["fit"]["relative_error"].get<double>(), BaseError(c));
   EXPECT_GT(c["fit"]["relative_error"].get<double>(), 5.0 * b["fit"]["relative_error"].get<double>());
-  // Currents without gains, a window outside the log, a gap: one message each, exit 1, nothing written.
+  // Currents without gains, a window outside the log, a gap: one message each, exit 2, nothing written.
   struct Case {
     std::string args, expected;
   };
@@ -374,7 +374,7 @@ TEST_F(RealLogCliTest, HeaderlessCurrentsWithGainsAndTimeWindow) {
   };
   for (const Case& c : cases) {
     const Result bad = Run("identify --robot puma560 --data " + path.string() + " " + c.args + " --out " + (dir_ / "bad").string());
-    EXPECT_EQ(bad.exit_code, 1) << c.args;
+    EXPECT_EQ(bad.exit_code, 2) << c.args;
     EXPECT_NE(bad.err.find(c.expected), std::string::npos) << bad.err;
     EXPECT_EQ(bad.err.find("error:"), bad.err.rfind("error:")) << "printed once: " << bad.err;
     EXPECT_FALSE(fs::exists(dir_ / "bad"));

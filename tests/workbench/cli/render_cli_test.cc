@@ -91,7 +91,7 @@ TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
       {"--size 4000x4000", 2, "--size: the figure would have 128000000 pixels"},
       {"--size big", 2, "--size: expected WxH in pixels"},
       {"--layout diagonal", 2, "--layout: expected 'grid' or 'strip', got 'diagonal'"},
-      {"--trajectory nowhere.json", 1, "nowhere.json"},
+      {"--trajectory nowhere.json", 2, "nowhere.json"},  // a wrong input: exit 2
   };
   for (const Case& c : cases) {
     const Result r = Run("render " + c.args + " --out " + out.string());

@@ -100,7 +100,7 @@ TEST_F(ReportCliTest, IdentifyReportWithValidationPlotsTheHeldOutTorques) {
 
 TEST_F(ReportCliTest, ReportWithoutResultsSaysWhatIsMissingAndWritesNothing) {
   const Result r = Run("report --out " + dir_.string() + "/empty");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // the input is missing
   EXPECT_NE(r.err.find("results.json: no such file"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "empty"));
   EXPECT_EQ(Run("report").exit_code, 2);  // --out is required

@@ -95,7 +95,7 @@ TEST_F(TrajectoryCliTest, SimulateFollowsAJsonTrajectoryFile) {
   EXPECT_LT(diff, 1e-4);  // one more tracking lag
 }
 
-// A bad file: exit 1, one message naming the file and the key, nothing written.
+// A bad file: exit 2 (the input is wrong), one message naming the file and the key, nothing written.
 TEST_F(TrajectoryCliTest, BadTrajectoryFileNamesTheProblem) {
   const fs::path bad = dir_ / "bad.json";
   std::ofstream(bad) << FourierJson(0.0);
@@ -114,7 +114,7 @@ TEST_F(TrajectoryCliTest, BadTrajectoryFileNamesTheProblem) {
   };
   for (const Case& c : cases) {
     const Result r = Run(c.command);
-    EXPECT_EQ(r.exit_code, 1) << c.command;
+    EXPECT_EQ(r.exit_code, 2) << c.command;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.command << "\n" << r.err;
     EXPECT_EQ(r.err.find("error:"), r.err.rfind("error:")) << "one message: " << r.err;
     EXPECT_FALSE(fs::exists(out));

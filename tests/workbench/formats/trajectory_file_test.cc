@@ -255,9 +255,9 @@ TEST(TrajectoryFileTest, TrajectoryArgIsABuiltinNameOrAFile) {
   EXPECT_LT((from_csv->At(2.0025).q - series.At(2.0025).q).norm(), 1e-13);
 
   const std::string missing = (dir / "missing.json").string();
-  EXPECT_EQ(ExpectInvalid([&] { LoadTrajectoryArg(missing, puma, builtin); }), missing + ": cannot read the file");
+  EXPECT_EQ(ExpectInvalid([&] { LoadTrajectoryArg(missing, puma, builtin); }), missing + ": cannot read the file (No such file or directory)");
   EXPECT_EQ(ExpectInvalid([&] { LoadTrajectoryArg(dir.string() + "/.csv", puma, builtin); }),
-            dir.string() + "/.csv: cannot read the file");
+            dir.string() + "/.csv: cannot read the file (No such file or directory)");
   for (const std::string bad : {"sideways", "motion.txt"}) {
     EXPECT_EQ(ExpectInvalid([&] { LoadTrajectoryArg(bad, puma, builtin); }),
               "trajectory '" + bad + "': not a built-in motion (paper, general, general-reversed) nor a file "

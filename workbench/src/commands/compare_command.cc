@@ -1,6 +1,5 @@
 #include "idbench/workbench/commands/compare_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/design_regressor.h"
@@ -103,7 +103,9 @@ bool CompareOptions::IsValid(std::string* why) const {
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
   if (samples < 4) return fail("--samples: must be >= 4, got " + std::to_string(samples));
-  if (trials < 2) return fail("--trials: must be >= 2, got " + std::to_string(trials));
+  if (trials < 2 || trials > kMaxTrials) {
+    return fail("--trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
+  }
   if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
   for (double s : tau_noise) {
     if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
@@ -116,6 +118,7 @@ bool CompareOptions::IsValid(std::string* why) const {
 }
 
 CompareReport RunCompare(const RobotModel& model, const CompareOptions& options) {
+  CheckRegressorSamples("--samples", options.samples, model.n_dof());
   const bool per_body = options.model == "per-body";
   const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
                                              : DesignRegressor::JointTorque(model, *ParseFrictionTerms(options.friction, nullptr));

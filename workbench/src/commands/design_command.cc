@@ -96,6 +96,7 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::vector<JointLimits>& limits, const DesignControl& observer) {
   CheckDesignLimits(model, limits);
+  CheckTrajectoryCsvRate(options.design.period_duration(), options.csv_rate_hz, model.n_dof());  // before the design
   const DesignRegressor regressor = options.MakeRegressor(model);
   const DesignOptions design = options.Resolved();
 

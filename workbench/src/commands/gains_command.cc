@@ -1,12 +1,12 @@
 #include "idbench/workbench/commands/gains_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
 
 namespace idbench {

@@ -1,6 +1,5 @@
 #include "idbench/workbench/commands/identify_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 #include "number_format.h"

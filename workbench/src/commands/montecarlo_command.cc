@@ -1,12 +1,13 @@
 #include "idbench/workbench/commands/montecarlo_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <stdexcept>
 
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/engine/resource_limits.h"
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
 #include "number_format.h"
@@ -32,7 +33,9 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (trials < 2 || trials > 100000) return fail("--trials: must be in [2, 100000], got " + std::to_string(trials));
+  if (trials < 2 || trials > kMaxTrials) {
+    return fail("--trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
+  }
   if (samples < 2) return fail("--samples: must be >= 2, got " + std::to_string(samples));
   if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
   if (tau_noise.empty()) return fail("--tau-noise: give one value or one per joint");
@@ -46,8 +49,15 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
   return true;
 }
 
+void CheckRegressorSamples(const std::string& option, double samples, int n_dof) {
+  const double n = n_dof;
+  CheckFitsInMemory(option, samples, "samples", 8.0 * (2.0 * (6.0 * n) * (14.0 * n) + 2.0 * (1.0 + 4.0 * n)),
+                    "two logs and their regressor rows");
+}
+
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options) {
   const int n = model.n_dof();
+  CheckRegressorSamples("--samples", options.samples, n);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
   const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
   const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);

@@ -1,11 +1,11 @@
 #include "idbench/workbench/commands/render_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/render/osmesa_context.h"
 #include "idbench/render/png_codec.h"
 #include "idbench/render/scene_renderer.h"

@@ -1,6 +1,5 @@
 #include "idbench/workbench/commands/run_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +8,7 @@
 #include <numbers>
 #include <set>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "number_format.h"
 #include "idbench/workbench/formats/trajectory_file.h"

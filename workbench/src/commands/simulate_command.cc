@@ -1,11 +1,11 @@
 #include "idbench/workbench/commands/simulate_command.h"
 
-#include "idbench/workbench/formats/atomic_file.h"
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <stdexcept>
 
+#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 
 namespace idbench {

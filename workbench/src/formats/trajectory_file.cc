@@ -11,6 +11,7 @@
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/resource_limits.h"
 #include "idbench/workbench/formats/joint_log_csv.h"
 #include "number_format.h"
 #include "idbench/engine/printable_text.h"
@@ -182,6 +183,10 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
     const bool rest_to_rest = keys.Bool("rest_to_rest", false);
     Eigen::VectorXd q0 = keys.Vector("q0", n_dof);
     Eigen::MatrixXd a = keys.Matrix("a", n_dof, -1);
+    if (a.cols() > FourierSeriesTrajectory::kMaxHarmonics) {
+      keys.Fail("a", std::to_string(a.cols()) + " harmonics, at most " +
+                         std::to_string(FourierSeriesTrajectory::kMaxHarmonics) + " (as idbench design)");
+    }
     Eigen::MatrixXd b = keys.Matrix("b", n_dof, static_cast<int>(a.cols()));
     return std::make_unique<FourierSeriesTrajectory>(std::move(q0), std::move(a), std::move(b), f0, duration,
                                                      rest_to_rest);
@@ -195,10 +200,19 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
   keys.Fail("family", "expected \"fourier\" or \"constant-acceleration\", got " + PrintableText(family.dump()));
 }
 
+void CheckTrajectoryCsvRate(double duration, double rate_hz, int n_dof) {
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
+    throw std::invalid_argument("--rate: expected a rate > 0 Hz, got " + Shortest(rate_hz));
+  }
+  // Each row: t and n values of q, qd, qdd as text (at most 25 characters
+  // each), and the log that holds them (8 bytes each).
+  CheckFitsInMemory("--rate " + Shortest(rate_hz), std::floor(duration * rate_hz + 1e-9) + 1,
+                    "rows of trajectory.csv", (25.0 + 8.0) * (1 + 3 * n_dof), "t, q, qd, qdd as text and as numbers");
+}
+
 std::string FormatTrajectoryCsv(const Trajectory& trajectory, double rate_hz, bool derivatives,
                                 const std::vector<std::string>& joint_names) {
-  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz))
-    throw std::invalid_argument("trajectory CSV: expected a rate > 0 Hz, got " + std::to_string(rate_hz));
+  CheckTrajectoryCsvRate(trajectory.duration(), rate_hz, trajectory.n_dof());
   if (!joint_names.empty() && static_cast<int>(joint_names.size()) != trajectory.n_dof()) {
     throw std::invalid_argument("trajectory CSV: expected " + std::to_string(trajectory.n_dof()) + " joint names, got " +
                                 std::to_string(joint_names.size()));
@@ -243,13 +257,43 @@ SampledTrajectory ParseTrajectoryCsv(const std::string& text, const RobotModel& 
   return SampledTrajectory(log.t, log.q.transpose(), log.qd.transpose(), log.qdd.transpose());
 }
 
+namespace {
+
+// A motion from a file must be one a robot could follow and a double can
+// hold: q, qd, qdd finite and |q| <= 1e6 rad (where doubles still resolve
+// 1e-10 rad) at 1001 instants over its duration. (f0 = 1e-300 in a Fourier
+// file gives q ≈ -1.6e297 rad.)
+void CheckMotionIsUsable(const Trajectory& motion, const std::string& source) {
+  constexpr double kMaxAngle = 1e6;  // [rad]
+  JointState state(motion.n_dof());
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = motion.duration() * k / 1000.0;
+    motion.Evaluate(t, &state);
+    for (int j = 0; j < motion.n_dof(); ++j) {
+      const bool finite = std::isfinite(state.q[j]) && std::isfinite(state.qd[j]) && std::isfinite(state.qdd[j]);
+      if (!finite || std::abs(state.q[j]) > kMaxAngle) {
+        throw std::invalid_argument(source + ": at t = " + Shortest(t) + " s joint " + std::to_string(j + 1) +
+                                    " has q = " + Shortest(state.q[j]) + " rad, qd = " + Shortest(state.qd[j]) +
+                                    ", qdd = " + Shortest(state.qdd[j]) +
+                                    ": expected finite values and |q| <= 1e6 rad; check f0 and the coefficients");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 bool IsTrajectoryFile(const std::string& name_or_path) {
   return EndsWith(name_or_path, ".json") || EndsWith(name_or_path, ".csv");
 }
 
 std::unique_ptr<Trajectory> LoadTrajectoryArg(const std::string& name_or_path, const RobotModel& model,
                                               const BuiltinMotionOptions& builtin) {
-  if (EndsWith(name_or_path, ".json")) return ParseTrajectoryJson(ReadInputFile(name_or_path), model.n_dof(), name_or_path);
+  if (EndsWith(name_or_path, ".json")) {
+    std::unique_ptr<Trajectory> motion = ParseTrajectoryJson(ReadInputFile(name_or_path), model.n_dof(), name_or_path);
+    CheckMotionIsUsable(*motion, name_or_path);
+    return motion;
+  }
   if (EndsWith(name_or_path, ".csv")) {
     return std::make_unique<SampledTrajectory>(ParseTrajectoryCsv(ReadInputFile(name_or_path), model, name_or_path));
   }

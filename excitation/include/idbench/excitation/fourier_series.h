@@ -27,6 +27,10 @@ struct FourierBasis {
 
 class FourierSeriesTrajectory final : public Trajectory {
  public:
+  // The most harmonics `design` searches and a trajectory file may hold: every
+  // evaluation costs O(H·n), and a log is evaluated at every step.
+  static constexpr int kMaxHarmonics = 50;
+
   // a, b: n_dof × H coefficient matrices [rad/s]; q0: offsets [rad];
   // f0 > 0 [Hz]; duration > 0 [s]; rest_to_rest adds the quintic above.
   // Throws std::invalid_argument otherwise.

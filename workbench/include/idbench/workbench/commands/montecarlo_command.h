@@ -43,6 +43,16 @@ struct MonteCarloReport {
   int worst_sigma_index = 0;
 };
 
+// The most Monte-Carlo trials montecarlo and compare run (each costs one
+// weighted least-squares fit).
+constexpr int kMaxTrials = 100000;
+
+// Throws std::invalid_argument naming `option` (--samples) when `samples`
+// samples of simulated log and regressor rows (at most 6 rows of 14 parameters
+// per joint: per-body or torque with friction) would not fit the memory budget
+// (idbench/engine/resource_limits.h).
+void CheckRegressorSamples(const std::string& option, double samples, int n_dof);
+
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options);
 std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report);
 std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCarloReport& report);

@@ -34,6 +34,11 @@ std::string FormatTrajectoryJson(const Trajectory& trajectory);
 // that do not match n_dof (or a and b with different H), f0 <= 0 or duration <= 0.
 std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_dof, const std::string& source);
 
+// Throws std::invalid_argument naming --rate when a trajectory CSV of
+// `duration` [s] at `rate_hz` would not fit the memory budget
+// (idbench/engine/resource_limits.h), or the rate is not > 0 and finite.
+void CheckTrajectoryCsvRate(double duration, double rate_hz, int n_dof);
+
 // Samples at t = k/rate_hz for k = 0..⌊duration·rate_hz⌋ (a last sample within
 // 1e-9 of the end counts), columns t, q1..qn, qd1..qdn, qdd1..qddn (without
 // derivatives: t, q1..qn). With joint_names (n_dof of them) the columns are
