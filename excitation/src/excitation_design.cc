@@ -577,22 +577,25 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
 
 }  // namespace
 
-DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
-                              const DesignOptions& options, const DesignControl& control) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument(why);
-  CheckDesignLimits(regressor.model(), limits);
-  // What the samples and starts hold, against the memory budget, before any
-  // work: per sample the regressor rows of every thread's workspace (two
-  // copies: value and gradient), the limit rows and the basis; per start its
-  // coefficient vectors.
-  const double n = regressor.model().n_dof(), p = static_cast<double>(regressor.parameter_names().size());
+void CheckDesignFitsInMemory(const DesignRegressor& regressor, const DesignOptions& options) {
+  // Per sample the regressor rows of every thread's workspace (two copies:
+  // value and gradient), the limit rows and the basis; per start its
+  // coefficient vectors (an estimate from above).
+  const double n = regressor.model().n_dof(), p = regressor.n_parameters();
   const double coefficients = 2.0 * options.harmonics + 6.0;
   CheckFitsInMemory("--samples", options.samples, "samples",
                     8.0 * (2.0 * n * p * options.threads + 4.0 * n * coefficients + 3.0 * coefficients),
                     "the regressor rows, limit rows and basis of one sample");
   CheckFitsInMemory("--starts", options.starts, "starts", 8.0 * 4.0 * n * coefficients + 512.0,
-                    "the coefficients of one start");
+                    "the coefficients and progress of one start");
+}
+
+DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+                              const DesignOptions& options, const DesignControl& control) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  CheckDesignLimits(regressor.model(), limits);
+  CheckDesignFitsInMemory(regressor, options);
   const auto t_begin = std::chrono::steady_clock::now();
   DesignProblem problem(regressor, limits, options);
   Eigen::VectorXd lower, upper;

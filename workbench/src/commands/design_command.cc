@@ -99,6 +99,7 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   CheckTrajectoryCsvRate(options.design.period_duration(), options.csv_rate_hz, model.n_dof());  // before the design
   const DesignRegressor regressor = options.MakeRegressor(model);
   const DesignOptions design = options.Resolved();
+  CheckDesignFitsInMemory(regressor, design);  // before the progress state per start
 
   // Progress: at most one line per start every second.
   std::mutex mutex;

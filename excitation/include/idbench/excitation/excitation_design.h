@@ -168,6 +168,13 @@ class InfeasibleDesign : public std::runtime_error {
 std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
                                           bool before_search);
 
+// Throws std::invalid_argument naming --samples or --starts when what the
+// design holds for them (per sample: every thread's regressor rows, the limit
+// rows, the basis; per start: its coefficients) would not fit the memory
+// budget of idbench/engine/resource_limits.h. DesignExcitation checks it first;
+// a caller that allocates per start checks it before.
+void CheckDesignFitsInMemory(const DesignRegressor& regressor, const DesignOptions& options);
+
 // Runs the design. Throws std::invalid_argument for invalid options or
 // limits (see above), InfeasibleDesign when the settings admit no motion or
 // no start reached a feasible point, std::runtime_error when the feasible
