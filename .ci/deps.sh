@@ -3,14 +3,15 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config
           libbullet-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
-          liburdfdom-dev libassimp-dev libnlopt-cxx-dev
+          liburdfdom-dev libtinyxml-dev libassimp-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
           libdsdp-dev                 # the tests' second SDP solver
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           libgtest-dev libbenchmark-dev
           xvfb xauth libgl1-mesa-dri  # the windowed GUI's smoke test runs under Xvfb
-          poppler-utils)              # pdfinfo: the report tests open the PDFs
+          poppler-utils               # pdfinfo: the report tests open the PDFs
+          clang-16 libclang-rt-16-dev)  # the sanitizer build and the libFuzzer harnesses (.ci/sanitizers)
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
 # Only refresh the package lists when something is missing.

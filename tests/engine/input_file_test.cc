@@ -76,5 +76,23 @@ TEST_F(InputFileTest, RefusesFilesOverTheLimitNamingItAndHowToRaiseIt) {
   EXPECT_EQ(MaxInputFileBytes(), memory / 16);
 }
 
+// Lines: 64 KiB by default (1024 columns of 64 characters), or
+// IDBENCH_MAX_LINE_KB; the first line over it is named.
+TEST_F(InputFileTest, LinesOverTheLimitAreNamedWithTheLimit) {
+  EXPECT_EQ(MaxLineBytes(), 65536u);
+  const std::string text = "short\n" + std::string(65536, 'x') + "\n" + std::string(65537, 'y') + "\n";
+  try {
+    CheckLineLengths(text, "f.csv");
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "f.csv:3: the line is 65537 bytes, longer than the limit for a line, 64 KB (1024 columns "
+                           "of 64 characters; IDBENCH_MAX_LINE_KB=N raises it to N KB)");
+  }
+  ::setenv("IDBENCH_MAX_LINE_KB", "128", 1);
+  EXPECT_EQ(MaxLineBytes(), 131072u);
+  CheckLineLengths(text, "f.csv");
+  ::unsetenv("IDBENCH_MAX_LINE_KB");
+}
+
 }  // namespace
 }  // namespace idbench

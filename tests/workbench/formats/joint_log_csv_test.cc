@@ -162,5 +162,39 @@ TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
   EXPECT_NE(why.find("more than 1024 columns"), std::string::npos) << why;
 }
 
+// A UTF-8 byte order mark before the header is skipped (it made "unknown
+// column 't'" with the mark invisible); a column name that is not text is
+// echoed escaped and cut; a line over the limit is refused before splitting.
+TEST(JointLogCsvTest, ByteOrderMarkBinaryNamesAndLongLines) {
+  const RobotModel puma = MakePuma560();
+  std::string header = "t";
+  for (const char* kind : {"q", "tau"}) {
+    for (int j = 1; j <= 6; ++j) header += std::string(",") + kind + std::to_string(j);
+  }
+  const std::string rows = "0,0,0,0,0,0,0,1,1,1,1,1,1\n0.01,0,0,0,0,0,0,1,1,1,1,1,1\n";
+  const RecordedJointLog with_bom =
+      ParseRecordedJointLog("\xef\xbb\xbf" + header + "\n" + rows, puma, "x.csv", {}, TorqueColumns::kRequired);
+  const RecordedJointLog without =
+      ParseRecordedJointLog(header + "\n" + rows, puma, "x.csv", {}, TorqueColumns::kRequired);
+  EXPECT_EQ(with_bom.log.t, without.log.t);
+  EXPECT_EQ(with_bom.log.tau, without.log.tau);
+  EXPECT_EQ(with_bom.lines, without.lines);
+
+  // 64 bytes shown: 3 escaped, then 61 BELs escaped.
+  const std::string binary = std::string("\x01\x02\xff") + std::string(5000, '\x07');
+  std::string shown = "\\x01\\x02\\xff";
+  for (int k = 0; k < 61; ++k) shown += "\\x07";
+  EXPECT_EQ(ExpectInvalid([&] {
+              ParseRecordedJointLog(binary + "," + header + "\n" + rows, puma, "x.csv", {}, TorqueColumns::kRequired);
+            }),
+            "x.csv:1: column 1 ('" + shown +
+                "… (5003 bytes)'): unknown column; expected t, q1..q6, qd*, qdd*, tau*, i* (motor current)");
+
+  const std::string long_line = header + "," + std::string(70000, '9') + "\n" + rows;
+  EXPECT_EQ(ExpectInvalid([&] { ParseRecordedJointLog(long_line, puma, "x.csv", {}, TorqueColumns::kRequired); }),
+            "x.csv:1: the line is 70039 bytes, longer than the limit for a line, 64 KB (1024 columns of 64 "
+            "characters; IDBENCH_MAX_LINE_KB=N raises it to N KB)");
+}
+
 }  // namespace
 }  // namespace idbench
