@@ -1055,12 +1055,16 @@ TEST(UrdfTest, NumbersMustBeFiniteWithTheirSignNamingTheLine) {
   ExpectRejected(with_collision("<mesh filename=\"m.stl\" scale=\"1 0 1\"/>"), {"<mesh scale>", "not 0"});
 }
 
-// What urdfdom cannot parse, even where it loads the rest, refuses the file.
+// What urdfdom cannot parse, even where it loads the rest, refuses the file:
+// a <capsule> (not URDF) made urdfdom drop the collision and load the link
+// without it, so clearance checks never saw it.
 TEST(UrdfTest, AnElementUrdfdomCannotParseRefusesTheFile) {
-  // A joint of unknown type: urdfdom logs an error.
-  ExpectRejected(Robot(BareLink("base") + MassLink("a") + Joint("j1", "revolute", "base", "a") + MassLink("b") +
-                       Joint("j2", "sliding", "a", "b")),
-                 {"not a valid URDF", "sliding"});
+  ExpectRejected(Robot(BareLink("base") +
+                       "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" "
+                       "iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial><collision><geometry><capsule radius=\"1\" "
+                       "length=\"1\"/></geometry></collision></link>\n" +
+                       Joint("j1", "revolute", "base", "a")),
+                 {"not a valid URDF (Unknown geometry type 'capsule')"});
 }
 
 // Text that is not XML says so with a line, and binary is not echoed raw.
@@ -1129,6 +1133,21 @@ TEST(UrdfTest, BadMeshesWarnOnceSayingWhatIsWrong) {
     EXPECT_EQ(loaded.warnings[0].find("not found"), std::string::npos) << loaded.warnings[0];
     EXPECT_TRUE(loaded.model.link(0).shapes.empty() && loaded.model.link(0).collision_shapes.empty());
   }
+  // A mesh over the input limit (a sparse file: nothing on disk) is not read:
+  // a 2 GB one took 2.2 GB of memory.
+  const fs::path big = root / "big.stl";
+  std::ofstream(big).close();
+  fs::resize_file(big, 3 * 1024 * 1024);
+  ::setenv("IDBENCH_MAX_INPUT_MB", "2", 1);
+  const UrdfLoadResult loaded = LoadUrdfString(
+      Robot(BareLink("base") + "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" "
+            "iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial><visual><geometry><mesh filename=\"" + big.string() +
+            "\"/></geometry></visual></link>\n" + Joint("j1", "revolute", "base", "a")));
+  ::unsetenv("IDBENCH_MAX_INPUT_MB");
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("mesh " + big.string() + ": the file is 3 MB, larger than the limit for input "
+                                    "files, 2 MB (IDBENCH_MAX_INPUT_MB sets it"),
+            std::string::npos) << loaded.warnings[0];
   fs::remove_all(root);
 }
 

@@ -266,5 +266,34 @@ TEST(TrajectoryFileTest, TrajectoryArgIsABuiltinNameOrAFile) {
   fs::remove_all(dir);
 }
 
+// Numbers out of range (nlohmann's out_of_range escaped as another exception),
+// more harmonics than design uses, and a motion no double can hold (f0 =
+// 1e-300 gave q ≈ -1.6e297 rad) are one std::invalid_argument naming the file.
+TEST(TrajectoryFileTest, OutOfRangeNumbersManyHarmonicsAndUnusableMotionsAreRefused) {
+  const RobotModel puma = MakePuma560();
+  const auto fourier = [](const std::string& f0, int harmonics) {
+    std::string row = "[";
+    for (int k = 0; k < harmonics; ++k) row += (k ? ",0.01" : "0.01");
+    row += "]";
+    std::string rows = "[";
+    for (int j = 0; j < 6; ++j) rows += (j ? "," : "") + row;
+    return R"({"family": "fourier", "f0": )" + f0 + R"(, "duration": 1, "q0": [0,0,0,0,0,0], "a": )" + rows +
+           R"(], "b": )" + rows + "]}";
+  };
+  EXPECT_EQ(ExpectInvalid([&] { ParseTrajectoryJson(fourier("1e999", 2), 6, "t.json"); })
+                .rfind("t.json: not valid JSON: ", 0),
+            0u);
+  EXPECT_EQ(ExpectInvalid([&] { ParseTrajectoryJson(fourier("0.1", 51), 6, "t.json"); }),
+            "t.json: key 'a': 51 harmonics, at most 50 (as idbench design)");
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "idbench_tiny_f0.json";
+  std::ofstream(path) << fourier("1e-300", 2);
+  const std::string message =
+      ExpectInvalid([&] { LoadTrajectoryArg(path.string(), puma, BuiltinMotionOptions{}); });
+  // q(0) = q0 − Σ_l b_l/(ω l) = −(0.01 + 0.01/2)/(2π·1e-300) = −2.3873241463784...e297 rad.
+  EXPECT_EQ(message.rfind(path.string() + ": at t = 0 s joint 1 has q = -2.38732414637843", 0), 0u) << message;
+  EXPECT_NE(message.find("e+297 rad"), std::string::npos) << message;
+  std::filesystem::remove(path);
+}
+
 }  // namespace
 }  // namespace idbench

@@ -21,8 +21,8 @@ std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotMod
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument(source + ": not valid JSON (" + e.what() + ")");
+  } catch (const json::exception& e) {  // a syntax error, or a number out of range (1e999)
+    throw std::invalid_argument(source + ": not valid JSON (" + PrintableText(e.what(), 200) + ")");
   }
   if (!doc.is_object() || !doc.contains("joints") || !doc["joints"].is_array()) {
     throw std::invalid_argument(source + ": expected an object with a \"joints\" array");

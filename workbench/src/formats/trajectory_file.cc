@@ -171,8 +171,8 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument(source + ": not valid JSON: " + e.what());
+  } catch (const json::exception& e) {  // a syntax error, or a number out of range (1e999)
+    throw std::invalid_argument(source + ": not valid JSON: " + PrintableText(e.what(), 200));
   }
   if (!j.is_object()) throw std::invalid_argument(source + ": expected a JSON object, got " + std::string(j.type_name()));
   const KeyReader keys(j, source);

@@ -1,3 +1,4 @@
+#include "idbench/engine/printable_text.h"
 #include "idbench/workbench/reports/report_command.h"
 
 #include "number_format.h"
@@ -435,7 +436,7 @@ RunOptions RunOptionsFromResultsJson(const std::string& text, const std::string&
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(source + ": not JSON: " + e.what());
+    throw std::invalid_argument(source + ": not JSON: " + PrintableText(e.what(), 200));
   }
   const auto get = [&](const char* key, auto* value) {
     if (!j.contains(key)) throw std::invalid_argument(source + ": key '" + key + "': missing");
