@@ -456,7 +456,7 @@ TEST(UrdfTest, RpyRoundTripsAtAndNearGimbalLock) {
   std::mt19937 rng(4);
   for (double pitch : {kPi / 2, -kPi / 2, kPi / 2 - 1e-7, -kPi / 2 + 1e-7, kPi / 2 - 1e-12, -kPi / 2 + 1e-13}) {
     for (int trial = 0; trial < 50; ++trial) {
-      const Eigen::Vector3d angles = testing::RandomVector(2, 3.1, &rng);
+      const Eigen::Vector2d angles = testing::RandomVector(2, 3.1, &rng);  // roll, yaw
       // Through a quaternion, as rotations composed in kinematics come: the
       // tiny entries then carry absolute (not relative) rounding errors.
       const Eigen::Matrix3d R =
