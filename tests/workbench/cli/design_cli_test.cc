@@ -238,7 +238,7 @@ TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
                 " --robot puma560 --samples 100 --trials 3 --report --out " + (dir_ / "c").string())
                 .exit_code,
             0);
-  for (const fs::path dir : {dir_ / "d", dir_ / "c"}) {
+  for (const fs::path& dir : {dir_ / "d", dir_ / "c"}) {
     const std::string html = Slurp(dir / "report.html");
     ASSERT_FALSE(html.empty()) << dir;
     EXPECT_EQ(Slurp(dir / "report.pdf").substr(0, 5), "%PDF-");
