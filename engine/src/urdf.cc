@@ -24,8 +24,11 @@
 namespace idbench {
 namespace {
 
-// A name from the file as a message shows it (escaped, cut).
-std::string Quote(const std::string& name) { return "'" + PrintableText(name) + "'"; }
+// A name or path from the file as a message shows it: escaped, and cut only
+// beyond the length of a long path (a mesh's package:// URI must stay whole
+// for the user to find it; 64 bytes cut the KUKA's).
+constexpr std::size_t kMaxQuotedBytes = 1024;
+std::string Quote(const std::string& name) { return "'" + PrintableText(name, kMaxQuotedBytes) + "'"; }
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

@@ -1099,6 +1099,20 @@ TEST(UrdfTest, NonRegularFilesAreRefusedNamingWhatTheyAre) {
   fs::remove(fifo);
 }
 
+// A missing mesh is named whole in the warning, however long its path (a
+// 65-byte package:// URI of the KUKA LWR4+ was cut to 64 bytes), while a
+// name beyond any path's length is still cut.
+TEST(UrdfTest, MissingMeshIsNamedWhole) {
+  const std::string uri = "package://some_vendor_description/meshes/visual/" + std::string(200, 'x') + ".stl";
+  const std::string mesh = "<geometry><mesh filename=\"" + uri + "\"/></geometry>";
+  const UrdfLoadResult loaded = LoadUrdfString(
+      Robot(BareLink("base") + "<link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.1\" ixy=\"0\" "
+            "ixz=\"0\" iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/></inertial><visual>" + mesh + "</visual></link>\n" +
+            Joint("j1", "revolute", "base", "a")));
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_NE(loaded.warnings[0].find("'" + uri + "' not found"), std::string::npos) << loaded.warnings[0];
+}
+
 // A mesh that is a FIFO, a device or a directory is named as such (it was
 // "not found"), and a bad mesh used by a visual and a collision warns once.
 TEST(UrdfTest, BadMeshesWarnOnceSayingWhatIsWrong) {
