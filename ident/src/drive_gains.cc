@@ -212,6 +212,18 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
   ResidualStatistics(r.head(m_u), torque.head(m_u), n, &out.unloaded_rms, &out.unloaded_relative_error);
   ResidualStatistics(r.tail(m_l), torque.tail(m_l), n, &out.loaded_rms, &out.loaded_relative_error);
 
+  // Whether the payload's effect is observed: the torques K·i of the unloaded
+  // log against the robot file's prediction W β_file (s = ⟨K·i, W β_file⟩ /
+  // ‖W β_file‖²: ≈ 1 when the gains are right, whatever each drive's current
+  // sign), and the payload's torque in the loaded log against that log's
+  // residual.
+  const Eigen::VectorXd beta_file = out.base.combination * StandardParameters(model, options.friction);
+  const Eigen::VectorXd tau_file = U.leftCols(n_base) * beta_file;
+  out.torque_scale = tau_file.squaredNorm() > 0.0 ? torque.head(m_u).dot(tau_file) / tau_file.squaredNorm()
+                                                   : std::numeric_limits<double>::quiet_NaN();
+  const Eigen::VectorXd payload_torque = A.block(m_u, n_base, m_l, n_payload) * x_full.segment(n_base, n_payload) - b.tail(m_l);
+  out.payload_signal_to_noise = payload_torque.norm() / r.tail(m_l).norm();
+
   // Gains the logs do not determine: a status, with the reason.
   std::string missing;
   for (int j = 0; j < n; ++j) {
@@ -224,6 +236,40 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
     out.message = "the logs do not determine every drive gain (" + missing +
                   "): the loaded motion must move the payload so that its mass shows in every joint's torque, and "
                   "each joint must move in both logs";
+    return out;
+  }
+
+  // Gains the data cannot carry: the payload not seen above the noise, or
+  // torques K·i far from (or against) what the robot file predicts.
+  char text[640];
+  if (!(out.payload_signal_to_noise >= DriveGainOptions::kMinPayloadSignalToNoise)) {
+    std::snprintf(text, sizeof(text),
+                  "the payload's effect is not seen in the data: its torque in the loaded log is %.3g times that "
+                  "log's residual (at least %g expected), so the gains are not determined (they came out at %.3g to "
+                  "%.3g N m/A); check that the loaded log was recorded with the payload fixed to the last link, that "
+                  "the payload mass is right, and that the two logs are different recordings",
+                  out.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
+                  out.gains.cwiseAbs().minCoeff(), out.gains.cwiseAbs().maxCoeff());
+    out.status = DriveGainStatus::kNotObserved;
+    out.message = text;
+  } else if (!(out.torque_scale > 0.0)) {
+    std::snprintf(text, sizeof(text),
+                  "the gains turn the unloaded log's torques against the robot file's prediction (scale %.3g): the "
+                  "two logs look swapped (the log with the payload must be the loaded one), or every current is "
+                  "logged with the opposite sign",
+                  out.torque_scale);
+    out.status = DriveGainStatus::kNotObserved;
+    out.message = text;
+  } else if (!(out.torque_scale >= 1.0 / DriveGainOptions::kMaxTorqueScale &&
+               out.torque_scale <= DriveGainOptions::kMaxTorqueScale)) {
+    std::snprintf(text, sizeof(text),
+                  "the payload's effect is not seen in the data as its mass implies: the gains make the unloaded "
+                  "log's torques %.3g times what the robot file predicts (%g to %g expected); check that the loaded "
+                  "log was recorded with the payload fixed to the last link, the payload mass, that the two logs are "
+                  "different recordings, and the robot file's masses",
+                  out.torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);
+    out.status = DriveGainStatus::kNotObserved;
+    out.message = text;
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -39,8 +40,27 @@ namespace {
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
+// Library messages name option fields (time_window); the command line says
+// its flags (--time-window).
+std::string FlagSpelling(std::string message) {
+  static const std::pair<const char*, const char*> kFields[] = {
+      {"loaded_time_window", "--loaded-time-window"}, {"validate_window", "--validate-window"},
+      {"time_window", "--time-window"},               {"drive_gains", "--drive-gains"},
+      {"angle_unit", "--angle-unit"}};
+  for (const auto& [field, flag] : kFields) {
+    const std::string f(field);
+    for (size_t at = message.find(f); at != std::string::npos; at = message.find(f, at + 1)) {
+      const bool inside = (at > 0 && (std::isalnum(static_cast<unsigned char>(message[at - 1])) ||
+                                      message[at - 1] == '_' || message[at - 1] == '-')) ||
+                          (at + f.size() < message.size() && (message[at + f.size()] == '_'));
+      if (!inside) message.replace(at, f.size(), flag);
+    }
+  }
+  return message;
+}
+
 int UsageError(const std::string& message) {
-  std::fprintf(stderr, "idbench: error: %s\n", message.c_str());
+  std::fprintf(stderr, "idbench: error: %s\n", FlagSpelling(message).c_str());
   return kExitUsage;
 }
 
@@ -124,7 +144,7 @@ int SimulateCommand(const idbench::SimulateOptions& options, const idbench::Urdf
 }
 
 void PrintWarnings(const std::vector<std::string>& warnings) {
-  for (const std::string& w : warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
+  for (const std::string& w : warnings) std::fprintf(stderr, "idbench: warning: %s\n", FlagSpelling(w).c_str());
 }
 
 int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
@@ -160,7 +180,10 @@ int GainsCommand(const idbench::GainsOptions& options, const idbench::UrdfLoadOp
   const idbench::GainsReport report = idbench::RunGains(model, options);
   PrintWarnings(report.warnings);
   std::fputs(idbench::FormatGainsTable(model, options, report).c_str(), stdout);
-  if (report.estimate.status != idbench::DriveGainStatus::kEstimated) return kExitFailure;  // message printed above
+  if (report.estimate.status != idbench::DriveGainStatus::kEstimated) {  // the table above says why; nothing written
+    std::fprintf(stderr, "idbench: error: %s\n", report.estimate.message.c_str());
+    return kExitFailure;
+  }
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
   idbench::WriteFileAtomically(dir / "gains.json", idbench::FormatGainsJson(model, options, report));
@@ -287,7 +310,8 @@ int ReportCommand(const std::string& out_dir) {
 void AddLogReadingOptions(CLI::App* command, idbench::JointLogFormat* format, std::vector<std::string>* friction,
                           double* coulomb_smoothing, idbench::LogFilterOptions* filter, double* max_gap_s) {
   command->add_option("--columns", format->columns,
-                      "Column names in file order for a log without a header: t,q1..q6,qd1..qd6,i1..i6,_ ...")
+                      "Column names in file order: t,q1..q6,qd1..qd6,i1..i6,_ ... (with a header of idbench's names: agree with "
+                      "it, or name a subset, matched by name; other header names are renamed in order)")
       ->delimiter(',');
   command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
       ->capture_default_str();
@@ -378,6 +402,9 @@ int main(int argc, char** argv) {
   identify_cmd->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   identify_cmd->add_option("--validate", identify.validate, "Held-out joint log to validate on");
+  identify_cmd->add_option("--validate-window", identify.validate_window,
+                           "Score only T0 <= t <= T1 of --validate: T0,T1 [s] (the whole file's error is shown beside)")
+      ->delimiter(',');
   // Currents and a part of the log (README "Joint logs").
   identify_cmd->add_option("--drive-gains", identify.format.drive_gains,
                            "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
@@ -414,6 +441,10 @@ int main(int argc, char** argv) {
   gains_cmd->add_option("--payload-mass", gains.payload_mass, "Known payload mass [kg]")->required();
   AddLogReadingOptions(gains_cmd, &gains.format, &gains.friction, &gains.coulomb_smoothing, &gains.filter,
                        &gains.max_gap_s);
+  gains_cmd->add_option("--time-window", gains.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
+      ->delimiter(',');
+  gains_cmd->add_option("--loaded-time-window", gains.loaded_time_window,
+                        "Use only T0 <= t <= T1 of --loaded: T0,T1 [s]")->delimiter(',');
   gains_cmd->add_option("--out", gains.out_dir, "Output directory for gains.json (created if missing, never wiped)")
       ->capture_default_str();
 

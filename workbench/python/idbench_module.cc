@@ -69,42 +69,6 @@ void CheckJointArray(const std::string& name, const Eigen::MatrixXd& x, Eigen::I
   if (!x.allFinite()) throw std::invalid_argument(name + ": not every value is a finite number");
 }
 
-// A joint log from a dict of arrays {t, q, [qd, qdd], tau}; the arrays are
-// copied once into the log's column-major storage.
-JointLog JointLogFromDict(const py::dict& arrays, int n_dof) {
-  auto get = [&](const char* key, bool required) -> std::optional<Eigen::MatrixXd> {
-    if (!arrays.contains(key) || arrays[key].is_none()) {
-      if (required) throw std::invalid_argument(std::string("log: missing the array '") + key + "'");
-      return std::nullopt;
-    }
-    return Eigen::MatrixXd(arrays[key].cast<RowMatrix>());
-  };
-  JointLog log;
-  const Eigen::MatrixXd t = *get("t", true);
-  if (t.cols() != 1 && t.rows() != 1) throw std::invalid_argument("t: expected a 1-D array of sample times [s]");
-  log.t = Eigen::Map<const Eigen::VectorXd>(t.data(), t.size());
-  if (!log.t.allFinite()) throw std::invalid_argument("t: not every value is a finite number");
-  for (Eigen::Index k = 1; k < log.t.size(); ++k) {
-    if (!(log.t[k] > log.t[k - 1])) {
-      throw std::invalid_argument("t: not strictly increasing at sample " + std::to_string(k));
-    }
-  }
-  const Eigen::Index n = log.t.size();
-  log.q = *get("q", true);
-  CheckJointArray("q", log.q, n, n_dof);
-  log.tau = *get("tau", true);
-  CheckJointArray("tau", log.tau, n, n_dof);
-  if (auto qd = get("qd", false)) {
-    log.qd = std::move(*qd);
-    CheckJointArray("qd", log.qd, n, n_dof);
-  }
-  if (auto qdd = get("qdd", false)) {
-    log.qdd = std::move(*qdd);
-    CheckJointArray("qdd", log.qdd, n, n_dof);
-  }
-  return log;
-}
-
 py::dict JointLogToDict(JointLog log) {
   py::dict out;
   out["t"] = std::move(log.t);
@@ -121,11 +85,18 @@ PreparedLog PrepareLogArgument(const py::object& log, const std::string& source,
   if (py::isinstance<py::str>(log) || py::hasattr(log, "__fspath__")) {
     return PrepareJointLog(py::str(log).cast<std::string>(), model, options);
   }
-  RecordedJointLog recorded;
-  recorded.log = JointLogFromDict(log.cast<py::dict>(), model.n_dof());
-  recorded.lines.resize(static_cast<size_t>(recorded.log.n_samples()));
-  for (size_t k = 0; k < recorded.lines.size(); ++k) recorded.lines[k] = static_cast<int>(k);  // row numbers
-  return PrepareRecordedJointLog(std::move(recorded), source, options);
+  // A dict of arrays, read as a file is (angle_unit, drive_gains, limits):
+  // a 1-D array is one joint's column.
+  if (!py::isinstance<py::dict>(log)) {
+    throw std::invalid_argument(source + ": expected a CSV path or a dict of arrays {t, q, [qd, qdd], tau | i}");
+  }
+  std::map<std::string, Eigen::MatrixXd> arrays;
+  for (const auto& [key, value] : log.cast<py::dict>()) {
+    if (value.is_none()) continue;
+    arrays[py::str(key).cast<std::string>()] = value.cast<RowMatrix>();
+  }
+  return PrepareRecordedJointLog(RecordedJointLogFromArrays(arrays, model, source, options.format, options.torques),
+                                 source, options);
 }
 
 FrictionModel FrictionFor(const std::vector<std::string>& terms, double coulomb_smoothing) {
@@ -148,6 +119,7 @@ struct IdentifyResult {
   double cond = 0.0;
   double fit_relative_error = 0.0;
   std::optional<double> validation_relative_error;
+  std::optional<double> validation_whole_file_relative_error;  // with validate_window: the whole held-out log's
   py::dict torques;                     // {t, measured, predicted} on the identification log
   std::optional<py::dict> validation_torques;  // the same on the held-out log
   std::string tables, json, urdf, joints_yaml;
@@ -162,12 +134,17 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   if (!options.format.IsValidFor(model.n_dof(), &why)) throw std::invalid_argument(why);
   if (!options.plausibility.IsValidFor(model, &why)) throw std::invalid_argument(why);
   PreparedLog prepared = PrepareLogArgument(data, options.data, model, options.preparation(true));
-  std::optional<PreparedLog> held_out;
+  std::optional<PreparedLog> held_out, held_out_whole;
   if (!validate.is_none()) held_out = PrepareLogArgument(validate, options.validate, model, options.preparation(false));
+  if (!validate.is_none() && !options.validate_window.empty()) {
+    IdentifyOptions whole = options;
+    whole.validate_window.clear();
+    held_out_whole = PrepareLogArgument(validate, options.validate, model, whole.preparation(false));
+  }
   IdentifyReport report;
   {
     py::gil_scoped_release release;
-    report = IdentifyPreparedLogs(model, options, std::move(prepared), std::move(held_out));
+    report = IdentifyPreparedLogs(model, options, std::move(prepared), std::move(held_out), std::move(held_out_whole));
   }
   const JointTorqueIdentification& id = report.identification;
   IdentifyResult r;
@@ -195,6 +172,9 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   r.torques = series_dict(PredictIdentifiedTorques(model, options, report, false));
   if (report.validation) {
     r.validation_relative_error = report.validation->relative_error;
+    if (report.validation_whole_file) {
+      r.validation_whole_file_relative_error = report.validation_whole_file->relative_error;
+    }
     r.validation_torques = series_dict(PredictIdentifiedTorques(model, options, report, true));
   }
   r.tables = FormatIdentifyTables(model, options, report);
@@ -362,6 +342,8 @@ PYBIND11_MODULE(idbench, m) {
       .def_readonly("cond", &IdentifyResult::cond)
       .def_readonly("fit_relative_error", &IdentifyResult::fit_relative_error)
       .def_readonly("validation_relative_error", &IdentifyResult::validation_relative_error)
+      .def_readonly("validation_whole_file_relative_error", &IdentifyResult::validation_whole_file_relative_error,
+                    "with validate_window: the relative error over the whole held-out log")
       .def_readonly("torques", &IdentifyResult::torques,
                     "{t, measured, predicted} on the identification log (n_kept × n_dof; parallel-filtered as scored)")
       .def_readonly("validation_torques", &IdentifyResult::validation_torques, "The same on the held-out log")
@@ -378,7 +360,8 @@ PYBIND11_MODULE(idbench, m) {
       [](const Robot& robot, const py::object& data, const std::string& estimator,
          const std::vector<std::string>& friction, double coulomb_smoothing, const py::object& validate,
          const std::vector<std::string>& columns, const std::string& angle_unit,
-         const std::vector<double>& drive_gains, const std::vector<double>& time_window, double max_gap,
+         const std::vector<double>& drive_gains, const std::vector<double>& time_window,
+         const std::vector<double>& validate_window, double max_gap,
          double filter_cutoff, int filter_order, int decimate, const std::vector<double>& mass_range,
          double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight) {
         IdentifyOptions options;
@@ -394,6 +377,7 @@ PYBIND11_MODULE(idbench, m) {
         options.format.angle_unit = angle_unit;
         options.format.drive_gains = drive_gains;
         options.time_window = time_window;
+        options.validate_window = validate_window;
         options.max_gap_s = max_gap;
         options.filter.cutoff_hz = filter_cutoff;
         options.filter.order = filter_order;
@@ -415,7 +399,8 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("friction") = id_defaults.friction, py::arg("coulomb_smoothing") = id_defaults.coulomb_smoothing,
       py::arg("validate") = py::none(), py::arg("columns") = std::vector<std::string>{},
       py::arg("angle_unit") = id_defaults.format.angle_unit, py::arg("drive_gains") = std::vector<double>{},
-      py::arg("time_window") = std::vector<double>{}, py::arg("max_gap") = id_defaults.max_gap_s,
+      py::arg("time_window") = std::vector<double>{}, py::arg("validate_window") = std::vector<double>{},
+      py::arg("max_gap") = id_defaults.max_gap_s,
       py::arg("filter_cutoff") = id_defaults.filter.cutoff_hz, py::arg("filter_order") = id_defaults.filter.order,
       py::arg("decimate") = id_defaults.filter.decimation,
       py::arg("mass_range") = std::vector<double>{id_defaults.plausibility.mass_factor_min,
@@ -424,8 +409,9 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("total_mass_tolerance") = id_defaults.plausibility.total_mass_tolerance,
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
       "Identifies the robot from a joint log: a CSV path (read as `idbench identify --data`) or a dict of arrays "
-      "{t, q, [qd, qdd], tau} (n_samples × n_dof; without qd/qdd they are estimated by filtering). Options as "
-      "`idbench identify`'s.");
+      "{t, q, [qd, qdd], tau} or with i (motor currents) for drive_gains (n_samples × n_dof, angles in angle_unit; "
+      "without qd/qdd they are estimated by filtering). validate_window=(T0, T1) scores only that part of the held-out "
+      "log. Options as `idbench identify`'s.");
 
   const SimulateOptions sim_defaults;
   m.def(

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <map>
 #include <numbers>
 
 #include "idbench/engine/puma560.h"
@@ -151,7 +152,7 @@ TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
   JointLogFormat zero_gain;
   zero_gain.drive_gains = {1, 0};
   EXPECT_FALSE(zero_gain.IsValid(&why));
-  EXPECT_NE(why.find("--drive-gains: joint 2"), std::string::npos);
+  EXPECT_NE(why.find("drive_gains: joint 2"), std::string::npos) << why;
   zero_gain.drive_gains = {1, 2};
   EXPECT_TRUE(zero_gain.IsValid(&why));
   EXPECT_FALSE(zero_gain.IsValidFor(6, &why));
@@ -160,6 +161,200 @@ TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
   too_many.columns = {"t", "q1..q2000"};
   EXPECT_FALSE(too_many.IsValid(&why));
   EXPECT_NE(why.find("more than 1024 columns"), std::string::npos) << why;
+}
+
+// A header t, q, qd, qdd, tau of a 6-joint log in which each field holds its
+// own column number plus 100 × the sample (so every read can be traced to
+// its column), and that number for a column c.
+std::string NumberedFullLog() {
+  std::string text = "t";
+  for (const char* prefix : {"q", "qd", "qdd", "tau"})
+    for (int j = 1; j <= 6; ++j) text += "," + std::string(prefix) + std::to_string(j);
+  text += "\n";
+  for (int s = 0; s < 2; ++s) {
+    text += std::to_string(s);  // t
+    for (int c = 1; c < 25; ++c) text += "," + std::to_string(c < 7 ? 0.01 * c : c + 100.0 * s);
+    text += "\n";
+  }
+  return text;
+}
+
+// A columns list naming a subset of an idbench header is matched by name
+// (6ab1a0b read it by position: tau from the qd columns); a note says so.
+TEST(JointLogCsvTest, ColumnsNamingASubsetOfTheHeaderAreMatchedByName) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat format;
+  format.columns = {"t", "q1..q6", "tau1..tau6"};
+  const RecordedJointLog r = ParseRecordedJointLog(NumberedFullLog(), puma, "full.csv", format, TorqueColumns::kRequired);
+  ASSERT_EQ(r.log.n_samples(), 2);
+  EXPECT_EQ(r.log.qd.size(), 0);  // not named: estimated later
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_DOUBLE_EQ(r.log.q(1, j), 0.01 * (j + 1));
+    EXPECT_DOUBLE_EQ(r.log.tau(1, j), 19 + j + 100.0);  // file column 20 + j, counted from 1
+  }
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0], "full.csv: columns t,q1..q6,tau1..tau6 taken by name from the header (13 of its 25 columns; "
+                        "the others are not used)");
+  // A list that agrees with the header ("_" skips) is read as named, no note.
+  format.columns = {"t", "q1..q6", "_", "_", "_", "_", "_", "_", "qdd1..qdd6", "tau1..tau6"};
+  const RecordedJointLog agreed = ParseRecordedJointLog(NumberedFullLog(), puma, "full.csv", format, TorqueColumns::kRequired);
+  EXPECT_DOUBLE_EQ(agreed.log.qdd(0, 2), 15.0);
+  EXPECT_DOUBLE_EQ(agreed.log.tau(0, 2), 21.0);
+  EXPECT_TRUE(agreed.notes.empty());
+}
+
+// A list that contradicts an idbench header: an error naming both names
+// (6ab1a0b: qdd and tau swapped were read silently).
+TEST(JointLogCsvTest, ColumnsContradictingTheHeaderAreRefused) {
+  const RobotModel puma = MakePuma560();
+  auto parse = [&](const std::vector<std::string>& columns) {
+    JointLogFormat format;
+    format.columns = columns;
+    return ExpectInvalid([&] { ParseRecordedJointLog(NumberedFullLog(), puma, "full.csv", format, TorqueColumns::kRequired); });
+  };
+  EXPECT_NE(parse({"t", "q1..q6", "qd1..qd6", "tau1..tau6", "qdd1..qdd6"})
+                .find("full.csv:1: column 14 ('qdd1'): the header names this column 'qdd1' but the columns list names "
+                      "it 'tau1': with a header that uses idbench's names"),
+            std::string::npos);
+  // A subset with a name the header lacks: both named.
+  EXPECT_NE(parse({"t", "q1..q6", "i1..i6"}).find("the header names this column 'qd1' but the columns list names it "
+                                                   "'i1' (and the header has no column 'i1')"),
+            std::string::npos);
+  EXPECT_NE(parse({"t", "q1..q6", "qd1..qd6", "qdd1..qdd6", "tau1..tau6", "_"})
+                .find("full.csv:1: the columns list names 26 columns but the header has 25"),
+            std::string::npos);
+}
+
+// A vendor's header is renamed by the list in order, and the note shows the
+// mapping; joint names (q.<joint>, as trajectory.csv is headed) are read as
+// the joint's number; a header naming joints the robot lacks is refused.
+TEST(JointLogCsvTest, VendorHeadersJointNamesAndAnotherRobot) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat format;
+  format.columns = {"t", "q1..q6", "tau1..tau6"};
+  const std::string vendor = "time,Joint_1,Joint_2,Joint_3,Joint_4,Joint_5,Joint_6,M1,M2,M3,M4,M5,M6\n"
+                             "0,0,0,0,0,0,0,1,2,3,4,5,6\n";
+  const RecordedJointLog r = ParseRecordedJointLog(vendor, puma, "v.csv", format, TorqueColumns::kRequired);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0].find("v.csv: columns renames the header's columns in file order: 'time' → t, 'Joint_1' → q1, "
+                            "'Joint_2' → q2"),
+            0u) << r.notes[0];
+  EXPECT_NE(r.notes[0].find("'M6' → tau6"), std::string::npos) << r.notes[0];
+  EXPECT_DOUBLE_EQ(r.log.tau(0, 4), 5.0);
+  // Joint names, in another order than the robot's: each read as its joint.
+  std::string named = "t";
+  for (int j = 5; j >= 0; --j) named += ",q." + puma.link(j).joint_name;
+  for (int j = 0; j < 6; ++j) named += ",tau." + puma.link(j).joint_name;
+  named += "\n0,0.6,0.5,0.4,0.3,0.2,0.1,1,2,3,4,5,6\n";
+  const RecordedJointLog by_name = ParseRecordedJointLog(named, puma, "n.csv", {}, TorqueColumns::kRequired);
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_DOUBLE_EQ(by_name.log.q(0, j), 0.1 * (j + 1));
+    EXPECT_DOUBLE_EQ(by_name.log.tau(0, j), j + 1.0);
+  }
+  EXPECT_NE(ExpectInvalid([&] {
+              ParseRecordedJointLog("t,q.elbow_joint\n0,0\n", puma, "ur.csv", {}, TorqueColumns::kRequired);
+            }).find("ur.csv:1: column 2 ('q.elbow_joint'): no joint 'elbow_joint' in puma560"),
+            std::string::npos);
+  // 7 joints in the header: another robot, even when the list names 6.
+  std::string seven = "t";
+  for (const char* p : {"q", "tau"})
+    for (int j = 1; j <= 7; ++j) seven += "," + std::string(p) + std::to_string(j);
+  seven += "\n0,0,0,0,0,0,0,0,1,1,1,1,1,1,1\n";
+  for (const JointLogFormat& f : {JointLogFormat{}, format}) {
+    EXPECT_NE(ExpectInvalid([&] { ParseRecordedJointLog(seven, puma, "s.csv", f, TorqueColumns::kRequired); })
+                  .find("s.csv:1: column 8 ('q7'): the header names joint 7 but puma560 has 6 joints: is this a log "
+                        "of another robot?"),
+              std::string::npos);
+  }
+}
+
+// Options: an empty column name is named with its position; drive gains of
+// absurd magnitude or all negative are refused, one negative is allowed.
+TEST(JointLogCsvTest, EmptyColumnNamesAndDriveGainBounds) {
+  std::string why;
+  JointLogFormat empty;
+  empty.columns = {"t", "q1", "", "q3"};
+  EXPECT_FALSE(empty.IsValid(&why));
+  EXPECT_NE(why.find("column 3 is empty"), std::string::npos) << why;
+  JointLogFormat gains;
+  for (const std::vector<double>& bad : {std::vector<double>{1e-300, 1}, {1, 1e300}, {1, -1e-7}, {-10, -10}}) {
+    gains.drive_gains = bad;
+    EXPECT_FALSE(gains.IsValid(&why)) << bad[0] << "," << bad[1];
+  }
+  gains.drive_gains = {-10, -10};
+  gains.IsValid(&why);
+  EXPECT_NE(why.find("drive_gains: every gain is negative"), std::string::npos) << why;
+  gains.drive_gains = {1e-6, -1e6};
+  EXPECT_TRUE(gains.IsValid(&why)) << why;
+}
+
+// With angle_unit deg, a log whose joints all move less than 5° draws a
+// warning (a log in radians read as degrees); a real degree log does not.
+TEST(JointLogCsvTest, RadiansReadAsDegreesAreWarnedAbout) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat deg;
+  deg.angle_unit = "deg";
+  const std::string header = "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n";
+  const RecordedJointLog radians = ParseRecordedJointLog(
+      header + "0,0,0,0,0,0,0,1,1,1,1,1,1\n1,1.5,-1,0.5,0,0,0,1,1,1,1,1,1\n", puma, "r.csv", deg, TorqueColumns::kRequired);
+  ASSERT_EQ(radians.warnings.size(), 1u);
+  EXPECT_NE(radians.warnings[0].find("r.csv: with angle_unit deg no joint moves more than 1.5° over the log"),
+            std::string::npos) << radians.warnings[0];
+  const RecordedJointLog degrees = ParseRecordedJointLog(
+      header + "0,0,0,0,0,0,0,1,1,1,1,1,1\n1,80,-40,30,0,0,0,1,1,1,1,1,1\n", puma, "d.csv", deg, TorqueColumns::kRequired);
+  EXPECT_TRUE(degrees.warnings.empty());
+}
+
+// Arrays (Python's dict logs) are read as a file is: the same text through
+// the CSV reader gives the same log, with degrees converted and τ = K·i;
+// errors name the array at fault.
+TEST(JointLogCsvTest, ArraysAreReadAsAFileIs) {
+  const RobotModel puma = MakePuma560();
+  JointLogFormat format;
+  format.angle_unit = "deg";
+  format.drive_gains = {10, 20, 30, 40, -50, 60};
+  std::map<std::string, Eigen::MatrixXd> arrays;
+  arrays["t"] = Eigen::Vector3d(0.0, 0.01, 0.02);
+  arrays["q"] = Eigen::MatrixXd(3, 6);
+  arrays["qd"] = Eigen::MatrixXd(3, 6);
+  arrays["i"] = Eigen::MatrixXd(3, 6);
+  std::string text = "t,q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,i1,i2,i3,i4,i5,i6\n";
+  for (int s = 0; s < 3; ++s) {
+    text += std::to_string(0.01 * s);
+    for (const char* key : {"q", "qd", "i"}) {
+      for (int j = 0; j < 6; ++j) {
+        const double v = std::string(key) == "i" ? 0.5 * j - s : 10.0 * j + s;
+        arrays[key](s, j) = v;
+        text += "," + std::to_string(v);
+      }
+    }
+    text += "\n";
+  }
+  const RecordedJointLog from_arrays = RecordedJointLogFromArrays(arrays, puma, "<arrays>", format, TorqueColumns::kRequired);
+  const RecordedJointLog from_file = ParseRecordedJointLog(text, puma, "f.csv", format, TorqueColumns::kRequired);
+  EXPECT_TRUE(from_arrays.torque_from_currents);
+  EXPECT_EQ(from_arrays.log.t, from_file.log.t);
+  EXPECT_EQ(from_arrays.log.q, from_file.log.q);
+  EXPECT_EQ(from_arrays.log.qd, from_file.log.qd);
+  EXPECT_EQ(from_arrays.log.tau, from_file.log.tau);
+  EXPECT_DOUBLE_EQ(from_arrays.log.q(2, 3), 32.0 * std::numbers::pi / 180.0);
+  EXPECT_DOUBLE_EQ(from_arrays.log.tau(1, 4), -50.0 * (0.5 * 4 - 1));
+  EXPECT_DOUBLE_EQ(from_arrays.log.tau(0, 5), 60.0 * 2.5);
+  // A short t is blamed on t, not on q; a missing i with gains names both.
+  std::map<std::string, Eigen::MatrixXd> short_t = arrays;
+  short_t["t"] = Eigen::Vector2d(0.0, 0.01);
+  EXPECT_NE(ExpectInvalid([&] { RecordedJointLogFromArrays(short_t, puma, "<arrays>", format, TorqueColumns::kRequired); })
+                .find("<arrays>: q: 3 rows but t has 2 samples: every array needs one row per sample of t"),
+            std::string::npos);
+  std::map<std::string, Eigen::MatrixXd> no_i = arrays;
+  no_i.erase("i");
+  EXPECT_NE(ExpectInvalid([&] { RecordedJointLogFromArrays(no_i, puma, "<arrays>", format, TorqueColumns::kRequired); })
+                .find("drive_gains given but there is no array 'i'"),
+            std::string::npos);
+  format.angle_unit = "rad";  // 10 rad is outside joint 2's limits
+  EXPECT_NE(ExpectInvalid([&] { RecordedJointLogFromArrays(arrays, puma, "<arrays>", format, TorqueColumns::kRequired); })
+                .find("<arrays>: q: row 0, joint 2: 10 rad is outside the joint's limits"),
+            std::string::npos);
 }
 
 // A UTF-8 byte order mark before the header is skipped (it made "unknown
@@ -188,7 +383,8 @@ TEST(JointLogCsvTest, ByteOrderMarkBinaryNamesAndLongLines) {
               ParseRecordedJointLog(binary + "," + header + "\n" + rows, puma, "x.csv", {}, TorqueColumns::kRequired);
             }),
             "x.csv:1: column 1 ('" + shown +
-                "… (5003 bytes)'): unknown column; expected t, q1..q6, qd*, qdd*, tau*, i* (motor current)");
+                "… (5003 bytes)'): unknown column; expected t, q1..q6, qd*, qdd*, tau*, i* (motor current); or give "
+                "a columns list to name the file's columns in order");
 
   const std::string long_line = header + "," + std::string(70000, '9') + "\n" + rows;
   EXPECT_EQ(ExpectInvalid([&] { ParseRecordedJointLog(long_line, puma, "x.csv", {}, TorqueColumns::kRequired); }),

@@ -32,9 +32,11 @@ FrictionModel GainsOptions::friction_model() const {
   return f;
 }
 
-LogPreparationOptions GainsOptions::preparation() const {
+LogPreparationOptions GainsOptions::preparation(bool loaded_log) const {
   LogPreparationOptions out;
   out.format = format;
+  out.time_window = loaded_log ? loaded_time_window : time_window;
+  out.window_field = loaded_log ? "loaded_time_window" : "time_window";
   out.torques = TorqueColumns::kCurrents;
   out.filter = filter;
   out.max_gap_s = max_gap_s;
@@ -56,7 +58,7 @@ bool GainsOptions::IsValid(std::string* why) const {
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
-  if (!preparation().IsValid(why)) return false;
+  if (!preparation(false).IsValid(why) || !preparation(true).IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
@@ -66,8 +68,8 @@ GainsReport RunGains(const RobotModel& model, const GainsOptions& options) {
   DriveGainOptions gains;
   gains.friction = options.friction_model();
   gains.payload_mass = options.payload_mass;
-  PreparedLog unloaded = PrepareJointLog(options.data, model, options.preparation());
-  PreparedLog loaded = PrepareJointLog(options.loaded, model, options.preparation());
+  PreparedLog unloaded = PrepareJointLog(options.data, model, options.preparation(false));
+  PreparedLog loaded = PrepareJointLog(options.loaded, model, options.preparation(true));
   for (PreparedLog* log : {&unloaded, &loaded}) {
     for (std::string& note : log->notes) report.notes.push_back(std::move(note));
     for (std::string& warning : log->warnings) report.warnings.push_back(std::move(warning));
@@ -102,6 +104,10 @@ std::string FormatGainsTable(const RobotModel& model, const GainsOptions& option
   std::snprintf(line, sizeof(line), "Relative torque residual: unloaded %.4g, loaded %.4g\n", e.unloaded_relative_error,
                 e.loaded_relative_error);
   out += line;
+  std::snprintf(line, sizeof(line), "Payload torque / loaded residual: %.3g (at least %g); unloaded K·i / robot file's "
+                "torques: %.3g (%g to %g)\n", e.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
+                e.torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);
+  out += line;
   if (e.status != DriveGainStatus::kEstimated) out += e.message + "\n";
   return out;
 }
@@ -127,8 +133,12 @@ std::string FormatGainsJson(const RobotModel& model, const GainsOptions& options
       {"loaded", {{"data", options.loaded}, {"n_samples", report.n_loaded}, {"joint_rms", ToStdVector(e.loaded_rms)},
                   {"relative_error", e.loaded_relative_error}}},
       {"payload_mass", options.payload_mass},
+      {"time_window", options.time_window.empty() ? json(nullptr) : json(options.time_window)},
+      {"loaded_time_window", options.loaded_time_window.empty() ? json(nullptr) : json(options.loaded_time_window)},
       {"payload_first_moment_and_inertia", payload},
       {"rank", e.rank},
+      {"payload_signal_to_noise", NumberOrNull(e.payload_signal_to_noise)},
+      {"torque_scale", NumberOrNull(e.torque_scale)},
       {"n_unknowns", e.unknown_names.size()},
       {"friction", options.friction},
       {"log_preparation", report.notes},

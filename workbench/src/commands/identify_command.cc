@@ -31,6 +31,10 @@ LogPreparationOptions IdentifyOptions::preparation(bool with_window) const {
   out.filter = filter;
   out.max_gap_s = max_gap_s;
   if (with_window) out.time_window = time_window;
+  if (!with_window) {
+    out.time_window = validate_window;
+    out.window_field = "validate_window";
+  }
   return out;
 }
 
@@ -53,6 +57,8 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
   if (!preparation(true).IsValid(why)) return false;
+  if (!validate_window.empty() && validate.empty()) return fail("validate_window: given without a held-out log (validate)");
+  if (!preparation(false).IsValid(why)) return false;
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
@@ -62,12 +68,18 @@ bool IdentifyOptions::IsValid(std::string* why) const {
 IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
   PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
   std::optional<PreparedLog> held_out;
+  std::optional<PreparedLog> held_out_whole;
   if (!options.validate.empty()) held_out = PrepareJointLog(options.validate, model, options.preparation(false));
-  return IdentifyPreparedLogs(model, options, std::move(data), std::move(held_out));
+  if (!options.validate.empty() && !options.validate_window.empty()) {
+    IdentifyOptions whole = options;
+    whole.validate_window.clear();
+    held_out_whole = PrepareJointLog(options.validate, model, whole.preparation(false));
+  }
+  return IdentifyPreparedLogs(model, options, std::move(data), std::move(held_out), std::move(held_out_whole));
 }
 
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
-                                    std::optional<PreparedLog> held_out) {
+                                    std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole) {
   IdentifyReport report;
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
@@ -98,6 +110,11 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
     }
     report.held_out_log = std::move(held_out->log);
     report.held_out_filter = held_out->parallel_filter;
+    if (held_out_whole) {  // the whole file, beside the window
+      held_options.parallel_filter = held_out_whole->parallel_filter;
+      report.validation_whole_file = PredictTorques(model, held_options, report.identification.base,
+                                                    report.identification.beta, held_out_whole->log);
+    }
   }
   return report;
 }
@@ -160,8 +177,15 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   out += "\nTorque RMS per joint [N m]\n";
   joint_row("  fit       ", report.identification.fit.joint_rms);
   if (report.validation) joint_row("  validation", report.validation->joint_rms);
+  std::string validation;
+  if (report.validation) validation = ", validation " + Format("%.4g", report.validation->relative_error);
+  if (report.validation_whole_file) {
+    validation += " (validate_window " + Shortest(options.validate_window[0]) + "–" +
+                  Shortest(options.validate_window[1]) + " s; whole file " +
+                  Format("%.4g", report.validation_whole_file->relative_error) + ")";
+  }
   std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.identification.fit.relative_error,
-                report.validation ? (", validation " + Format("%.4g", report.validation->relative_error)).c_str() : "");
+                validation.c_str());
   out += line;
   const PhysicallyConsistentFit& pc = id.consistent;
   std::snprintf(line, sizeof(line), "Physically consistent fit (SDP): cost %.6g vs OLS %.6g (the unconstrained "
@@ -320,6 +344,11 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
     result["validation"] = {{"data", options.validate},
                             {"joint_rms", ToStdVector(report.validation->joint_rms)},
                             {"relative_error", report.validation->relative_error}};
+    if (report.validation_whole_file) {
+      result["validation"]["window"] = options.validate_window;
+      result["validation"]["whole_file"] = {{"joint_rms", ToStdVector(report.validation_whole_file->joint_rms)},
+                                            {"relative_error", report.validation_whole_file->relative_error}};
+    }
   }
   return result.dump(2) + "\n";
 }

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/log_preparation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,10 +10,11 @@ namespace idbench {
 namespace {
 
 // Keeps the samples with T0 <= t <= T1 (and their line numbers).
-void KeepTimeWindow(const std::string& path, const std::vector<double>& window, RecordedJointLog* recorded) {
+void KeepTimeWindow(const std::string& path, const std::vector<double>& window, const std::string& field,
+                    RecordedJointLog* recorded) {
   JointLog& log = recorded->log;
   const double t_first = log.t[0], t_last = log.t[log.n_samples() - 1];
-  const std::string option = "--time-window " + Shortest(window[0]) + "," + Shortest(window[1]);
+  const std::string option = field + " " + Shortest(window[0]) + "," + Shortest(window[1]);
   if (window[0] < t_first || window[1] > t_last) {
     throw std::invalid_argument(path + ": " + option + " is not inside the log, which covers t = " + Shortest(t_first) +
                                 " to " + Shortest(t_last) + " s");
@@ -46,7 +48,7 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
         !(time_window[0] < time_window[1])) {
       std::string given;
       for (double v : time_window) given += (given.empty() ? "" : ",") + Shortest(v);
-      return fail("--time-window: expected T0,T1 [s] with T0 < T1, got " + given);
+      return fail(window_field + ": expected T0,T1 [s] with T0 < T1, got " + given);
     }
   }
   if (!(max_gap_s >= 0.0 && max_gap_s <= kMaxGapS)) {
@@ -65,13 +67,16 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
                                     const LogPreparationOptions& options) {
   PreparedLog out;
   out.warnings = recorded.warnings;
+  out.notes = recorded.notes;
   if (recorded.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
 
   // The time window.
   if (!options.time_window.empty()) {
     const int before = recorded.log.n_samples();
-    KeepTimeWindow(path, options.time_window, &recorded);
-    out.notes.push_back(path + ": time window " + Shortest(options.time_window[0]) + "–" +
+    KeepTimeWindow(path, options.time_window, options.window_field, &recorded);
+    std::string label = options.window_field;  // time_window → "time window"
+    std::replace(label.begin(), label.end(), '_', ' ');
+    out.notes.push_back(path + ": " + label + " " + Shortest(options.time_window[0]) + "–" +
                         Shortest(options.time_window[1]) + " s: " + std::to_string(recorded.log.n_samples()) + " of " +
                         std::to_string(before) + " samples");
   }
@@ -79,6 +84,24 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
   const bool has_qd = log.qd.size() > 0, has_qdd = log.qdd.size() > 0;
   if (has_qd && has_qdd) {
     out.derivatives = "qd, qdd from the log";
+    // Decimation keeps every k-th sample, as it does after filtering (no
+    // filter here: the recorded signals are used as they are).
+    const int k = options.filter.decimation;
+    if (k > 1) {
+      const Eigen::Index n = (log.n_samples() + k - 1) / k;
+      auto keep = [&](Eigen::MatrixXd* x) {
+        if (x->size() == 0) return;
+        Eigen::MatrixXd kept(n, x->cols());
+        for (Eigen::Index s = 0; s < n; ++s) kept.row(s) = x->row(s * k);
+        *x = std::move(kept);
+      };
+      Eigen::VectorXd t(n);
+      for (Eigen::Index s = 0; s < n; ++s) t[s] = log.t[s * k];
+      out.notes.push_back(path + ": decimation " + std::to_string(k) + ": one sample in " + std::to_string(k) +
+                          " kept, " + std::to_string(n) + " of " + std::to_string(log.n_samples()));
+      log.t = std::move(t);
+      for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) keep(x);
+    }
     out.log = std::move(log);
     return out;
   }
@@ -96,6 +119,23 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
                                 "; split the log there or choose a --time-window without it (--max-gap sets the bound)");
   }
   if (resampling.status == ResamplingStatus::kResampled) out.notes.push_back(path + ": " + resampling.BriefReport());
+
+  // Enough samples for the zero-phase filter (it runs forward and backward
+  // over the whole log), said in the user's terms.
+  {
+    const Eigen::Index n = uniform.n_samples();
+    const double rate_hz = static_cast<double>(n - 1) / (uniform.t[n - 1] - uniform.t[0]);
+    if (options.filter.cutoff_hz > 0.0 && options.filter.cutoff_hz < 0.5 * rate_hz) {
+      const int needed =
+          FiltFiltMinSamples(DesignButterworthLowPass(options.filter.order, options.filter.cutoff_hz, rate_hz));
+      if (n < needed) {
+        throw std::invalid_argument(path + ": " + std::to_string(n) + " samples, too few for the low-pass filter "
+                                    "that estimates qd and qdd (order " + std::to_string(options.filter.order) +
+                                    ": at least " + std::to_string(needed) + " samples); use a longer log or a wider "
+                                    "time window, or a log that records qd and qdd");
+      }
+    }
+  }
 
   // qd, qdd by the zero-phase filter: from q, or from the recorded qd (qdd).
   LogFilterOptions derivatives = options.filter;

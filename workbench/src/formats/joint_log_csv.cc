@@ -4,6 +4,7 @@
 #include "idbench/engine/input_file.h"
 #include "idbench/engine/printable_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -83,6 +84,112 @@ bool AllNumbers(const std::vector<std::string>& fields) {
   return true;
 }
 
+// A header field as an idbench column name: itself when it is one (t, q3,
+// tau1, ...); q.<joint name>, qd.<..>, qdd.<..>, tau.<..>, i.<..> (as
+// trajectory.csv is headed) → the joint's number; "" for any other name (a
+// vendor's, e.g. Joint_1). A joint name the robot does not have throws.
+std::string IdbenchColumnName(const std::string& field, size_t c, const RobotModel& model, const std::string& where) {
+  ColumnTarget target{};
+  if (field != "_" && ParseColumnName(field, &target)) return field;
+  const size_t dot = field.find('.');
+  if (dot == std::string::npos) return "";
+  const std::string prefix = field.substr(0, dot), joint = field.substr(dot + 1);
+  bool known_prefix = false;
+  for (int kind = 1; kind < kKinds; ++kind) known_prefix = known_prefix || prefix == kKindPrefix[kind];
+  if (!known_prefix || joint.empty()) return "";
+  for (int j = 0; j < model.n_dof(); ++j) {
+    if (model.link(j).joint_name == joint) return prefix + std::to_string(j + 1);
+  }
+  std::string joints;
+  for (int j = 0; j < model.n_dof(); ++j) joints += (j ? ", " : "") + model.link(j).joint_name;
+  throw std::invalid_argument(where + ColumnLabel(c, field) + ": no joint '" + PrintableText(joint) + "' in " +
+                              model.name() + " (its joints: " + joints + "): is this a log of another robot?");
+}
+
+// With angle_unit "deg", a log whose every joint moves less than
+// kSmallMotionDeg is most likely in radians (a motion of 2 rad read as 2°):
+// a warning, since a log of small motions in degrees is possible.
+constexpr double kSmallMotionDeg = 5.0;
+void WarnIfRadiansReadAsDegrees(const JointLogFormat& format, const std::string& source, RecordedJointLog* out) {
+  const Eigen::MatrixXd& q = out->log.q;
+  if (!format.degrees() || q.rows() < 2) return;
+  const double span_deg = (q.colwise().maxCoeff() - q.colwise().minCoeff()).maxCoeff() * 180.0 / std::numbers::pi;
+  if (span_deg < kSmallMotionDeg) {
+    out->warnings.push_back(source + ": with angle_unit deg no joint moves more than " + Shortest(span_deg) +
+                            "° over the log (less than " + Shortest(kSmallMotionDeg) +
+                            "°): is the log in radians? Read in degrees, a motion of 2 rad becomes 2°, and the fit "
+                            "is then badly conditioned");
+  }
+}
+
+// The user's columns list as given (ranges unexpanded), for messages.
+std::string JoinItems(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ",") + PrintableText(item);
+  return out;
+}
+
+// A header and a columns list together (README "Joint logs"). `header` holds
+// the header's fields as idbench names ("" where the header uses other
+// names). The columns list must agree with the header wherever the header
+// uses idbench names (or skip the column, "_"), and may rename the others in
+// order; a list of fewer columns that all appear in the header takes them by
+// name. Anything else contradicts the header: throws naming both. Returns
+// the name of each file column ("_": not used); notes say how it was mapped.
+std::vector<std::string> ReconcileColumnsWithHeader(const std::vector<std::string>& columns,
+                                                    const std::vector<std::string>& items,
+                                                    const std::vector<std::string>& raw_header,
+                                                    const std::vector<std::string>& header, const std::string& source,
+                                                    int line, std::vector<std::string>* notes) {
+  const std::string where = source + ":" + std::to_string(line) + ": ";
+  auto known = [&](size_t c) { return c < header.size() && !header[c].empty(); };
+  if (columns.size() > raw_header.size()) {
+    throw std::invalid_argument(where + "the columns list names " + std::to_string(columns.size()) +
+                                " columns but the header has " + std::to_string(raw_header.size()));
+  }
+  // In file order: each named column agrees with an idbench header name, or renames another name.
+  size_t conflict = columns.size();
+  for (size_t c = 0; c < columns.size() && conflict == columns.size(); ++c) {
+    if (columns[c] != "_" && known(c) && columns[c] != header[c]) conflict = c;
+  }
+  if (conflict == columns.size()) {
+    std::string renamed;
+    int n_renamed = 0;
+    for (size_t c = 0; c < columns.size(); ++c) {
+      if (columns[c] == "_" || known(c)) continue;
+      if (n_renamed++ < 24) renamed += (renamed.empty() ? "" : ", ") + ("'" + PrintableText(raw_header[c]) + "' → " + columns[c]);
+    }
+    if (n_renamed > 24) renamed += ", … (" + std::to_string(n_renamed) + " in all)";
+    if (n_renamed > 0) notes->push_back(source + ": columns renames the header's columns in file order: " + renamed);
+    return columns;
+  }
+  // A subset of the header's names, taken by name.
+  std::map<std::string, size_t> header_column;
+  for (size_t c = 0; c < header.size(); ++c) {
+    if (known(c)) header_column.emplace(header[c], c);
+  }
+  std::string absent;
+  bool skip = false;
+  for (const std::string& name : columns) {
+    skip = skip || name == "_";
+    if (name != "_" && !header_column.count(name) && absent.empty()) absent = name;
+  }
+  if (absent.empty() && !skip && columns.size() < raw_header.size()) {
+    std::vector<std::string> names(raw_header.size(), "_");
+    for (const std::string& name : columns) names[header_column[name]] = name;
+    notes->push_back(source + ": columns " + JoinItems(items) + " taken by name from the header (" +
+                     std::to_string(columns.size()) + " of its " + std::to_string(raw_header.size()) +
+                     " columns; the others are not used)");
+    return names;
+  }
+  throw std::invalid_argument(
+      where + ColumnLabel(conflict, raw_header[conflict]) + ": the header names this column '" + header[conflict] +
+      "' but the columns list names it '" + columns[conflict] + "'" +
+      (absent.empty() ? "" : " (and the header has no column '" + absent + "')") +
+      ": with a header that uses idbench's names, leave the columns list out, or give one that agrees with the "
+      "header (\"_\" skips a column) or names fewer columns, all found in the header (they are then matched by name)");
+}
+
 }  // namespace
 
 std::string FormatJointLogCsv(const JointLog& log) {
@@ -125,11 +232,19 @@ bool JointLogFormat::IsValid(std::string* why) const {
   if (static_cast<int>(drive_gains.size()) > kMaxJoints) {
     return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, at most " + std::to_string(kMaxJoints));
   }
+  // |K| within [kMinDriveGain, kMaxDriveGain]; a negative gain is a drive
+  // whose current is logged with the opposite sign, but not every drive.
   for (size_t j = 0; j < drive_gains.size(); ++j) {
-    if (!std::isfinite(drive_gains[j]) || drive_gains[j] == 0.0) {
-      return fail("--drive-gains: joint " + std::to_string(j + 1) + ": expected a finite non-zero gain [N m/A], got " +
-                  Shortest(drive_gains[j]));
+    const double k = std::abs(drive_gains[j]);
+    if (!std::isfinite(drive_gains[j]) || k < kMinDriveGain || k > kMaxDriveGain) {
+      return fail("drive_gains: joint " + std::to_string(j + 1) + ": expected a gain of magnitude " +
+                  Shortest(kMinDriveGain) + " to " + Shortest(kMaxDriveGain) + " N m/A, got " + Shortest(drive_gains[j]));
     }
+  }
+  if (!drive_gains.empty() && std::all_of(drive_gains.begin(), drive_gains.end(), [](double k) { return k < 0.0; })) {
+    return fail("drive_gains: every gain is negative, which turns every joint's torque around (a robot lifting "
+                "against gravity would read as pushing down); a negative gain is for a drive whose current is logged "
+                "with the opposite sign, as `gains` reports it; give the gains' magnitudes, or check the currents' signs");
   }
   if (columns.empty()) return true;
   std::vector<std::string> names;
@@ -142,6 +257,10 @@ bool JointLogFormat::IsValid(std::string* why) const {
   for (size_t c = 0; c < names.size(); ++c) {
     const std::string where = "--columns: column " + std::to_string(c + 1) + " ('" + names[c] + "')";
     ColumnTarget target{};
+    if (names[c].empty()) {
+      return fail("--columns: column " + std::to_string(c + 1) + " is empty (two commas in a row, or a comma at an "
+                  "end?); name every column, \"_\" skips one");
+    }
     if (!ParseColumnName(names[c], &target)) {
       return fail(where + ": unknown; expected t, q<j>, qd<j>, qdd<j>, tau<j>, i<j>, a range such as q1..q6, or _");
     }
@@ -235,7 +354,36 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
                       "the names in file order, e.g. --columns t,q1..q" + std::to_string(n_dof) + ",qd1..qd" +
                       std::to_string(n_dof) + ",i1..i" + std::to_string(n_dof) + " (_ skips a column)");
   }
-  const std::vector<std::string> names = named ? ExpandColumnNames(format.columns) : first_fields;
+  // The name of each file column: the header's (q.<joint name> read as that
+  // joint's number), the columns list's, or both reconciled.
+  RecordedJointLog out;
+  std::vector<std::string> header_names;  // idbench names; "" where the header uses others
+  if (header) {
+    for (size_t c = 0; c < first_fields.size(); ++c) {
+      header_names.push_back(
+          IdbenchColumnName(first_fields[c], c, model, source + ":" + std::to_string(line_number) + ": "));
+      // A header naming joints the robot does not have is another robot's log,
+      // whatever the columns list says.
+      ColumnTarget target{};
+      if (!header_names[c].empty() && ParseColumnName(header_names[c], &target) && target.kind > 0 &&
+          target.joint >= n_dof) {
+        fail(line_number, ColumnLabel(c, first_fields[c]) + ": the header names joint " +
+                              std::to_string(target.joint + 1) + " but " + model.name() + " has " +
+                              std::to_string(n_dof) + " joints: is this a log of another robot?");
+      }
+    }
+  }
+  std::vector<std::string> names;
+  if (!named) {
+    for (size_t c = 0; c < first_fields.size(); ++c) {
+      names.push_back(header_names[c].empty() ? first_fields[c] : header_names[c]);
+    }
+  } else if (!header) {
+    names = ExpandColumnNames(format.columns);
+  } else {
+    names = ReconcileColumnsWithHeader(ExpandColumnNames(format.columns), format.columns, first_fields, header_names,
+                                       source, line_number, &out.notes);
+  }
   const int header_line = named ? 0 : line_number;  // where column problems are reported (0: --columns)
   auto fail_columns = [&](const std::string& what) -> void {
     if (named) throw std::invalid_argument(source + ": --columns: " + what);
@@ -254,7 +402,8 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
     ColumnTarget target{};
     if (!ParseColumnName(name, &target)) {
       fail_columns(where + ": unknown column; expected t, q1..q" + std::to_string(n_dof) +
-                   ", qd*, qdd*, tau*, i* (motor current)" + (named ? ", or _" : ""));
+                   ", qd*, qdd*, tau*, i* (motor current)" +
+                   (named ? ", or _" : "; or give a columns list to name the file's columns in order"));
     }
     if (name != "_" && !column_of.emplace(name, static_cast<int>(c)).second) fail_columns(where + ": repeated");
     if (target.kind > 0 && target.joint >= n_dof) {
@@ -295,7 +444,6 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
     }
   }
   const bool has_qd = complete("qd"), has_qdd = complete("qdd"), has_tau = complete("tau"), has_i = complete("i");
-  RecordedJointLog out;
   const std::string n_str = std::to_string(n_dof);
   bool use_tau = has_tau, use_i = false;
   switch (torques) {
@@ -394,6 +542,101 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
       }
     }
   }
+  WarnIfRadiansReadAsDegrees(format, source, &out);
+  return out;
+}
+
+RecordedJointLog RecordedJointLogFromArrays(const std::map<std::string, Eigen::MatrixXd>& arrays,
+                                            const RobotModel& model, const std::string& source,
+                                            const JointLogFormat& format, TorqueColumns torques) {
+  const int n_dof = model.n_dof();
+  auto fail = [&](const std::string& what) -> void { throw std::invalid_argument(source + ": " + what); };
+  std::string why;
+  if (!format.IsValid(&why) || !format.IsValidFor(n_dof, &why)) throw std::invalid_argument(why);
+  if (!format.columns.empty()) fail("columns: applies to CSV files; the arrays are named by their keys");
+  for (const auto& [key, value] : arrays) {
+    if (key != "t" && key != "q" && key != "qd" && key != "qdd" && key != "tau" && key != "i") {
+      fail("unknown array '" + PrintableText(key) + "'; expected t, q, qd, qdd, tau, i (motor currents)");
+    }
+  }
+  auto find = [&](const char* key) -> const Eigen::MatrixXd* {
+    const auto it = arrays.find(key);
+    return it == arrays.end() ? nullptr : &it->second;
+  };
+  RecordedJointLog out;
+  JointLog& log = out.log;
+  // t: one time per sample, strictly increasing.
+  const Eigen::MatrixXd* t = find("t");
+  if (!t) fail("missing the array 't' (sample times [s])");
+  if (t->cols() != 1 && t->rows() != 1) fail("t: expected a 1-D array of sample times [s]");
+  log.t = Eigen::Map<const Eigen::VectorXd>(t->data(), t->size());
+  if (log.t.size() == 0) fail("t: no samples");
+  if (!log.t.allFinite()) fail("t: not every value is a finite number");
+  for (Eigen::Index k = 1; k < log.t.size(); ++k) {
+    if (!(log.t[k] > log.t[k - 1])) fail("t: not strictly increasing at sample " + std::to_string(k));
+  }
+  // The joint arrays: one row per sample of t, one column per joint.
+  const Eigen::Index n = log.t.size();
+  auto take = [&](const char* key, Eigen::MatrixXd* x) {
+    const Eigen::MatrixXd* a = find(key);
+    if (!a) return false;
+    if (a->rows() != n) {
+      fail(std::string(key) + ": " + std::to_string(a->rows()) + " rows but t has " + std::to_string(n) +
+           " samples: every array needs one row per sample of t");
+    }
+    if (a->cols() != n_dof) {
+      fail(std::string(key) + ": " + std::to_string(a->cols()) + " columns but " + model.name() + " has " +
+           std::to_string(n_dof) + " joints");
+    }
+    if (!a->allFinite()) fail(std::string(key) + ": not every value is a finite number");
+    *x = *a;
+    return true;
+  };
+  if (!take("q", &log.q)) fail("missing the array 'q' (joint positions)");
+  take("qd", &log.qd);
+  take("qdd", &log.qdd);
+  // Angles in the format's unit, positions within the joint limits.
+  if (format.degrees()) {
+    for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd}) *x *= std::numbers::pi / 180.0;
+  }
+  for (Eigen::Index s = 0; s < n; ++s) {
+    for (int j = 0; j < n_dof; ++j) {
+      const JointLimits& limits = model.link(j).limits;
+      if (log.q(s, j) < limits.q_min || log.q(s, j) > limits.q_max) {
+        fail("q: row " + std::to_string(s) + ", joint " + std::to_string(j + 1) + ": " + Shortest(log.q(s, j)) +
+             " rad is outside the joint's limits [" + Shortest(limits.q_min) + ", " + Shortest(limits.q_max) + "] rad" +
+             (format.degrees() ? " (read with angle_unit deg)" : ""));
+      }
+    }
+  }
+  // Torques: tau, or K·i with drive gains, as for a file.
+  Eigen::MatrixXd tau, current;
+  const bool has_tau = take("tau", &tau), has_i = take("i", &current);
+  switch (torques) {
+    case TorqueColumns::kRequired:
+      if (!format.drive_gains.empty()) {
+        if (!has_i) fail("drive_gains given but there is no array 'i' (motor currents [A])");
+        if (has_tau) out.warnings.push_back(source + ": array 'tau' ignored: drive_gains given, tau = K·i from 'i'");
+        log.tau = current * Eigen::Map<const Eigen::VectorXd>(format.drive_gains.data(), n_dof).asDiagonal();
+        out.torque_from_currents = true;
+      } else if (has_tau) {
+        log.tau = std::move(tau);
+      } else {
+        fail(has_i ? "there are motor currents 'i' but no 'tau': give drive_gains (tau = K·i)"
+                   : "missing the array 'tau' (joint torques [N m])");
+      }
+      break;
+    case TorqueColumns::kOptional:
+      if (has_tau) log.tau = std::move(tau);
+      break;
+    case TorqueColumns::kCurrents:
+      if (!has_i) fail("missing the array 'i' (motor currents [A])");
+      log.tau = std::move(current);
+      break;
+  }
+  out.lines.resize(static_cast<size_t>(n));
+  for (size_t k = 0; k < out.lines.size(); ++k) out.lines[k] = static_cast<int>(k);  // row numbers
+  WarnIfRadiansReadAsDegrees(format, source, &out);
   return out;
 }
 

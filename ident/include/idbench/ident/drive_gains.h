@@ -44,6 +44,11 @@ struct DriveGainOptions {
   double payload_mass = 0.0;  // known mass fixed to the last link [kg]
 
   static constexpr double kMaxPayloadMass = 1e4;  // [kg]
+  // The checks that the data carry the gains (DriveGainStatus::kNotObserved):
+  // the payload's torque at least this many times the loaded log's residual,
+  // and the unloaded torques K·i within this factor of the robot file's.
+  static constexpr double kMinPayloadSignalToNoise = 1.0;
+  static constexpr double kMaxTorqueScale = 10.0;
   bool IsValid(std::string* why) const;
 };
 
@@ -59,6 +64,8 @@ struct CurrentLog {
 enum class DriveGainStatus {
   kEstimated,         // every gain is determined by the logs
   kNotIdentifiable,   // some gain is not (message names which and why)
+  kNotObserved,       // determined in rank, but the data do not carry them: the payload not seen above the
+                      // noise, or torques K·i against or far from the robot file's (message says what to check)
 };
 
 struct DriveGainEstimate {
@@ -77,13 +84,22 @@ struct DriveGainEstimate {
   Eigen::VectorXd unloaded_rms, loaded_rms;
   // ‖residual‖ / ‖K·i‖ over each log.
   double unloaded_relative_error = 0.0, loaded_relative_error = 0.0;
+  // The unloaded log's torques K·i against the robot file's prediction
+  // W β_file: ⟨K·i, W β_file⟩ / ‖W β_file‖² (≈ 1 for right gains and a fair
+  // robot file; ≤ 0 when the logs are swapped).
+  double torque_scale = 0.0;
+  // ‖payload torque in the loaded log‖ / ‖that log's residual‖ (∞ without noise).
+  double payload_signal_to_noise = 0.0;
 };
 
 // The payload's parameter names, in φ' order: "mcx", …, "Izz".
 const std::vector<std::string>& PayloadParameterNames();
 
 // Estimates the drive gains. Both logs must carry qd, qdd and currents of the
-// robot's joints. σ² = ‖e‖²/(m − rank) times the diagonal of (JᵀJ)⁺ (J the
+// robot's joints. Then checks that the data carry them (kNotObserved): the
+// payload's torque stands out of the loaded log's residual, and the unloaded
+// torques K·i are of the sign and size the robot file predicts (swapped
+// logs turn every gain negative). σ² = ‖e‖²/(m − rank) times the diagonal of (JᵀJ)⁺ (J the
 // Jacobian of the current residual e), the identifiable directions only. Gains that the logs do not
 // determine (a joint whose payload torque is not excited: the loaded motion
 // must move the payload so that its mass shows at every joint) give status

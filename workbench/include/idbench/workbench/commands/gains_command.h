@@ -18,6 +18,8 @@ struct GainsOptions {
   std::string loaded;              // the same robot with the payload (required)
   double payload_mass = 0.0;       // [kg] (required)
   JointLogFormat format;           // --columns and --angle-unit, for both logs (no drive gains: they are the unknowns)
+  std::vector<double> time_window;         // {T0, T1} [s] of the unloaded log (data); empty: all of it
+  std::vector<double> loaded_time_window;  // {T0, T1} [s] of the loaded log; empty: all of it
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
   LogFilterOptions filter{.trim_s = -1.0};
@@ -26,7 +28,8 @@ struct GainsOptions {
   std::string command_line;        // recorded in gains.json
 
   FrictionModel friction_model() const;
-  LogPreparationOptions preparation() const;
+  // How the unloaded (loaded = false) or the loaded log is read.
+  LogPreparationOptions preparation(bool loaded = false) const;
   // Checks the options alone; *why names the bad one.
   bool IsValid(std::string* why) const;
 };

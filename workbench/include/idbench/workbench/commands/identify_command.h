@@ -28,12 +28,16 @@ struct IdentifyOptions {
   // --drive-gains for --data and --validate; --time-window for --data only.
   JointLogFormat format;
   std::vector<double> time_window;  // {T0, T1} [s]; empty: the whole log
+  // {T0, T1} [s] of the held-out log scored as validation (e.g. its moving
+  // part, without rest phases where the drives idle); empty: the whole log.
+  // The whole file's error is reported beside it.
+  std::vector<double> validate_window;
   double max_gap_s = 0.0;           // [s] longest step resampled; 0: 10 median steps
   std::string out_dir = "out/identify";
   std::string command_line;        // recorded in identified.json
 
   FrictionModel friction_model() const;
-  // How --data (with_window) or --validate is read.
+  // How --data (with_window: time_window) or --validate (validate_window) is read.
   LogPreparationOptions preparation(bool with_window) const;
   // Checks the options alone; *why names the bad one.
   bool IsValid(std::string* why) const;
@@ -46,7 +50,8 @@ struct IdentifyReport {
   std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout
   std::vector<std::string> warnings; // for stderr
   JointTorqueIdentification identification;
-  std::optional<TorquePrediction> validation;  // on the held-out log
+  std::optional<TorquePrediction> validation;  // on the held-out log (its validate_window, if any)
+  std::optional<TorquePrediction> validation_whole_file;  // on the whole held-out log, when validate_window is set
   // What predicts the torques again (PredictTorqueSeries, the report's plots):
   std::optional<ParallelFilter> parallel_filter;   // on log's equations; set when filtered
   std::optional<JointLog> held_out_log;            // --validate, prepared as validation scored it
@@ -60,8 +65,10 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
 // The same for logs already prepared (PrepareJointLog or
 // PrepareRecordedJointLog, e.g. arrays from Python); options.data and
 // options.validate only name them in messages.
+// held_out_whole: the whole held-out log, when held_out is its validate_window.
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
-                                    std::optional<PreparedLog> held_out);
+                                    std::optional<PreparedLog> held_out,
+                                    std::optional<PreparedLog> held_out_whole = std::nullopt);
 
 // Measured and predicted torque (τ̂ = W β of the chosen estimator) on the
 // identification log or the held-out one, parallel-filtered as the RMS

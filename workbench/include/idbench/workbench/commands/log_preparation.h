@@ -22,6 +22,7 @@ struct LogPreparationOptions {
   JointLogFormat format;
   TorqueColumns torques = TorqueColumns::kRequired;  // kCurrents: tau holds the currents [A]
   std::vector<double> time_window;   // {T0, T1} [s]: keep T0 <= t <= T1; empty: the whole log
+  std::string window_field = "time_window";  // the option field time_window came from, for messages
   LogFilterOptions filter{.trim_s = -1.0};  // for logs missing qd or qdd
   double max_gap_s = 0.0;            // [s] a longer step is an error; 0: 10 median steps
 
@@ -45,7 +46,8 @@ struct PreparedLog {
 // filter to drop). Throws std::invalid_argument naming the file (and line
 // and column where there is one): the parser's errors, a time window outside
 // the log or leaving fewer than 4 samples, a gap longer than the bound, or a
-// log too short for the filter.
+// log too short for the filter. A log with qd and qdd is decimated by
+// filter.decimation (every k-th sample kept) without filtering.
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options);
 
 // The same for a log already read (e.g. arrays from Python: lines are then

@@ -6,6 +6,7 @@
 // Numbers are written in their shortest round-trip form.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,11 +35,14 @@ struct JointLogFormat {
   std::vector<double> drive_gains;
 
   static constexpr int kMaxColumns = 1024;  // named columns, ranges expanded
+  // Bounds on |K| [N m/A]: a joint-side gain (motor constant × gear ratio)
+  // lies far inside them; 1e-300 or 1e300 is a typing error.
+  static constexpr double kMinDriveGain = 1e-6, kMaxDriveGain = 1e6;
   static constexpr int kMaxJoints = 64;
 
   bool degrees() const { return angle_unit == "deg"; }
-  // Checks the options alone (syntax of the names, unit, finite non-zero
-  // gains); *why names the option.
+  // Checks the options alone (syntax of the names, unit, gains of magnitude
+  // kMinDriveGain..kMaxDriveGain, not all negative); *why names the option.
   bool IsValid(std::string* why) const;
   // And against a robot: joints named in --columns and gains per joint.
   bool IsValidFor(int n_dof, std::string* why) const;
@@ -63,6 +67,7 @@ struct RecordedJointLog {
   JointLog log;
   std::vector<int> lines;             // file line of each sample (n_samples)
   std::vector<std::string> warnings;  // e.g. tau columns ignored for K·i
+  std::vector<std::string> notes;     // how the columns were mapped (a columns list over a header)
   bool torque_from_currents = false;  // tau = K·i
 };
 
@@ -77,6 +82,16 @@ struct RecordedJointLog {
 // currents.
 RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel& model, const std::string& source,
                                        const JointLogFormat& format, TorqueColumns torques);
+// A log given as arrays (e.g. a Python dict) keyed t, q, qd, qdd, tau, i,
+// read as a file would be in `format` (columns must be empty): angles in
+// format.angle_unit converted to rad and checked against the joint limits,
+// tau = K·i when drive_gains are given, what `torques` needs present. Each
+// joint array has one row per sample of t and one column per joint. Throws
+// std::invalid_argument "source: key: what" naming the array at fault. lines
+// are row numbers (from 0).
+RecordedJointLog RecordedJointLogFromArrays(const std::map<std::string, Eigen::MatrixXd>& arrays,
+                                            const RobotModel& model, const std::string& source,
+                                            const JointLogFormat& format, TorqueColumns torques);
 // Reads and parses a file; an unreadable file throws naming the path.
 RecordedJointLog ReadRecordedJointLog(const std::string& path, const RobotModel& model, const JointLogFormat& format,
                                       TorqueColumns torques);
