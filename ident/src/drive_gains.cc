@@ -241,13 +241,14 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
 
   // Gains the data cannot carry: the payload not seen above the noise, or
   // torques K·i far from (or against) what the robot file predicts.
-  char text[640];
+  char text[768];
   if (!(out.payload_signal_to_noise >= DriveGainOptions::kMinPayloadSignalToNoise)) {
     std::snprintf(text, sizeof(text),
                   "the payload's effect is not seen in the data: its torque in the loaded log is %.3g times that "
                   "log's residual (at least %g expected), so the gains are not determined (they came out at %.3g to "
                   "%.3g N m/A); check that the loaded log was recorded with the payload fixed to the last link, that "
-                  "the payload mass is right, and that the two logs are different recordings",
+                  "the payload mass is right, that the two logs are different recordings, and cut rest phases where "
+                  "the drives idle (time_window, loaded_time_window)",
                   out.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
                   out.gains.cwiseAbs().minCoeff(), out.gains.cwiseAbs().maxCoeff());
     out.status = DriveGainStatus::kNotObserved;

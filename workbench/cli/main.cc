@@ -181,7 +181,7 @@ int GainsCommand(const idbench::GainsOptions& options, const idbench::UrdfLoadOp
   PrintWarnings(report.warnings);
   std::fputs(idbench::FormatGainsTable(model, options, report).c_str(), stdout);
   if (report.estimate.status != idbench::DriveGainStatus::kEstimated) {  // the table above says why; nothing written
-    std::fprintf(stderr, "idbench: error: %s\n", report.estimate.message.c_str());
+    std::fprintf(stderr, "idbench: error: %s\n", FlagSpelling(report.estimate.message).c_str());
     return kExitFailure;
   }
   const std::filesystem::path dir(options.out_dir);
@@ -309,10 +309,20 @@ int ReportCommand(const std::string& out_dir) {
 // identify and gains (README "Joint logs").
 void AddLogReadingOptions(CLI::App* command, idbench::JointLogFormat* format, std::vector<std::string>* friction,
                           double* coulomb_smoothing, idbench::LogFilterOptions* filter, double* max_gap_s) {
-  command->add_option("--columns", format->columns,
+  // Split here, not by CLI11 (which drops empty items: `t,q1,,q3` would read
+  // as t,q1,q3 and blame a missing q2); an empty item is then named.
+  command->add_option_function<std::string>("--columns", [format](const std::string& list) {
+        format->columns.clear();
+        size_t start = 0;
+        for (size_t comma = list.find(','); ; comma = list.find(',', start)) {
+          format->columns.push_back(list.substr(start, comma == std::string::npos ? comma : comma - start));
+          if (comma == std::string::npos) break;
+          start = comma + 1;
+        }
+      },
                       "Column names in file order: t,q1..q6,qd1..qd6,i1..i6,_ ... (with a header of idbench's names: agree with "
                       "it, or name a subset, matched by name; other header names are renamed in order)")
-      ->delimiter(',');
+      ->type_name("NAMES");
   command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
       ->capture_default_str();
   command->add_option("--friction", *friction, "Friction terms: none or viscous,coulomb,offset,rotor")
