@@ -117,9 +117,20 @@ TEST_F(LogReadingCliTest, ColumnsNamingASubsetOfTheHeaderAreMatchedByName) {
             std::string::npos) << r.out;
   // t, q, tau only: qd, qdd estimated by the filter; the filter's error (0.3 %
   // on the q-only log of identify_cli_test), not 69 %, bounds the fit.
+  // The fit alone cannot tell: τ read from the qd columns is fitted as well
+  // by viscous friction (6ab1a0b: 6e-5). The base parameters can: against
+  // the robot file's, measured 4e-4 off here (qd, qdd through the filter),
+  // 0.98 on 6ab1a0b (velocities read as torques).
   const nlohmann::json j = Json(dir_ / "id" / "identified.json");
-  std::printf("subset by name: fit %.3g\n", j["fit"]["relative_error"].get<double>());
+  double num = 0.0, den = 0.0;
+  for (const auto& p : j["base_parameters"]) {
+    const double truth = p["robot_file_value"], value = p["value"].is_number() ? p["value"].get<double>() : 0.0;
+    num += (value - truth) * (value - truth), den += truth * truth;
+  }
+  std::printf("subset by name: fit %.3g, base-parameter error %.3g\n", j["fit"]["relative_error"].get<double>(),
+              std::sqrt(num / den));
   EXPECT_LT(j["fit"]["relative_error"].get<double>(), 0.01);
+  EXPECT_LT(std::sqrt(num / den), 0.2);
 }
 
 // qdd and tau swapped in the columns list against the header: refused, both
