@@ -383,8 +383,7 @@ TEST(JointLogCsvTest, ByteOrderMarkBinaryNamesAndLongLines) {
               ParseRecordedJointLog(binary + "," + header + "\n" + rows, puma, "x.csv", {}, TorqueColumns::kRequired);
             }),
             "x.csv:1: column 1 ('" + shown +
-                "… (5003 bytes)'): unknown column; expected t, q1..q6, qd*, qdd*, tau*, i* (motor current); or give "
-                "a columns list to name the file's columns in order");
+                "… (5003 bytes)'): unknown column; expected t, q1..q6, qd*, qdd*, tau*, i* (motor current)");
 
   const std::string long_line = header + "," + std::string(70000, '9') + "\n" + rows;
   EXPECT_EQ(ExpectInvalid([&] { ParseRecordedJointLog(long_line, puma, "x.csv", {}, TorqueColumns::kRequired); }),

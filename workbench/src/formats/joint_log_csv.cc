@@ -402,8 +402,7 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
     ColumnTarget target{};
     if (!ParseColumnName(name, &target)) {
       fail_columns(where + ": unknown column; expected t, q1..q" + std::to_string(n_dof) +
-                   ", qd*, qdd*, tau*, i* (motor current)" +
-                   (named ? ", or _" : "; or give a columns list to name the file's columns in order"));
+                   ", qd*, qdd*, tau*, i* (motor current)" + (named ? ", or _" : ""));
     }
     if (name != "_" && !column_of.emplace(name, static_cast<int>(c)).second) fail_columns(where + ": repeated");
     if (target.kind > 0 && target.joint >= n_dof) {
