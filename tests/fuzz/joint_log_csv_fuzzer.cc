@@ -17,7 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   with_columns.drive_gains = {1, 2, 3, 4, 5, 6};
   idbench::JointLogFormat in_degrees;
   in_degrees.angle_unit = "deg";
-  for (const idbench::JointLogFormat& format : {idbench::JointLogFormat{}, with_columns, in_degrees}) {
+  idbench::JointLogFormat subset;  // over a header: matched by name, renamed, or refused
+  subset.columns = {"t", "q1..q6", "tau1..tau6"};
+  for (const idbench::JointLogFormat& format : {idbench::JointLogFormat{}, with_columns, in_degrees, subset}) {
     try {
       idbench::ParseRecordedJointLog(text, robot, "fuzz.csv", format, idbench::TorqueColumns::kRequired);
     } catch (const std::invalid_argument&) {

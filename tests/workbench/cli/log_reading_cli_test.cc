@@ -360,5 +360,22 @@ TEST_F(LogReadingCliTest, EmptyColumnNameIsNamed) {
   EXPECT_NE(r.err.find("column 3 is empty"), std::string::npos) << r.err;
 }
 
+// A log too short for the filter that estimates qd, qdd: said in the user's
+// terms (6ab1a0b: "filtfilt: expected at least 6 samples for 2 sections").
+TEST_F(LogReadingCliTest, LogTooShortForTheFilterIsSaidPlainly) {
+  const JointLog full = Motion(model_);
+  JointLog five;
+  five.t = full.t.head(5);
+  five.q = full.q.topRows(5);
+  five.tau = full.tau.topRows(5);
+  const fs::path log = Write("five.csv", five, {"t", "q", "tau"}, true);
+  const Result r = Run("identify --robot puma560 --data " + log.string() + " --out " + (dir_ / "id").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("five.csv: 5 samples, too few for the low-pass filter that estimates qd and qdd (order 4: at "
+                       "least 6 samples)"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("filtfilt"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace idbench
