@@ -21,11 +21,15 @@ std::string FormatJointLogCsv(const JointLog& log);
 // How a log file's columns are read (README.md, "Joint logs"): what the CLI's
 // --columns, --angle-unit and --drive-gains fill.
 struct JointLogFormat {
-  // Column names in file order, for a file without a header (or to override
-  // one: a first line that is not all numbers is then skipped). Items: t,
-  // q<j>, qd<j>, qdd<j>, tau<j>, i<j> (motor current), ranges such as
-  // "q1..q6", and "_" for a column to skip; fields after the named ones are
-  // ignored. Empty: the file's header line names the columns.
+  // Column names in file order. Items: t, q<j>, qd<j>, qdd<j>, tau<j>, i<j>
+  // (motor current), ranges such as "q1..q6", and "_" for a column to skip;
+  // fields after the named ones are ignored. Empty: the file's header line
+  // names the columns (idbench's names, or q.<joint name> etc.). Over a
+  // header (README "Joint logs"): where the header uses idbench's names the
+  // list must agree with it column by column, or name fewer columns that all
+  // appear in it (then matched by name, with a note); other header names are
+  // renamed in order (a note prints the mapping); anything else is an error
+  // naming both.
   std::vector<std::string> columns;
   std::string angle_unit = "rad";    // of q, qd, qdd in the file: "rad" or "deg"
   // Drive gains [N m/A], one per joint: τ = K·i from the i columns. When
@@ -71,7 +75,11 @@ struct RecordedJointLog {
   bool torque_from_currents = false;  // tau = K·i
 };
 
-// Parses a log of `model`. `source` names the file in messages. Throws
+// Parses a log of `model`. `source` names the file in messages. A header
+// naming a joint the robot does not have (q7 on a 6-joint robot, an unknown
+// q.<joint name>) is another robot's log: an error. With angle_unit deg, a
+// log in which no joint moves more than 5° draws a warning (radians read as
+// degrees). Throws
 // std::invalid_argument with "source:line: column c ('name'): what" for: a
 // missing, unknown or repeated column (or one given in part: qd, qdd, tau, i
 // are each all n or none), a joint the robot does not have, a header-less
