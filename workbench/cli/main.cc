@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -50,10 +49,11 @@ std::string FlagSpelling(std::string message) {
   for (const auto& [field, flag] : kFields) {
     const std::string f(field);
     for (size_t at = message.find(f); at != std::string::npos; at = message.find(f, at + 1)) {
-      const bool inside = (at > 0 && (std::isalnum(static_cast<unsigned char>(message[at - 1])) ||
-                                      message[at - 1] == '_' || message[at - 1] == '-')) ||
-                          (at + f.size() < message.size() && (message[at + f.size()] == '_'));
-      if (!inside) message.replace(at, f.size(), flag);
+      // A word of its own (not part of a path such as /tmp/time_window.csv).
+      const std::string before = " (,", after = " :,);";
+      const bool word = (at == 0 || before.find(message[at - 1]) != std::string::npos) &&
+                        (at + f.size() == message.size() || after.find(message[at + f.size()]) != std::string::npos);
+      if (word) message.replace(at, f.size(), flag);
     }
   }
   return message;
