@@ -255,6 +255,13 @@ TEST(JointLogCsvTest, VendorHeadersJointNamesAndAnotherRobot) {
               ParseRecordedJointLog("t,q.elbow_joint\n0,0\n", puma, "ur.csv", {}, TorqueColumns::kRequired);
             }).find("ur.csv:1: column 2 ('q.elbow_joint'): no joint 'elbow_joint' in puma560"),
             std::string::npos);
+  // 5 joints in the header: another robot too.
+  EXPECT_NE(ExpectInvalid([&] {
+              ParseRecordedJointLog("t,q1,q2,q3,q4,q5,tau1,tau2,tau3,tau4,tau5\n0,0,0,0,0,0,1,1,1,1,1\n", puma, "f.csv",
+                                    {}, TorqueColumns::kRequired);
+            }).find("f.csv:1: missing column 'q6' (robot has 6 joints): the header names joints 1 to 5 only: is this a log "
+                  "of another robot?"),
+            std::string::npos);
   // 7 joints in the header: another robot, even when the list names 6.
   std::string seven = "t";
   for (const char* p : {"q", "tau"})

@@ -373,6 +373,19 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
       }
     }
   }
+  // And a header naming fewer joints than the robot has (q1..q5 for 6).
+  if (header) {
+    int most = 0;
+    for (const std::string& name : header_names) {
+      ColumnTarget target{};
+      if (!name.empty() && ParseColumnName(name, &target) && target.kind > 0) most = std::max(most, target.joint + 1);
+    }
+    if (most > 0 && most < n_dof) {
+      fail(line_number, "missing column 'q" + std::to_string(most + 1) + "' (robot has " + std::to_string(n_dof) +
+                            " joints): the header names joints 1 to " + std::to_string(most) + " only: is this a log "
+                            "of another robot?");
+    }
+  }
   std::vector<std::string> names;
   if (!named) {
     for (size_t c = 0; c < first_fields.size(); ++c) {
