@@ -113,6 +113,47 @@ def test_unidentifiable_parameters_are_nan_never_numbers(puma):
     assert result.status[fv6] == "not identifiable"
 
 
+def test_a_refused_model_is_the_verdict_not_a_urdf(puma, tmp_path):
+    # The PUMA's moving links weigh 33.45 kg in its file (the log's truth); a
+    # total mass of 20 kg held exactly contradicts the data: the fit is pinned
+    # on it far above the OLS optimum, and the verdict refuses the model, as
+    # the command line does (exit 1, identified.json only).
+    code, _, err = cli("simulate", "--robot", "puma560", "--duration", "3", "--rate", "200",
+                       "--tau-noise", "0.05", "--seed", "7", "--out", "log.csv", cwd=tmp_path)
+    assert code == 0, err
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "log.csv", "--estimator", "pc",
+                       "--total-mass", "20", "--total-mass-tolerance", "0", "--out", "id", cwd=tmp_path)
+    assert code == 1, err
+    assert "--total-mass" in err and "total mass of the moving links at its upper bound 20 kg" in err
+    assert not (tmp_path / "id/identified.urdf").exists()
+    expected = json.loads((tmp_path / "id/identified.json").read_text())["verdict"]
+
+    result = idbench.identify(puma, str(tmp_path / "log.csv"), estimator="pc", total_mass=20.0,
+                              total_mass_tolerance=0.0)
+    verdict = result.verdict
+    assert not verdict["fit_to_load"] and verdict["status"] == "cost_above_optimum" == expected["status"]
+    assert verdict["cost_excess_percent"] == pytest.approx(expected["cost_excess_percent"], rel=1e-9)
+    assert verdict["cost_excess_percent"] > 100.0
+    assert "total_mass" in verdict["cause"] and "--" not in verdict["cause"]
+    assert any("total mass" in b for b in verdict["bounds_at_optimum"])
+    assert result.urdf is None and result.joints_yaml is None
+    accepted = idbench.identify(puma, str(tmp_path / "log.csv"), estimator="pc", total_mass=20.0,
+                                total_mass_tolerance=0.0, write_unverified=True)
+    assert accepted.urdf is not None and "<robot" in accepted.urdf
+    # A tolerance above the excess accepts the same fit.
+    lenient = idbench.identify(puma, str(tmp_path / "log.csv"), estimator="pc", total_mass=20.0,
+                               total_mass_tolerance=0.0, cost_tolerance=1e6)
+    assert lenient.verdict["fit_to_load"] and lenient.urdf is not None
+
+    # %sigma is relative to the value returned (here the pc value), NaN where it is within 3 sigma of 0.
+    fit = idbench.identify(puma, str(tmp_path / "log.csv"), estimator="pc")
+    assert fit.verdict["fit_to_load"], fit.verdict
+    small = np.abs(fit.beta) <= 3 * fit.sigma
+    assert np.isnan(fit.rel_sigma_percent[small]).all()
+    np.testing.assert_allclose(fit.rel_sigma_percent[~small], 100 * fit.sigma[~small] / np.abs(fit.beta[~small]),
+                               rtol=1e-12)
+
+
 def test_errors_carry_the_command_lines_messages(puma, tmp_path):
     code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
     assert code != 0
