@@ -365,7 +365,7 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
   }
   std::string cause;
   if (verdict.status == ModelVerdict::kNotConverged)
-    cause = "the solver stopped before certifying its optimum (" + fit.status + ")";
+    cause = "the solver stopped before certifying its optimum";
   if (!com_links.empty()) {
     cause += std::string(cause.empty() ? "" : "; ") + "the centre-of-mass bounds (the box around each link's shapes) " +
              "hold " + com_links + ": the file's shapes may not be placed in the frames of its inertials, or its " +

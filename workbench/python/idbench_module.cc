@@ -211,7 +211,7 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   r.verdict["fit_to_load"] = v.fit_to_load();
   r.verdict["message"] = v.message;
   r.verdict["cause"] = v.fit_to_load() ? py::object(py::none())
-                                       : py::object(py::str(RefusedModelMessage(options, report, OptionNames::kPython)));
+                                       : py::object(py::str(InFrontEndTerms(v.cause, OptionNames::kPython)));
   r.verdict["cost_excess_percent"] = 100.0 * v.cost_excess;
   r.verdict["cost_tolerance_percent"] = 100.0 * v.cost_tolerance;
   py::list bounds;

@@ -222,8 +222,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
              Format("%.3g", outside) + " m outside the box around its shapes\n";
     }
   }
-  out += "Verdict: " + id.verdict.message + "\n";
-  if (!id.verdict.fit_to_load()) out += "  " + RefusedModelMessage(options, report, OptionNames::kCommandLine) + "\n";
+  out += "Verdict: " + id.verdict.message + "\n";  // why, when refused: the command's one message
   return out;
 }
 
