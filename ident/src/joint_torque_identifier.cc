@@ -296,9 +296,12 @@ PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const Frict
     if (settings.com_in_geometry && check && check->contradicts()) {
       bounds.com_outside_geometry = check->distance;  // the box would contradict the file: no bound
     } else if (settings.com_in_geometry && box_B) {
+      // Near the box (within the check's tolerance): grown to hold it, so the
+      // bound never contradicts the file itself.
+      const Eigen::AlignedBox3d box = Eigen::AlignedBox3d(*box_B).extend(inertia.p_BoBcm_B);
       bounds.bound_com = true;
-      bounds.com_min_B = box_B->min();
-      bounds.com_max_B = box_B->max();
+      bounds.com_min_B = box.min();
+      bounds.com_max_B = box.max();
     }
     options.links.push_back(bounds);
     options.link_names.push_back(model.link(l).name);
@@ -341,7 +344,11 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
   verdict.cost_tolerance = cost_tolerance;
   const double unit = std::max({fit.ols_cost, 1e-10 * fit.zero_cost, 1e-300});
   verdict.cost_excess = std::max(0.0, fit.cost - fit.ols_cost) / unit;
-  verdict.status = !fit.converged                         ? ModelVerdict::kNotConverged
+  // Converged: a feasible point whose duality gap certifies its objective
+  // within kCertifiedGap of the optimum (the solver aims at 10⁻⁹ and may stop
+  // just short of it where rounding ends the progress).
+  const bool certified = fit.converged || (fit.feasible && std::isfinite(fit.duality_gap) && fit.duality_gap <= kCertifiedGap);
+  verdict.status = !certified                             ? ModelVerdict::kNotConverged
                    : verdict.cost_excess > cost_tolerance ? ModelVerdict::kCostAboveOptimum
                                                           : ModelVerdict::kFitToLoad;
   char text[400];

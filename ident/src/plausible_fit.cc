@@ -242,6 +242,7 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   fit.rounds = 1;
   fit.duality_gap = solution.relative_gap;
   fit.converged = solution.converged;
+  fit.feasible = solution.feasible;
   char status[200];
   std::snprintf(status, sizeof(status), "%s: relative duality gap %.2g", solution.status.c_str(), fit.duality_gap);
   fit.status = solution.feasible ? status : solution.status;

@@ -45,8 +45,12 @@ struct PlausibilitySettings {
   double prior_weight = 1e-4;           // γ (plausible_fit.h)
   // The physically consistent estimate is a robot model only when its cost
   // ‖W_b β − τ‖² is within this fraction above the OLS optimum (see
-  // IdentificationVerdict).
-  double cost_tolerance = 0.1;
+  // IdentificationVerdict). Real logs carry effects no model holds, which
+  // OLS absorbs into unphysical values: the KUKA LWR4+'s plausible fit costs
+  // +28.6 % and predicts its held-out log better (5.4 % against OLS's
+  // 12.7 %); bounds that contradict the data cost far more (the Stäubli
+  // TX40's file: +2530 %).
+  double cost_tolerance = 0.5;
 
   bool IsValid(std::string* why) const;
   // Also checks the settings against the robot: the total mass's range must
@@ -64,7 +68,7 @@ struct JointTorqueOptions {
 
 // The bounds and scales of the plausible fit for a robot file (the prior):
 // per link, mass in the settings' range, centre of mass in LinkBoundingBox_B
-// (links without shapes: unbounded; links whose own centre of mass the box
+// grown to hold the file's own centre of mass (links without shapes: unbounded; links whose own centre of mass the box
 // contradicts, CheckCenterOfMassInGeometry: unbounded, with
 // com_outside_geometry set), scales D_m = m, D_h = m L, D_I = m L²
 // with L the link's size (half the box diagonal, at least |c| and 5 cm),
@@ -89,7 +93,7 @@ struct IdentificationVerdict {
   // (cost − OLS cost) / max(OLS cost, 10⁻¹⁰ ‖τ‖²): the floor keeps a
   // noise-free log (OLS cost ~ rounding) from counting rounding as excess.
   double cost_excess = 0.0;
-  double cost_tolerance = 0.1;  // PlausibilitySettings::cost_tolerance
+  double cost_tolerance = 0.5;  // PlausibilitySettings::cost_tolerance
   std::string message;  // one line: converged or why not, the cost excess
   // When not fit to load: the binding constraints by link, the likely cause
   // and the fix, naming option fields (plausibility.com_in_geometry, …).
@@ -98,7 +102,10 @@ struct IdentificationVerdict {
   bool fit_to_load() const { return status == ModelVerdict::kFitToLoad; }
 };
 
-// The verdict of a plausible fit against a tolerance.
+// The verdict of a plausible fit against a tolerance: converged when the
+// solver says so or its point is feasible and its relative duality gap is at
+// most kCertifiedGap (its cost certified within 10⁻⁶ of the optimum).
+inline constexpr double kCertifiedGap = 1e-6;
 IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, double cost_tolerance);
 
 // How well base parameters predict a log's torques.

@@ -132,6 +132,7 @@ struct PhysicallyConsistentFit {
   double prior_cost = 0.0;   // the prior term λ‖x‖² at the optimum [N² m²]
   double duality_gap = std::numeric_limits<double>::quiet_NaN();  // relative, certifies the optimum
   double zero_cost = 0.0;     // ‖τ‖² [N² m²], the cost of β = 0: the scale of the data
+  bool feasible = false;      // pi satisfies every constraint strictly
   std::vector<std::string> active_bounds;  // the texts of bounds_at_optimum
   std::vector<ActiveBound> bounds_at_optimum;
 };
