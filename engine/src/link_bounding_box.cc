@@ -1,5 +1,6 @@
 #include "idbench/engine/link_bounding_box.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace idbench {
@@ -32,6 +33,16 @@ std::optional<Eigen::AlignedBox3d> LinkBoundingBox_B(const Link& link) {
     for (const Shape& shape : *shapes) ExtendByShape(shape, &box_B);
   if (box_B.isEmpty()) return std::nullopt;
   return box_B;
+}
+
+std::optional<CenterOfMassGeometryCheck> CheckCenterOfMassInGeometry(const Link& link) {
+  const std::optional<Eigen::AlignedBox3d> box_B = LinkBoundingBox_B(link);
+  if (!box_B) return std::nullopt;
+  CenterOfMassGeometryCheck check;
+  check.box_B = *box_B;
+  check.distance = box_B->exteriorDistance(link.inertia.p_BoBcm_B);
+  check.tolerance = std::max(0.01, 0.1 * box_B->diagonal().norm());
+  return check;
 }
 
 }  // namespace idbench

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/link_bounding_box.h"
 #include "idbench/engine/printable_text.h"
 #include "urdf_document.h"
 
@@ -28,6 +29,11 @@ namespace {
 // beyond the length of a long path (a mesh's package:// URI must stay whole
 // for the user to find it; 64 bytes cut the KUKA's).
 constexpr std::size_t kMaxQuotedBytes = 1024;
+// Beyond any robot link: the largest <inertial> mass [kg], inertia entry
+// [kg m²] and centre-of-mass offset from the link frame [m] a file may give.
+constexpr double kMaxMass = 1e6;
+constexpr double kMaxInertia = 1e8;
+constexpr double kMaxOffset = 1e3;
 std::string Quote(const std::string& name) { return "'" + PrintableText(name, kMaxQuotedBytes) + "'"; }
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
@@ -184,6 +190,14 @@ class Loader {
     try {
       RobotModel model(urdf_.getName(), std::move(links));
       for (std::string& w : InertiaWarnings(model)) warnings_.push_back(source_ + ": " + w);
+      for (const Link& link : model.links()) {
+        const std::optional<CenterOfMassGeometryCheck> check = CheckCenterOfMassInGeometry(link);
+        if (!check || !check->contradicts()) continue;
+        warnings_.push_back(source_ + ": link " + Quote(link.name) + ": its centre of mass (<inertial> origin) lies " +
+                            Format(check->distance) + " m outside the box around its shapes (near: within " +
+                            Format(check->tolerance) + " m): the shapes may not be placed in the frame of its "
+                            "inertial; identification does not bound this link's centre of mass by its shapes");
+      }
       return UrdfLoadResult{std::move(model), std::move(warnings_)};
     } catch (const std::invalid_argument& e) {
       Fail(e.what());
@@ -556,6 +570,21 @@ class Loader {
           Fail(where + "<inertial>/<mass> must be >= 0, got " + Format(inertial.mass) + "; correct it in the file");
         }
         if (!I_Lcm_I.allFinite()) Fail(where + "<inertial>/<inertia> has an entry that is not a finite number");
+        // Finite but absurd values (1e200 kg) overflow the dynamics' sums and
+        // leave identification without a scale: refused at load.
+        if (inertial.mass > kMaxMass) {
+          Fail(where + "<inertial>/<mass> is " + Format(inertial.mass) + " kg, beyond any robot link (at most " +
+               Format(kMaxMass) + " kg); correct it in the file");
+        }
+        if (I_Lcm_I.cwiseAbs().maxCoeff() > kMaxInertia) {
+          Fail(where + "<inertial>/<inertia> has an entry of " + Format(I_Lcm_I.cwiseAbs().maxCoeff()) +
+               " kg m², beyond any robot link (at most " + Format(kMaxInertia) + " kg m²); correct ixx..izz in the file");
+        }
+        if (!(ToIsometry(inertial.origin).translation().norm() <= kMaxOffset)) {
+          Fail(where + "<inertial>/<origin> xyz is " + Format(ToIsometry(inertial.origin).translation().norm()) +
+               " m from the link frame, beyond any robot link (at most " + Format(kMaxOffset) +
+               " m); correct it in the file");
+        }
         const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I_Lcm_I).eigenvalues();
         if (moments.minCoeff() < -1e-12 * I_Lcm_I.norm()) {
           Fail(where + "<inertial>/<inertia> is not positive semidefinite: principal moments " + Format(moments[0]) +

@@ -243,8 +243,12 @@ bool PlausibilitySettings::IsValid(std::string* why) const {
     return fail("--total-mass: expected 0 (none) to 1e6 kg, got " + std::to_string(total_mass));
   if (!(total_mass_tolerance >= 0.0) || !(total_mass_tolerance <= 1.0))
     return fail("--total-mass-tolerance: expected a fraction in [0, 1], got " + std::to_string(total_mass_tolerance));
-  if (!(prior_weight >= 0.0) || !(prior_weight <= 1e6))
-    return fail("--prior-weight: expected 0 to 1e6, got " + std::to_string(prior_weight));
+  if (!(prior_weight > 0.0) || !(prior_weight <= 1e6))
+    return fail("--prior-weight: expected more than 0, up to 1e6, got " + std::to_string(prior_weight) +
+                ": the prior decides what the log does not determine (with 0 that is arbitrary); for a negligible "
+                "prior give a small value, e.g. 1e-8");
+  if (!(cost_tolerance >= 0.0) || !(cost_tolerance <= 1e6))
+    return fail("plausibility.cost_tolerance: expected a fraction from 0 to 1e6, got " + std::to_string(cost_tolerance));
   return true;
 }
 
@@ -288,12 +292,20 @@ PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const Frict
     LinkPlausibilityBounds bounds;
     bounds.mass_min = settings.mass_factor_min * m;
     bounds.mass_max = settings.mass_factor_max * m;
-    if (settings.com_in_geometry && box_B) {
+    const std::optional<CenterOfMassGeometryCheck> check = CheckCenterOfMassInGeometry(model.link(l));
+    if (settings.com_in_geometry && check && check->contradicts()) {
+      bounds.com_outside_geometry = check->distance;  // the box would contradict the file: no bound
+    } else if (settings.com_in_geometry && box_B) {
+      // Near the box (within the check's tolerance): grown to hold it, so the
+      // bound never contradicts the file itself.
+      const Eigen::AlignedBox3d box = Eigen::AlignedBox3d(*box_B).extend(inertia.p_BoBcm_B);
       bounds.bound_com = true;
-      bounds.com_min_B = box_B->min();
-      bounds.com_max_B = box_B->max();
+      bounds.com_min_B = box.min();
+      bounds.com_max_B = box.max();
     }
     options.links.push_back(bounds);
+    options.link_names.push_back(model.link(l).name);
+    options.joint_names.push_back(model.link(l).joint_name);
   }
   if (settings.total_mass > 0.0) {
     options.total_mass_min = settings.total_mass * (1.0 - settings.total_mass_tolerance);
@@ -307,6 +319,82 @@ PlausibleFitOptions MakePlausibleFitOptions(const RobotModel& model, const Frict
       options.nonnegative.push_back(static_cast<int>(k));
   }
   return options;
+}
+
+const char* ToString(ModelVerdict verdict) {
+  switch (verdict) {
+    case ModelVerdict::kFitToLoad: return "fit to load";
+    case ModelVerdict::kNotConverged: return "not converged";
+    case ModelVerdict::kCostAboveOptimum: return "cost above the optimum";
+  }
+  return "?";
+}
+
+const char* ToKey(ModelVerdict verdict) {
+  switch (verdict) {
+    case ModelVerdict::kFitToLoad: return "fit_to_load";
+    case ModelVerdict::kNotConverged: return "not_converged";
+    case ModelVerdict::kCostAboveOptimum: return "cost_above_optimum";
+  }
+  return "?";
+}
+
+IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, double cost_tolerance) {
+  IdentificationVerdict verdict;
+  verdict.cost_tolerance = cost_tolerance;
+  const double unit = std::max({fit.ols_cost, 1e-10 * fit.zero_cost, 1e-300});
+  verdict.cost_excess = std::max(0.0, fit.cost - fit.ols_cost) / unit;
+  // Converged: a feasible point whose duality gap certifies its objective
+  // within kCertifiedGap of the optimum (the solver aims at 10⁻⁹ and may stop
+  // just short of it where rounding ends the progress).
+  const bool certified = fit.converged || (fit.feasible && std::isfinite(fit.duality_gap) && fit.duality_gap <= kCertifiedGap);
+  verdict.status = !certified                             ? ModelVerdict::kNotConverged
+                   : verdict.cost_excess > cost_tolerance ? ModelVerdict::kCostAboveOptimum
+                                                          : ModelVerdict::kFitToLoad;
+  char text[400];
+  std::snprintf(text, sizeof(text), "%s: %s; cost %+.3g %% against the OLS optimum (tolerance %.3g %%)",
+                ToString(verdict.status), fit.status.c_str(), 100.0 * verdict.cost_excess, 100.0 * cost_tolerance);
+  verdict.message = text;
+  if (verdict.fit_to_load()) return verdict;
+
+  // The binding constraints by kind, each with the links it holds.
+  std::string com_links, mass_links;
+  bool total = false;
+  for (const ActiveBound& b : fit.bounds_at_optimum) {
+    const std::string name = b.text.substr(0, b.text.find(':'));
+    if (b.quantity == ActiveBound::Quantity::kTotalMass) {
+      total = true;
+    } else if (b.quantity == ActiveBound::Quantity::kMass) {
+      mass_links += (mass_links.empty() ? "" : ", ") + name;
+    } else if (com_links.find(name) == std::string::npos) {
+      com_links += (com_links.empty() ? "" : ", ") + name;
+    }
+  }
+  std::string cause;
+  if (verdict.status == ModelVerdict::kNotConverged)
+    cause = "the solver stopped before certifying its optimum";
+  if (!com_links.empty()) {
+    cause += std::string(cause.empty() ? "" : "; ") + "the centre-of-mass bounds (the box around each link's shapes) " +
+             "hold " + com_links + ": the file's shapes may not be placed in the frames of its inertials, or its " +
+             "centres of mass are far from the robot's; fit without them (plausibility.com_in_geometry = false) or " +
+             "correct the file's <visual>/<collision> or <inertial> origins";
+  }
+  if (!mass_links.empty()) {
+    cause += std::string(cause.empty() ? "" : "; ") + "the mass bounds (plausibility.mass_factor_min, " +
+             "plausibility.mass_factor_max × the file's) hold " + mass_links + ": the file's masses may be far " +
+             "from the robot's, or the log's torques off in scale (drive gains, units, motor against joint side); " +
+             "check the log, or widen the mass range if the file's masses are uncertain";
+  }
+  if (total) {
+    cause += std::string(cause.empty() ? "" : "; ") + "the total mass (plausibility.total_mass ± " +
+             "plausibility.total_mass_tolerance) holds the links: check it against the robot's";
+  }
+  if (cause.empty()) {
+    cause = "no bound holds the fit, so the prior does: lower plausibility.prior_weight, or the data carry more "
+            "than the model explains";
+  }
+  verdict.cause = cause;
+  return verdict;
 }
 
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
@@ -328,6 +416,7 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
       out.consistent.status.rfind("infeasible", 0) == 0) {
     throw std::runtime_error("physically consistent estimate: " + out.consistent.status);
   }
+  out.verdict = JudgePlausibleFit(out.consistent, options.plausibility.cost_tolerance);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
   out.fit = Predict(factors, out.beta);
   out.model_fit = Predict(factors, out.beta_model);

@@ -39,6 +39,15 @@ Eigen::Matrix4d UnitPseudoInertia(int k) {
   return PseudoInertia(e);
 }
 
+// Bounds [lo, hi] on a mass, widened to 10⁻⁶ of hi around their middle
+// where they are closer (a fixed mass): the barrier method needs an interior.
+std::pair<double, double> WithInterior(double lo, double hi) {
+  constexpr double kWidth = 1e-6;
+  if (!std::isfinite(hi) || hi - lo >= kWidth * hi) return {lo, hi};
+  const double middle = 0.5 * (lo + hi);
+  return {middle - 0.5 * kWidth * hi, middle + 0.5 * kWidth * hi};
+}
+
 }  // namespace
 
 bool PlausibleFitOptions::IsValid(int n_links, int n_standard, std::string* why) const {
@@ -65,6 +74,10 @@ bool PlausibleFitOptions::IsValid(int n_links, int n_standard, std::string* why)
   if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) return fail("prior weight must be finite and >= 0");
   if (!(pseudo_inertia_margin >= 0.0) || !(pseudo_inertia_margin < 1.0)) return fail("pseudo-inertia margin must be in [0, 1)");
   if (!(gap_tolerance > 0.0) || max_iterations < 1) return fail("gap tolerance must be > 0 and iterations >= 1");
+  if ((!link_names.empty() && static_cast<int>(link_names.size()) != n_links) ||
+      (!joint_names.empty() && static_cast<int>(joint_names.size()) != n_links))
+    return fail("expected " + std::to_string(n_links) + " link and joint names, got " + std::to_string(link_names.size()) +
+                " and " + std::to_string(joint_names.size()));
   return true;
 }
 
@@ -91,6 +104,7 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
   const Eigen::VectorXd z = factor.col(p).head(p);
   program.rho2 = factor(p, p) * factor(p, p);
   program.start_cost = DataCost(factor, C * pi_prior);
+  program.zero_cost = z.squaredNorm() + program.rho2;
   // The unit: the prior's cost, at least 10⁻¹² of ‖τ‖² (= ‖z‖² + ρ²), so
   // that a noise-free log of the robot file itself keeps a sane scale.
   program.s2 = std::max({program.start_cost, 1e-12 * (z.squaredNorm() + program.rho2), 1e-300});
@@ -104,7 +118,13 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
   // noise-free log, the floor κ = 10⁻¹⁰ keeps the Newton systems within what
   // double precision resolves, at a relative bias of κ/(curvature) in the
   // directions the data determine.
-  program.prior_weights = (kPriorFloor * M.topRows(p).colwise().squaredNorm().transpose()).cwiseMax(lambda / program.s2);
+  const Eigen::VectorXd data_curvature = M.topRows(p).colwise().squaredNorm().transpose();
+  program.prior_weights = (kPriorFloor * data_curvature).cwiseMax(lambda / program.s2);
+  // γ = 0 leaves a parameter no data reach without any weight (a zero column,
+  // and D = scale/0): hold it at the prior with the floor of the strongest.
+  const double empty_column_weight = kPriorFloor * std::max(data_curvature.maxCoeff(), 1e-300);
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (!(program.prior_weights[k] > 0.0)) program.prior_weights[k] = empty_column_weight;
   M.bottomRows(n) = program.prior_weights.cwiseSqrt().asDiagonal();
   // Variables u = x ∘ ‖M_k‖ (unit-norm columns): the same problem, better
   // conditioned. π = π_prior + D ∘ u, D the scale over the column norms.
@@ -145,8 +165,9 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
     const LinkPlausibilityBounds& bounds = options.links[l];
     const int o = kP * static_cast<int>(l);
     const double m0 = pi_prior[o + kMass];
-    if (std::isfinite(bounds.mass_max)) add_row(bounds.mass_max - m0, {mass_term(static_cast<int>(l), -1.0)});
-    if (bounds.mass_min > 0.0) add_row(m0 - bounds.mass_min, {mass_term(static_cast<int>(l), 1.0)});
+    const auto [mass_min, mass_max] = WithInterior(bounds.mass_min, bounds.mass_max);
+    if (std::isfinite(mass_max)) add_row(mass_max - m0, {mass_term(static_cast<int>(l), -1.0)});
+    if (mass_min > 0.0) add_row(m0 - mass_min, {mass_term(static_cast<int>(l), 1.0)});
     if (!bounds.bound_com) continue;
     // m c_min ≤ h ≤ m c_max, h = h_prior + D_h u_h.
     for (int a = 0; a < 3; ++a) {
@@ -163,8 +184,9 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
     total_up.push_back(mass_term(l, -1.0));
     total_down.push_back(mass_term(l, 1.0));
   }
-  if (std::isfinite(options.total_mass_max)) add_row(options.total_mass_max - total0, total_up);
-  if (options.total_mass_min > 0.0) add_row(total0 - options.total_mass_min, total_down);
+  const auto [total_min, total_max] = WithInterior(options.total_mass_min, options.total_mass_max);
+  if (std::isfinite(total_max)) add_row(total_max - total0, total_up);
+  if (total_min > 0.0) add_row(total0 - total_min, total_down);
   for (int k : options.nonnegative) add_row(pi_prior[k], {{k, D[k]}});
 
   // Start at the prior with the nonnegative terms raised off zero (a robot
@@ -220,32 +242,62 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   fit.rounds = 1;
   fit.duality_gap = solution.relative_gap;
   fit.converged = solution.converged;
+  fit.feasible = solution.feasible;
   char status[200];
   std::snprintf(status, sizeof(status), "%s: relative duality gap %.2g", solution.status.c_str(), fit.duality_gap);
   fit.status = solution.feasible ? status : solution.status;
 
-  // The bounds the optimum lies on (within 1e-6 of the scale).
+  // The bounds the optimum lies on (within 1e-6 of the scale), by link name.
+  fit.zero_cost = program.zero_cost;
+  auto link_name = [&](int l) {
+    std::string name = l < static_cast<int>(options.link_names.size()) ? "link '" + options.link_names[static_cast<size_t>(l)] + "'"
+                                                                        : "link " + std::to_string(l + 1);
+    if (l < static_cast<int>(options.joint_names.size())) name += " (joint '" + options.joint_names[static_cast<size_t>(l)] + "')";
+    return name;
+  };
+  auto add_bound = [&](ActiveBound::Quantity quantity, int l, bool upper, double bound, double file_value) {
+    ActiveBound b{quantity, l, upper, bound, file_value, ""};
+    const char* side = upper ? "upper" : "lower";
+    if (quantity == ActiveBound::Quantity::kMass || quantity == ActiveBound::Quantity::kTotalMass) {
+      b.text = (l >= 0 ? link_name(l) + ": mass" : std::string("total mass of the moving links")) + " at its " + side +
+               " bound " + Number(bound) + " kg (" + Number(bound / file_value) + " × the file's " + Number(file_value) + " kg)";
+    } else {
+      const char axis = static_cast<char>('x' + (static_cast<int>(quantity) - static_cast<int>(ActiveBound::Quantity::kComX)));
+      b.text = link_name(l) + ": centre of mass " + axis + " on the " + side + " face of the box around its shapes, " +
+               Number(bound) + " m (the file's: " + Number(file_value) + " m)";
+    }
+    fit.active_bounds.push_back(b.text);
+    fit.bounds_at_optimum.push_back(std::move(b));
+  };
+  double total = 0.0, total_file = 0.0;
+  for (int l = 0; l < n_links; ++l) {
+    total += fit.pi[kP * l + kMass];
+    total_file += pi_prior[kP * l + kMass];
+  }
   for (size_t l = 0; l < options.links.size(); ++l) {
     const LinkPlausibilityBounds& bounds = options.links[l];
-    const int o = kP * static_cast<int>(l);
-    const double m = fit.pi[o + kMass];
+    const int li = static_cast<int>(l);
+    const int o = kP * li;
+    const double m = fit.pi[o + kMass], m0 = pi_prior[o + kMass];
     const double tolerance = 1e-6 * options.scale[o + kMass];
-    const std::string link = "B" + std::to_string(l + 1);
     if (std::isfinite(bounds.mass_max) && m >= bounds.mass_max - tolerance)
-      fit.active_bounds.push_back(link + ".m at its upper bound " + Number(bounds.mass_max) + " kg");
-    if (bounds.mass_min > 0.0 && m <= bounds.mass_min + tolerance)
-      fit.active_bounds.push_back(link + ".m at its lower bound " + Number(bounds.mass_min) + " kg");
+      add_bound(ActiveBound::Quantity::kMass, li, true, bounds.mass_max, m0);
+    else if (bounds.mass_min > 0.0 && m <= bounds.mass_min + tolerance)  // one of two that meet
+      add_bound(ActiveBound::Quantity::kMass, li, false, bounds.mass_min, m0);
     if (!bounds.bound_com || !(m > 0.0)) continue;
     for (int a = 0; a < 3; ++a) {
-      const double c = fit.pi[o + kFirstMoment + a] / m;
+      const double c = fit.pi[o + kFirstMoment + a] / m, c0 = pi_prior[o + kFirstMoment + a] / m0;
       const double length_tolerance = 1e-6 * options.scale[o + kFirstMoment + a] / options.scale[o + kMass];
-      const char axis = static_cast<char>('x' + a);
-      if (c <= bounds.com_min_B[a] + length_tolerance)
-        fit.active_bounds.push_back(link + ".c" + axis + " on its box's lower face " + Number(bounds.com_min_B[a]) + " m");
-      if (c >= bounds.com_max_B[a] - length_tolerance)
-        fit.active_bounds.push_back(link + ".c" + axis + " on its box's upper face " + Number(bounds.com_max_B[a]) + " m");
+      const auto quantity = static_cast<ActiveBound::Quantity>(static_cast<int>(ActiveBound::Quantity::kComX) + a);
+      if (c <= bounds.com_min_B[a] + length_tolerance) add_bound(quantity, li, false, bounds.com_min_B[a], c0);
+      if (c >= bounds.com_max_B[a] - length_tolerance) add_bound(quantity, li, true, bounds.com_max_B[a], c0);
     }
   }
+  const double total_tolerance = 1e-6 * std::max(total_file, 1e-300);
+  if (std::isfinite(options.total_mass_max) && total >= options.total_mass_max - total_tolerance)
+    add_bound(ActiveBound::Quantity::kTotalMass, -1, true, options.total_mass_max, total_file);
+  else if (options.total_mass_min > 0.0 && total <= options.total_mass_min + total_tolerance)
+    add_bound(ActiveBound::Quantity::kTotalMass, -1, false, options.total_mass_min, total_file);
   return fit;
 }
 

@@ -19,6 +19,7 @@ struct PlausibleProgram {
   double s2 = 1.0;                // the cost of the prior [N² m²]: the objective's unit
   double rho2 = 0.0;              // ρ², the OLS residual [N² m²]
   double start_cost = 0.0;        // the cost of π_prior [N² m²]
+  double zero_cost = 0.0;         // ‖τ‖², the cost of β = 0 [N² m²]
   double rest = 0.0;              // the part of the normalised objective no u reaches
   Eigen::VectorXd start;          // u₀: the prior, nonnegative terms raised off zero
 };

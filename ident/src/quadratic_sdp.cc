@@ -225,6 +225,11 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
       worst = std::min(worst, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plain.S(j, u), Eigen::EigenvaluesOnly)
                                   .eigenvalues()[0]);
     for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) worst = std::min(worst, plain.r(k, u));
+    if (!std::isfinite(worst) || !u.allFinite() || !problem.R.allFinite() || !problem.z.allFinite()) {
+      solution.u = u;
+      solution.status = "not finite: the problem's data or its start overflow (values beyond double precision)";
+      return solution;
+    }
     if (!(worst > 0.0)) {
       // η trades the objective against the violation: where the data pin a
       // direction hard (a nearly noise-free log) even a small η can hold s
@@ -242,7 +247,10 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
         phase1.q.head(n) = -2.0 * eta * problem.R.transpose() * problem.z;
         phase1.q[n] = 1.0;
         w << u0, 1.0 - worst;
-        for (double tau = 1.0 / std::max(1.0 - worst, 1.0); tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps;
+        // τ grows geometrically to 10¹⁴, so the loop ends; a start that is
+        // not finite (values that overflow) ends it at once.
+        for (double tau = 1.0 / std::max(1.0 - worst, 1.0);
+             std::isfinite(tau) && tau > 0.0 && tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps;
              tau *= kBarrierGrowth) {
           const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
           Centre(phase1, tau, &w, &solution.newton_steps, limit,
@@ -300,10 +308,13 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   auto relative = [&](double gap, double objective) {
     return gap / std::max({objective + options.objective_offset, options.objective_floor, 1e-300});
   };
-  while (solution.newton_steps < options.max_newton_steps) {
+  // Each round either takes a Newton step or raises τ (finite, below 10³⁰⁰):
+  // the loop ends.
+  while (solution.newton_steps < options.max_newton_steps && std::isfinite(tau) && tau > 0.0 && tau < 1e300) {
     const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
     stalled = !Centre(phase2, tau, &u, &solution.newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
     const double objective = f(u), bound = lower_bound(u, tau), gap = objective - bound;
+    if (!std::isfinite(gap)) break;
     if (gap < best_gap) {
       best_gap = gap;
       best_u = u;
@@ -317,9 +328,11 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   solution.relative_gap = relative(best_gap, solution.objective);
   solution.feasible = std::isfinite(phase2.Phi(best_u, 1.0));
   solution.converged = solution.feasible && solution.relative_gap <= options.relative_gap;
-  solution.status = solution.converged ? "converged"
-                    : stalled ? "stopped where rounding ends the progress"
-                              : "stopped: Newton step limit reached";
+  solution.status = solution.converged                              ? "converged"
+                    : !std::isfinite(best_gap)                        ? "stopped: the objective or its bound is not finite"
+                    : stalled                                         ? "stopped where rounding ends the progress"
+                    : solution.newton_steps >= options.max_newton_steps ? "stopped: Newton step limit reached"
+                                                                      : "stopped: the barrier parameter reached 1e300 before the gap closed";
   return solution;
 }
 

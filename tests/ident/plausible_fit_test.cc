@@ -11,6 +11,7 @@
 #include "ident/dsdp_problem.h"
 #include "ident/joint_torque_experiment.h"
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/link_bounding_box.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/linear_estimator.h"
@@ -62,7 +63,18 @@ TEST(PlausibleFitTest, ActiveBoundsAndTheOptimumAgreesWithDsdp) {
   const Experiment e = MakeExperiment(true, 400, 0.05, MakePuma560());
   const Eigen::VectorXd tau = AddNoise(e.tau, (Eigen::VectorXd(6) << 0.5, 0.5, 0.5, 0.05, 0.05, 0.05).finished(), 11);
   const Eigen::MatrixXd factor = CombinedFactor(e.W, tau);
-  const PlausibleFitOptions options = OptionsForPrior(e, e.pi_true);
+  // Every centre of mass in the box around its link's shapes, also where the
+  // PUMA's stick figure leaves the file's outside it (links 2 and 3, which
+  // MakePlausibleFitOptions now leaves unbounded): the start is infeasible
+  // (phase I) and more bounds are active.
+  PlausibleFitOptions options = OptionsForPrior(e, e.pi_true);
+  for (int l = 0; l < 6; ++l) {
+    LinkPlausibilityBounds& b = options.links[static_cast<size_t>(l)];
+    const Eigen::AlignedBox3d box = *LinkBoundingBox_B(e.model.link(l));
+    b.bound_com = true;
+    b.com_min_B = box.min();
+    b.com_max_B = box.max();
+  }
   const PhysicallyConsistentFit fit = SolvePlausibleFit(factor, e.base, 6, e.pi_true, options);
   ASSERT_TRUE(fit.converged) << fit.status;
   EXPECT_LE(fit.duality_gap, 1e-9);
@@ -78,6 +90,60 @@ TEST(PlausibleFitTest, ActiveBoundsAndTheOptimumAgreesWithDsdp) {
   EXPECT_LE(ours, theirs * (1 + 1e-8));
   EXPECT_NEAR(ours, theirs, 1e-6 * theirs);
   EXPECT_LT((fit.pi - (e.pi_true + program.D.cwiseProduct(u))).norm(), 1e-3 * fit.pi.norm());
+}
+
+// prior_weight 0 left the standard parameters no data reach with no weight
+// at all: a zero column, D = scale/0, and "infeasible … -nan" on main
+// 6ab1a0b. Now they get the floor's weight and the fit is finite; without the
+// prior term its data cost is at most that of the default weight's fit (the
+// same program minus a nonnegative term) and at least the OLS optimum.
+TEST(PlausibleFitTest, ZeroPriorWeightHoldsTheUnreachedParametersAtThePrior) {
+  const Experiment e = MakeExperiment(true, 400, 0.05, MakePuma560());
+  const Eigen::VectorXd tau = AddNoise(e.tau, (Eigen::VectorXd(6) << 0.5, 0.5, 0.5, 0.05, 0.05, 0.05).finished(), 11);
+  const Eigen::MatrixXd factor = CombinedFactor(e.W, tau);
+  PlausibleFitOptions options = OptionsForPrior(e, e.pi_true);
+  const PhysicallyConsistentFit with_prior = SolvePlausibleFit(factor, e.base, 6, e.pi_true, options);
+  options.prior_weight = 0.0;
+  const PhysicallyConsistentFit fit = SolvePlausibleFit(factor, e.base, 6, e.pi_true, options);
+  // Without a prior the barrier method ends where rounding does, here at a
+  // relative gap of 2e-9, just above the 1e-9 that counts as converged (on
+  // identify's 1000-sample log: 5e-11, converged; identify_cli_test).
+  ASSERT_EQ(fit.status.find("infeasible"), std::string::npos) << fit.status;
+  ASSERT_TRUE(fit.pi.allFinite());
+  EXPECT_LE(fit.duality_gap, 1e-8);
+  EXPECT_LE(fit.cost, with_prior.cost * (1 + 1e-9));
+  EXPECT_GE(fit.cost, fit.ols_cost * (1 - 1e-12));
+  EXPECT_GE(fit.min_pseudo_inertia_eigenvalue.minCoeff(), 0.0);
+  // What the data do not determine is arbitrary without a prior (identify
+  // therefore refuses prior_weight 0: PlausibilitySettings::IsValid).
+}
+
+// A fixed mass (mass range 1,1: both bounds the file's mass) has no interior,
+// which the barrier method needs: main 6ab1a0b reported "infeasible … least
+// violation 0". Now each mass is held within 10⁻⁶ of the file's and the fit
+// converges; a fixed total mass (tolerance 0) likewise.
+TEST(PlausibleFitTest, FixedMassesAreHeldToTheFilesValues) {
+  const Experiment e = MakeExperiment(true, 400, 0.05, MakePuma560());
+  const Eigen::VectorXd tau = AddNoise(e.tau, (Eigen::VectorXd(6) << 0.5, 0.5, 0.5, 0.05, 0.05, 0.05).finished(), 11);
+  const Eigen::VectorXd prior = ScaledPrior(e, 1.2, 1.0);  // masses 20 % off the data's
+  PlausibilitySettings settings;
+  settings.mass_factor_min = settings.mass_factor_max = 1.0;
+  const RobotModel file = ModelWithStandardParameters(e.model, e.friction, prior);
+  const PhysicallyConsistentFit fit = SolvePlausibleFit(CombinedFactor(e.W, tau), e.base, 6, prior,
+                                                        MakePlausibleFitOptions(file, e.friction, settings));
+  ASSERT_TRUE(fit.converged) << fit.status;
+  for (int l = 0; l < 6; ++l) EXPECT_NEAR(fit.pi[10 * l], prior[10 * l], 1e-6 * prior[10 * l]) << "link " << l + 1;
+  double total = 0.0;
+  for (int l = 0; l < 6; ++l) total += prior[10 * l];
+  settings = PlausibilitySettings{};
+  settings.total_mass = total;
+  settings.total_mass_tolerance = 0.0;
+  const PhysicallyConsistentFit held = SolvePlausibleFit(CombinedFactor(e.W, tau), e.base, 6, prior,
+                                                         MakePlausibleFitOptions(file, e.friction, settings));
+  ASSERT_TRUE(held.converged) << held.status;
+  double fitted = 0.0;
+  for (int l = 0; l < 6; ++l) fitted += held.pi[10 * l];
+  EXPECT_NEAR(fitted, total, 1e-6 * total);
 }
 
 }  // namespace

@@ -158,18 +158,31 @@ int IdentifyCommand(const idbench::IdentifyOptions& options, const idbench::Urdf
   std::fputs(idbench::FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   idbench::EnsureOutputDirectory(dir);
+  // The robot model (identified.urdf, joints.yaml) only when its verdict is
+  // fit to load, or the user accepts it (--write-unverified); the diagnostics always.
+  const bool model_files = idbench::WritesRobotModel(options, report);
   std::vector<std::pair<std::filesystem::path, std::string>> files{
-      {dir / "identified.json", idbench::FormatIdentifiedJson(model, options, report)},
-      {dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report)},
-      {dir / "joints.yaml", idbench::FormatJointDynamicsYaml(model, options, report)}};
+      {dir / "identified.json", idbench::FormatIdentifiedJson(model, options, report)}};
+  if (model_files) {
+    files.emplace_back(dir / "identified.urdf", idbench::FormatIdentifiedUrdf(model, options, report));
+    files.emplace_back(dir / "joints.yaml", idbench::FormatJointDynamicsYaml(model, options, report));
+  }
   if (with_report) {
     for (auto& file : idbench::FormatReportFiles(idbench::MakeIdentifyReportContent(model, options, report), dir))
       files.push_back(std::move(file));
   }
   idbench::WriteFilesAtomically(files);
-  std::printf("wrote %s, %s and joints.yaml%s\n", (dir / "identified.json").c_str(), (dir / "identified.urdf").c_str(),
+  std::printf("wrote %s%s%s\n", (dir / "identified.json").c_str(),
+              model_files ? (", " + (dir / "identified.urdf").string() + " and joints.yaml").c_str() : "",
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
-  return 0;
+  const std::string refused = idbench::RefusedModelMessage(options, report, idbench::OptionNames::kCommandLine);
+  if (refused.empty()) return 0;
+  if (options.write_unverified) {
+    std::fprintf(stderr, "idbench: warning: %s\n", refused.c_str());
+    return 0;
+  }
+  std::fprintf(stderr, "idbench: error: %s\n", refused.c_str());
+  return kExitFailure;
 }
 
 int GainsCommand(const idbench::GainsOptions& options, const idbench::UrdfLoadOptions& load) {
@@ -435,6 +448,11 @@ int main(int argc, char** argv) {
   identify_cmd->add_option("--prior-weight", identify.plausibility.prior_weight,
                            "Weight of the robot file's values as a prior (fraction of the OLS residual)")
       ->capture_default_str();
+  identify_cmd->add_option("--cost-tolerance", identify.plausibility.cost_tolerance,
+                           "The physically consistent estimate is a robot model only within this fraction above the "
+                           "OLS optimum's cost")->capture_default_str();
+  identify_cmd->add_flag("--write-unverified", identify.write_unverified,
+                         "Write identified.urdf and joints.yaml even when the estimate is not fit to load (exit 0)");
   identify_cmd->add_option("--out", identify.out_dir, "Output directory (created if missing, never wiped)")
       ->capture_default_str();
   bool identify_report = false;

@@ -122,7 +122,9 @@ struct IdentifyResult {
   std::optional<double> validation_whole_file_relative_error;  // with validate_window: the whole held-out log's
   py::dict torques;                     // {t, measured, predicted} on the identification log
   std::optional<py::dict> validation_torques;  // the same on the held-out log
-  std::string tables, json, urdf, joints_yaml;
+  std::string tables, json;
+  std::optional<std::string> urdf, joints_yaml;  // None when the verdict refuses the model
+  py::dict verdict;  // {status, fit_to_load, message, cause, cost_excess_percent, cost_tolerance_percent, bounds_at_optimum}
   std::vector<std::string> warnings, notes;
 };
 
@@ -152,6 +154,7 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   r.beta = id.beta;
   r.sigma = id.linear.sigma;
   r.rel_sigma_percent = id.linear.rel_sigma_percent;
+  for (int k = 0; k < id.base.n_base(); ++k) r.rel_sigma_percent[k] = RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]);
   r.beta_model = id.beta_model;
   for (int k = 0; k < id.base.n_base(); ++k) {
     const ParameterStatus status = ClassifyParameter(id.beta[k], id.linear.sigma[k]);
@@ -179,8 +182,21 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   }
   r.tables = FormatIdentifyTables(model, options, report);
   r.json = FormatIdentifiedJson(model, options, report);
-  r.urdf = FormatIdentifiedUrdf(model, options, report);
-  r.joints_yaml = FormatJointDynamicsYaml(model, options, report);
+  if (WritesRobotModel(options, report)) {
+    r.urdf = FormatIdentifiedUrdf(model, options, report);
+    r.joints_yaml = FormatJointDynamicsYaml(model, options, report);
+  }
+  const IdentificationVerdict& v = id.verdict;
+  r.verdict["status"] = ToKey(v.status);
+  r.verdict["fit_to_load"] = v.fit_to_load();
+  r.verdict["message"] = v.message;
+  r.verdict["cause"] = v.fit_to_load() ? py::object(py::none())
+                                       : py::object(py::str(InFrontEndTerms(v.cause, OptionNames::kPython)));
+  r.verdict["cost_excess_percent"] = 100.0 * v.cost_excess;
+  r.verdict["cost_tolerance_percent"] = 100.0 * v.cost_tolerance;
+  py::list bounds;
+  for (const ActiveBound& b : id.consistent.bounds_at_optimum) bounds.append(b.text);
+  r.verdict["bounds_at_optimum"] = bounds;
   r.warnings = report.warnings;
   r.notes = report.notes;
   return r;
@@ -349,8 +365,11 @@ PYBIND11_MODULE(idbench, m) {
       .def_readonly("validation_torques", &IdentifyResult::validation_torques, "The same on the held-out log")
       .def_readonly("tables", &IdentifyResult::tables, "What identify prints")
       .def_readonly("json", &IdentifyResult::json, "identified.json")
-      .def_readonly("urdf", &IdentifyResult::urdf, "identified.urdf")
-      .def_readonly("joints_yaml", &IdentifyResult::joints_yaml, "joints.yaml")
+      .def_readonly("urdf", &IdentifyResult::urdf, "identified.urdf; None when the verdict refuses the model")
+      .def_readonly("joints_yaml", &IdentifyResult::joints_yaml, "joints.yaml; None when the verdict refuses the model")
+      .def_readonly("verdict", &IdentifyResult::verdict,
+                    "Whether the physically consistent estimate is a robot model to load: status, fit_to_load, "
+                    "message, cause, cost_excess_percent, cost_tolerance_percent, bounds_at_optimum")
       .def_readonly("warnings", &IdentifyResult::warnings)
       .def_readonly("notes", &IdentifyResult::notes);
 
@@ -363,7 +382,8 @@ PYBIND11_MODULE(idbench, m) {
          const std::vector<double>& drive_gains, const std::vector<double>& time_window,
          const std::vector<double>& validate_window, double max_gap,
          double filter_cutoff, int filter_order, int decimate, const std::vector<double>& mass_range,
-         double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight) {
+         double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight,
+         double cost_tolerance, bool write_unverified) {
         IdentifyOptions options;
         options.robot = robot.source;
         options.data = py::isinstance<py::dict>(data) ? "<data arrays>" : py::str(data).cast<std::string>();
@@ -392,6 +412,8 @@ PYBIND11_MODULE(idbench, m) {
         }
         options.plausibility.com_in_geometry = com_bound == "geometry";
         options.plausibility.prior_weight = prior_weight;
+        options.plausibility.cost_tolerance = cost_tolerance;
+        options.write_unverified = write_unverified;
         options.command_line = "python: idbench.identify";
         return Identify(robot, data, options, validate);
       },
@@ -408,10 +430,12 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("total_mass") = id_defaults.plausibility.total_mass,
       py::arg("total_mass_tolerance") = id_defaults.plausibility.total_mass_tolerance,
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
+      py::arg("cost_tolerance") = id_defaults.plausibility.cost_tolerance, py::arg("write_unverified") = false,
       "Identifies the robot from a joint log: a CSV path (read as `idbench identify --data`) or a dict of arrays "
       "{t, q, [qd, qdd], tau} or with i (motor currents) for drive_gains (n_samples × n_dof, angles in angle_unit; "
       "without qd/qdd they are estimated by filtering). validate_window=(T0, T1) scores only that part of the held-out "
-      "log. Options as `idbench identify`'s.");
+      "log. Options as `idbench identify`'s. The result's verdict says whether the physically consistent estimate is "
+      "a robot model; urdf and joints_yaml are None when it is not (unless write_unverified=True).");
 
   const SimulateOptions sim_defaults;
   m.def(

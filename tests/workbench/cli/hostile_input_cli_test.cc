@@ -158,8 +158,9 @@ TEST_F(HostileInputCliTest, LongAndBinaryLinesAreRefusedWithAShortMessage) {
 TEST_F(HostileInputCliTest, AByteOrderMarkBeforeTheHeaderIsIgnored) {
   const fs::path log = Log();
   const fs::path bom = Write("bom.csv", "\xef\xbb\xbf" + Slurp(log));
-  const Result r = Run("identify --robot puma560 --data " + bom.string() + " --friction none --out " +
-                       (dir_ / "o").string());
+  // (With the default friction: without it the PUMA's friction torques make
+  // the plausible fit no robot model, and identify exits 1; issue 20.)
+  const Result r = Run("identify --robot puma560 --data " + bom.string() + " --out " + (dir_ / "o").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::is_regular_file(dir_ / "o" / "identified.json"));
 }

@@ -113,6 +113,61 @@ def test_unidentifiable_parameters_are_nan_never_numbers(puma):
     assert result.status[fv6] == "not identifiable"
 
 
+def two_link_urdf(com_x):
+    """Two links (z then y hinges), each drawn as a 10 cm cube at x = 0.2 m, its centre of mass at com_x."""
+    link = ('<link name="{0}"><inertial><origin xyz="{1} 0 0"/><mass value="2"/><inertia ixx="0.02" ixy="0" '
+            'ixz="0" iyy="0.03" iyz="0" izz="0.03"/></inertial><visual><origin xyz="0.2 0 0"/><geometry>'
+            '<box size="0.1 0.1 0.1"/></geometry></visual></link>')
+    joint = ('<joint name="{0}" type="revolute"><parent link="{1}"/><child link="{2}"/><origin xyz="{3} 0 0"/>'
+             '<axis xyz="{4}"/><limit lower="-3" upper="3" effort="100" velocity="5"/></joint>')
+    return ('<robot name="two"><link name="base"/>' + link.format("arm", com_x) + link.format("forearm", com_x) +
+            joint.format("shoulder", "base", "arm", 0, "0 0 1") + joint.format("elbow", "arm", "forearm", 0.4, "0 1 0") +
+            "</robot>")
+
+
+def test_a_refused_model_is_the_verdict_not_a_urdf(puma, tmp_path):
+    # The robot's centres of mass lie 0.4 m beyond the cubes it is drawn with;
+    # its file says they are in the cubes (so the load sees no contradiction).
+    # The fit is pinned on the boxes far above the OLS optimum and the verdict
+    # refuses the model, as the command line does (exit 1, identified.json only).
+    (tmp_path / "truth.urdf").write_text(two_link_urdf(0.6))
+    (tmp_path / "file.urdf").write_text(two_link_urdf(0.2))
+    truth, boxed = idbench.Robot(str(tmp_path / "truth.urdf")), idbench.Robot(str(tmp_path / "file.urdf"))
+    assert any("0.35 m outside the box" in w for w in truth.warnings)
+    assert not boxed.warnings
+    log = idbench.simulate(truth, "general", duration=5.0, rate=100.0, tau_noise=[0.01, 0.01], seed=3)
+    header = ["t", "q1", "q2", "qd1", "qd2", "qdd1", "qdd2", "tau1", "tau2"]
+    table = np.column_stack([log["t"], log["q"], log["qd"], log["qdd"], log["tau"]])
+    np.savetxt(tmp_path / "log.csv", table, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+    code, _, err = cli("identify", "--robot", "file.urdf", "--data", "log.csv", "--estimator", "pc",
+                       "--out", "id", cwd=tmp_path)
+    assert code == 1, err
+    assert "--com-bound none" in err and "link 'forearm'" in err
+    assert not (tmp_path / "id/identified.urdf").exists()
+    expected = json.loads((tmp_path / "id/identified.json").read_text())["verdict"]
+
+    result = idbench.identify(boxed, log, estimator="pc")
+    verdict = result.verdict
+    assert not verdict["fit_to_load"] and verdict["status"] == expected["status"]
+    assert verdict["cost_excess_percent"] == pytest.approx(expected["cost_excess_percent"], rel=1e-6)
+    assert verdict["cost_excess_percent"] > 100.0
+    assert "com_bound='none'" in verdict["cause"] and "--" not in verdict["cause"]
+    assert any("link 'forearm'" in b and "centre of mass" in b for b in verdict["bounds_at_optimum"])
+    assert result.urdf is None and result.joints_yaml is None
+    accepted = idbench.identify(boxed, log, estimator="pc", write_unverified=True)
+    assert accepted.urdf is not None and "<robot" in accepted.urdf
+    assert idbench.identify(boxed, log, estimator="pc", com_bound="none").verdict["fit_to_load"]
+
+    # %sigma is relative to the value returned (here the pc value), NaN where it is within 3 sigma of 0.
+    noisy = idbench.simulate(puma, "general", duration=3.0, rate=200.0, tau_noise=[0.05] * 6, seed=7)
+    fit = idbench.identify(puma, noisy, estimator="pc")
+    assert fit.verdict["fit_to_load"], fit.verdict
+    small = np.abs(fit.beta) <= 3 * fit.sigma
+    assert np.isnan(fit.rel_sigma_percent[small]).all()
+    np.testing.assert_allclose(fit.rel_sigma_percent[~small], 100 * fit.sigma[~small] / np.abs(fit.beta[~small]),
+                               rtol=1e-12)
+
+
 def test_errors_carry_the_command_lines_messages(puma, tmp_path):
     code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
     assert code != 0

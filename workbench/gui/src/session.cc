@@ -413,6 +413,10 @@ bool Session::ExportIdentifiedUrdf() {
     Error("export: nothing identified yet");
     return false;
   }
+  if (!WritesRobotModel(identified_with_, *identify_report_)) {  // the verdict refuses it (issue 20)
+    Error("export: " + RefusedModelMessage(identified_with_, *identify_report_, OptionNames::kCommandLine));
+    return false;
+  }
   return Export("identified.urdf",
                 [&] { return FormatIdentifiedUrdf(*model_, identified_with_, *identify_report_); });
 }

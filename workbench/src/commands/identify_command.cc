@@ -15,9 +15,44 @@
 #include "number_format.h"
 
 namespace idbench {
-namespace {
 
-}  // namespace
+bool WritesRobotModel(const IdentifyOptions& options, const IdentifyReport& report) {
+  return report.identification.verdict.fit_to_load() || options.write_unverified;
+}
+
+std::string InFrontEndTerms(std::string text, OptionNames names) {
+  const bool cli = names == OptionNames::kCommandLine;
+  // Longest field names first: each is a prefix of none after it.
+  const std::pair<const char*, std::string> fields[] = {
+      {"plausibility.com_in_geometry = false", cli ? "--com-bound none" : "com_bound='none'"},
+      {"plausibility.mass_factor_min, plausibility.mass_factor_max", cli ? "--mass-range" : "mass_range"},
+      {"plausibility.total_mass_tolerance", cli ? "--total-mass-tolerance" : "total_mass_tolerance"},
+      {"plausibility.total_mass", cli ? "--total-mass" : "total_mass"},
+      {"plausibility.prior_weight", cli ? "--prior-weight" : "prior_weight"},
+      {"plausibility.cost_tolerance", cli ? "--cost-tolerance" : "cost_tolerance"},
+      {"write_unverified", cli ? "--write-unverified" : "write_unverified=True"},
+  };
+  for (const auto& [field, name] : fields) {
+    for (size_t at = text.find(field); at != std::string::npos; at = text.find(field, at + name.size()))
+      text.replace(at, std::string(field).size(), name);
+  }
+  return text;
+}
+
+std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyReport& report, OptionNames names) {
+  const IdentificationVerdict& verdict = report.identification.verdict;
+  if (verdict.fit_to_load()) return "";
+  return InFrontEndTerms("the physically consistent estimate is not a robot model (" + verdict.message + "): " +
+                             verdict.cause + ". identified.json holds the diagnostics; identified.urdf and joints.yaml " +
+                             (options.write_unverified ? "are written anyway, as asked (write_unverified)"
+                                                       : "are not written (write_unverified writes them anyway)"),
+                         names);
+}
+
+double RelativeSigmaPercent(double value, double sigma) {
+  if (!std::isfinite(value) || !std::isfinite(sigma) || !(std::abs(value) > 3.0 * sigma)) return std::nan("");
+  return 100.0 * sigma / std::abs(value);
+}
 
 FrictionModel IdentifyOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
@@ -60,7 +95,7 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   if (!validate_window.empty() && validate.empty()) return fail("validate_window: given without a held-out log (validate)");
   if (!preparation(false).IsValid(why)) return false;
   std::string plausibility_why;
-  if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
+  if (!plausibility.IsValid(&plausibility_why)) return fail(InFrontEndTerms(plausibility_why, OptionNames::kCommandLine));
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
@@ -150,13 +185,18 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
       std::snprintf(line, sizeof(line), "%4d  %14.6g  %14s  %11s  %8s  %-10s  %s\n", k + 1, id.beta_model[k], "-", "-",
                     "-", "not ident.", name);
     } else {
-      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8.3g  %-10s  %s\n", k + 1, id.beta_model[k],
-                    id.beta[k], id.linear.sigma[k], id.linear.rel_sigma_percent[k],
+      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8s  %-10s  %s\n", k + 1, id.beta_model[k],
+                    id.beta[k], id.linear.sigma[k], Format("%.3g", RelativeSigmaPercent(id.beta[k], id.linear.sigma[k])).c_str(),
                     status == ParameterStatus::kIndistinguishableFromZero ? "~0" : ToString(status), name);
     }
     out += line;
   }
-  out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero\n";
+  out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero "
+         "(%sigma '-': sigma itself is what is known)\n";
+  if (options.estimator == "pc") {
+    out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "
+           "%sigma: relative to the value shown\n";
+  }
   if (id.linear.rank < id.base.n_base()) {
     const int n = id.base.n_base();
     const int missing = static_cast<int>(std::count(id.linear.identifiable.begin(), id.linear.identifiable.end(), false));
@@ -198,6 +238,15 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
     for (size_t k = 0; k < pc.active_bounds.size(); ++k) out += (k ? "; " : " ") + pc.active_bounds[k];
     out += '\n';
   }
+  const PlausibleFitOptions bounds = MakePlausibleFitOptions(model, options.friction_model(), options.plausibility);
+  for (int l = 0; l < model.n_links(); ++l) {
+    const double outside = bounds.links[static_cast<size_t>(l)].com_outside_geometry;
+    if (outside > 0.0) {
+      out += "  no centre-of-mass bound on link '" + model.link(l).name + "': the file's centre of mass lies " +
+             Format("%.3g", outside) + " m outside the box around its shapes\n";
+    }
+  }
+  out += "Verdict: " + id.verdict.message + "\n";  // why, when refused: the command's one message
   return out;
 }
 
@@ -269,7 +318,9 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
     base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
                     {"value", identifiable ? json(id.beta[k]) : nothing},
                     {"sigma", identifiable ? json(id.linear.sigma[k]) : nothing},
-                    {"rel_sigma_percent", identifiable ? json(id.linear.rel_sigma_percent[k]) : nothing},
+                    {"rel_sigma_percent", identifiable && std::isfinite(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
+                                              ? json(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
+                                              : nothing},
                     {"variance_inflation", identifiable ? json(id.linear.variance_inflation[k]) : nothing},
                     {"status", ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]))},
                     {"robot_file_value", id.beta_model[k]}});
@@ -296,12 +347,41 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
                      {"com_B", {c.x(), c.y(), c.z()}},
                      {"com_box_B", b.bound_com ? json{{"min", {b.com_min_B.x(), b.com_min_B.y(), b.com_min_B.z()}},
                                                       {"max", {b.com_max_B.x(), b.com_max_B.y(), b.com_max_B.z()}}}
-                                               : json(nullptr)}});
+                                               : json(nullptr)},
+                     {"com_bound", b.bound_com                       ? "geometry"
+                                   : b.com_outside_geometry > 0.0    ? "none: the file's centre of mass lies outside the box around its shapes"
+                                   : options.plausibility.com_in_geometry ? "none: the link has no shapes"
+                                                                          : "none"},
+                     {"com_outside_geometry", b.com_outside_geometry > 0.0 ? json(b.com_outside_geometry) : json(nullptr)}});
   }
   json unexcited = json::array();
   for (int c : id.base.unexcited) unexcited.push_back(id.standard_names[static_cast<size_t>(c)]);
+  json bounds_at_optimum = json::array();
+  for (const ActiveBound& b : id.consistent.bounds_at_optimum) {
+    static const char* const kQuantity[] = {"mass", "com_x", "com_y", "com_z", "total_mass"};
+    bounds_at_optimum.push_back({{"link", b.link >= 0 ? json(model.link(b.link).name) : json(nullptr)},
+                                 {"joint", b.link >= 0 ? json(model.link(b.link).joint_name) : json(nullptr)},
+                                 {"quantity", kQuantity[static_cast<int>(b.quantity)]},
+                                 {"side", b.upper ? "upper" : "lower"},
+                                 {"bound", b.bound},
+                                 {"robot_file_value", b.file_value},
+                                 {"text", b.text}});
+  }
+  const IdentificationVerdict& v = id.verdict;
+  const json verdict = {
+      {"status", ToKey(v.status)},
+      {"fit_to_load", v.fit_to_load()},
+      {"message", v.message},
+      {"cause", v.fit_to_load() ? json(nullptr) : json(InFrontEndTerms(v.cause, OptionNames::kCommandLine))},
+      {"converged", id.consistent.converged},
+      {"cost_excess_percent", 100.0 * v.cost_excess},
+      {"cost_tolerance_percent", 100.0 * v.cost_tolerance},
+      {"bounds_at_optimum", bounds_at_optimum},
+      {"robot_model_written", WritesRobotModel(options, report)},
+      {"write_unverified", options.write_unverified}};
   json result = {
       {"command", options.command_line},
+      {"verdict", verdict},
       {"robot", model.name()},
       {"data", options.data},
       {"n_samples", report.log.n_samples()},
@@ -335,7 +415,8 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
           {"total_mass", options.plausibility.total_mass > 0.0 ? json(options.plausibility.total_mass) : json(nullptr)},
           {"total_mass_tolerance", options.plausibility.total_mass_tolerance},
           {"com_bound", options.plausibility.com_in_geometry ? "geometry" : "none"},
-          {"prior_weight", options.plausibility.prior_weight}}},
+          {"prior_weight", options.plausibility.prior_weight},
+          {"cost_tolerance", options.plausibility.cost_tolerance}}},
         {"standard_parameters", standard},
         {"links", links}}},
       {"joints", JointDynamicsJson(model, options, report)},

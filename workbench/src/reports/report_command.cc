@@ -372,7 +372,8 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
       continue;
     }
     base.rows.push_back({std::to_string(k + 1), name, Format("%.6g", id.beta[k]), Format("%.3g", id.linear.sigma[k]),
-                         Format("%.3g", id.linear.rel_sigma_percent[k]), status, Format("%.6g", id.beta_model[k]),
+                         Format("%.3g", RelativeSigmaPercent(id.beta[k], id.linear.sigma[k])), status,
+                         Format("%.6g", id.beta_model[k]),
                          Format("%.3g", id.beta[k] - id.beta_model[k])});
     estimates.push_back({std::to_string(k + 1), id.beta_model[k], id.beta[k], 3.0 * id.linear.sigma[k]});
   }

@@ -18,4 +18,18 @@ namespace idbench {
 // without vertices).
 std::optional<Eigen::AlignedBox3d> LinkBoundingBox_B(const Link& link);
 
+// The link's own centre of mass (its inertia's p_BoBcm_B) against that box: a
+// robot file whose shapes are not placed in the frames of its inertials
+// (links drawn floating apart) has centres of mass far outside their boxes.
+struct CenterOfMassGeometryCheck {
+  Eigen::AlignedBox3d box_B;  // LinkBoundingBox_B
+  double distance = 0.0;      // [m] from the centre of mass to the box; 0 inside
+  // [m] the distance that counts as near: max(1 cm, 10 % of the box's
+  // diagonal), for shapes that leave out some of the material.
+  double tolerance = 0.0;
+  bool contradicts() const { return distance > tolerance; }
+};
+// std::nullopt when the link has no shapes.
+std::optional<CenterOfMassGeometryCheck> CheckCenterOfMassInGeometry(const Link& link);
+
 }  // namespace idbench

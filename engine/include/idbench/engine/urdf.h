@@ -84,6 +84,13 @@ bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string
 // parallel-axis theorem), their visuals become its shapes, and moving joints
 // below them get X_PJ composed with the rigid offsets.
 //
+// Geometry against inertia. A link whose own centre of mass lies outside the
+// box around its shapes by more than the tolerance of
+// CheckCenterOfMassInGeometry (link_bounding_box.h) loads with a warning
+// naming it and the distance: its shapes are likely not placed in the frame
+// of its inertial, and identification drops that box as the link's
+// centre-of-mass bound (MakePlausibleFitOptions).
+//
 // Inertia. A chain link whose lumped inertia is not positive definite (all
 // zero: a point mass; semidefinite; smallest principal moment ≤ 10⁻¹² of the
 // largest) loads with a warning naming it: the file's values are a prior that
@@ -113,7 +120,9 @@ bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string
 // limits, a fixed joint locked); a chain that cannot be chosen (above); a
 // moving link whose lumped mass is not > 0 (including no <inertial>); a
 // negative or non-finite mass, or an inertia with a negative principal
-// moment (beyond rounding) or non-finite entries, on any merged link; a zero
+// moment (beyond rounding) or non-finite entries, on any merged link; values
+// beyond any robot link (a mass above 10⁶ kg, an inertia entry above
+// 10⁸ kg m², a centre of mass more than 10³ m from the link frame); a zero
 // joint axis; revolute limits with lower ≥ upper; negative damping or
 // friction; no moving joint at all.
 UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name = "<string>",

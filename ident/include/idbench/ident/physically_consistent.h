@@ -106,6 +106,17 @@ struct PhysicallyConsistentOptions {
   bool IsValid(std::string* why) const;
 };
 
+// A bound of the plausible fit (plausible_fit.h) that its optimum lies on.
+struct ActiveBound {
+  enum class Quantity { kMass, kComX, kComY, kComZ, kTotalMass };
+  Quantity quantity = Quantity::kMass;
+  int link = -1;              // index; -1 for the total mass
+  bool upper = false;         // the upper bound (else the lower)
+  double bound = 0.0;         // [kg] or [m] (link frame B)
+  double file_value = 0.0;    // the prior's (robot file's) value of the same quantity [kg] or [m]
+  std::string text;           // e.g. "link 'wrist_1_link': mass at its lower bound 0.6 kg (0.5 × the file's 1.2 kg)"
+};
+
 struct PhysicallyConsistentFit {
   Eigen::VectorXd pi;     // standard parameters, every link's J ⪰ margin (n_standard)
   Eigen::VectorXd beta;   // base parameters C·π (n_base)
@@ -120,7 +131,10 @@ struct PhysicallyConsistentFit {
   // SolvePlausibleFit (plausible_fit.h) only:
   double prior_cost = 0.0;   // the prior term λ‖x‖² at the optimum [N² m²]
   double duality_gap = std::numeric_limits<double>::quiet_NaN();  // relative, certifies the optimum
-  std::vector<std::string> active_bounds;  // e.g. "B2.m at its upper bound 3.1 kg"
+  double zero_cost = 0.0;     // ‖τ‖² [N² m²], the cost of β = 0: the scale of the data
+  bool feasible = false;      // pi satisfies every constraint strictly
+  std::vector<std::string> active_bounds;  // the texts of bounds_at_optimum
+  std::vector<ActiveBound> bounds_at_optimum;
 };
 
 // f(x) = ‖W_b C π(x) − τ‖² and its gradient, over x = (factor of link 1, …,

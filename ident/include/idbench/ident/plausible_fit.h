@@ -7,7 +7,10 @@
 // file in units of each parameter's scale D (PlausibleFitOptions::scale):
 //   minimise  ‖W_b C π − τ‖² + λ ‖x‖²,   λ = γ ρ² / n_standard,
 //   subject to  J_l(π) ⪰ ε diag(D_I, D_I, D_I, D_m)          per link l,
-//               m_min,l ≤ m_l ≤ m_max,l,  M_min ≤ Σ m_l ≤ M_max,
+//               m_min,l ≤ m_l ≤ m_max,l,  M_min ≤ Σ m_l ≤ M_max
+//                 (a pair of bounds closer than 10⁻⁶ of their value, a
+//                 fixed mass, is held to that width: the barrier method
+//                 needs an interior),
 //               m_l c_min,l ≤ h_l ≤ m_l c_max,l  (centre of mass in a box),
 //               π_k ≥ 0 for the listed friction terms,
 // with J_l the pseudo-inertia (physically_consistent.h), h_l = m_l c_l its
@@ -19,7 +22,9 @@
 // prior for the same purpose; a scaled Euclidean one keeps the objective a
 // least squares). Where the data are 10⁵ times stronger than λ (nearly
 // noise-free logs) λ is raised per parameter to 10⁻¹⁰ of the data's
-// curvature, what double precision resolves.
+// curvature, what double precision resolves; a direction neither the data
+// nor the prior reach (γ = 0, a parameter the log does not excite) is held at
+// the file's value by the weight 10⁻¹⁰ of the strongest data column.
 // The data and prior rows are compressed by QR to n_standard rows and the
 // program is solved by the barrier method of ident/src/quadratic_sdp.h, whose
 // dual function certifies the optimum (the relative duality gap reported).
@@ -43,6 +48,9 @@ struct LinkPlausibilityBounds {
   bool bound_com = false;   // keep the centre of mass in [com_min_B, com_max_B]
   Eigen::Vector3d com_min_B = Eigen::Vector3d::Zero();  // [m], link frame B
   Eigen::Vector3d com_max_B = Eigen::Vector3d::Zero();  // [m]
+  // > 0: the robot file's own centre of mass lies this far outside the box
+  // around the link's shapes [m], so the box is not used as a bound.
+  double com_outside_geometry = 0.0;
 };
 
 struct PlausibleFitOptions {
@@ -57,6 +65,9 @@ struct PlausibleFitOptions {
   double pseudo_inertia_margin = 1e-6;  // ε: J − ε diag(D) ⪰ 0 keeps m > 0 and I ≻ 0
   double gap_tolerance = 1e-9;          // relative duality gap that ends the solve
   int max_iterations = 2000;            // Newton steps
+  // Names in the fit's messages (ActiveBound::text): n_links URDF link names,
+  // and the joints that move them; empty: "link 1", "link 2", ….
+  std::vector<std::string> link_names, joint_names;
 
   bool IsValid(int n_links, int n_standard, std::string* why) const;
 };

@@ -33,6 +33,9 @@ struct IdentifyOptions {
   // The whole file's error is reported beside it.
   std::vector<double> validate_window;
   double max_gap_s = 0.0;           // [s] longest step resampled; 0: 10 median steps
+  // Write identified.urdf and joints.yaml also when the physically consistent
+  // estimate is not fit to load (IdentificationVerdict): the user accepts it.
+  bool write_unverified = false;
   std::string out_dir = "out/identify";
   std::string command_line;        // recorded in identified.json
 
@@ -75,6 +78,27 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
 // numbers score them (PredictTorqueSeries).
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
                                       const IdentifyReport& report, bool held_out);
+
+// Whether identified.urdf and joints.yaml are written: the verdict is fit to
+// load, or options.write_unverified.
+bool WritesRobotModel(const IdentifyOptions& options, const IdentifyReport& report);
+
+// The option names of a front end in library text: the fields of
+// PlausibilitySettings ("plausibility.com_in_geometry = false") become the
+// command line's flags ("--com-bound none") or Python's keywords
+// ("com_bound='none'").
+enum class OptionNames { kCommandLine, kPython };
+std::string InFrontEndTerms(std::string text, OptionNames names);
+
+// When the estimate is not fit to load: one message with the verdict, the
+// binding constraints by link, the likely cause and fix, in the front end's
+// option names. Empty when it is fit to load.
+std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyReport& report, OptionNames names);
+
+// %σ of a value as printed: 100 σ/|value|, or NaN where |value| ≤ 3σ (the
+// value is indistinguishable from zero, and a ratio to it means nothing:
+// σ itself, absolute, is what is known) or σ is not finite.
+double RelativeSigmaPercent(double value, double sigma);
 
 std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);
