@@ -123,27 +123,6 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
 
 }  // namespace
 
-Eigen::VectorXd SolutionNearPrior(const Eigen::MatrixXd& factor, const Eigen::VectorXd& prior, double relative) {
-  const Eigen::Index p = prior.size();
-  if (factor.rows() != p + 1 || factor.cols() != p + 1) {
-    throw std::invalid_argument("solution near prior: expected a " + std::to_string(p + 1) + " × " +
-                                std::to_string(p + 1) + " factor, got " + std::to_string(factor.rows()) + " × " +
-                                std::to_string(factor.cols()));
-  }
-  // With R D = U Σ Vᵀ and β = D y: y = V (Σ² + λ²)⁻¹ (Σ Uᵀ z + λ² Vᵀ D⁻¹ prior).
-  const Eigen::MatrixXd R = factor.topLeftCorner(p, p).triangularView<Eigen::Upper>();
-  Eigen::VectorXd D;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(UnitColumns(R, &D), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  // Singular values below the rank tolerance are rounding: zero, as in Fit.
-  const Eigen::VectorXd s = svd.singularValues().unaryExpr(
-      [&](double v) { return v > kRankTolerance * svd.singularValues()[0] ? v : 0.0; });
-  const double lambda2 = s.size() > 0 ? std::pow(relative * s[0], 2) : 0.0;
-  const Eigen::VectorXd rhs = s.cwiseProduct(svd.matrixU().transpose() * factor.col(p).head(p)) +
-                              lambda2 * (svd.matrixV().transpose() * prior.cwiseQuotient(D));
-  const Eigen::VectorXd y = svd.matrixV() * rhs.cwiseQuotient((s.cwiseAbs2().array() + lambda2).matrix());
-  return D.cwiseProduct(y);
-}
-
 ParameterStatus ClassifyParameter(double beta, double sigma) {
   if (!std::isfinite(beta) || !std::isfinite(sigma)) return ParameterStatus::kNotIdentifiable;
   if (sigma <= kDeterminedSigmaPercent / 100.0 * std::abs(beta)) return ParameterStatus::kDetermined;

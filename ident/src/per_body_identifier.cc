@@ -112,30 +112,4 @@ PerBodyIdentificationResult IdentifyPerBody(const RobotModel& model, const Simul
   return result;
 }
 
-LeastSquaresSolution IdentifyWholeRobot(const RobotModel& model, const SimulationLog& log,
-                                        const std::vector<int>& steps, const LeastSquaresOptions& options) {
-  CheckInputs(model, log, steps);
-  const int n_bodies = model.n_links();
-  const int rows_per_body = 6 * static_cast<int>(steps.size());
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(rows_per_body * n_bodies, 4 * n_bodies);
-  Eigen::VectorXd L(rows_per_body * n_bodies);
-  Eigen::VectorXd scale(4 * n_bodies);
-  std::vector<std::string> names;
-  for (int i = 0; i < n_bodies; ++i) {
-    const BodySystem sys = StackBody(model, i, log, steps);
-    const int r0 = i * rows_per_body, half = rows_per_body / 2;
-    scale[4 * i] = sys.newton_K.norm();
-    scale.segment<3>(4 * i + 1).setConstant(sys.euler_K.colwise().norm().maxCoeff());
-    for (int c = 0; c < 4; ++c) if (!(scale[4 * i + c] > 0.0)) scale[4 * i + c] = 1.0;
-    K.block(r0, 4 * i, half, 1) = sys.newton_K / scale[4 * i];
-    K.block(r0 + half, 4 * i + 1, half, 3) = sys.euler_K / scale[4 * i + 1];
-    L.segment(r0, half) = sys.newton_L;
-    L.segment(r0 + half, half) = sys.euler_L;
-    for (const char* p : {"m", "J11", "J22", "J33"}) names.push_back(model.link(i).name + "." + p);
-  }
-  LeastSquaresSolution sol = SolveLeastSquares(K, L, names, options);
-  sol.x = sol.x.cwiseQuotient(scale);
-  return sol;
-}
-
 }  // namespace idbench

@@ -239,7 +239,6 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   fit.prior_cost = program.s2 * program.prior_weights.dot(u.cwiseQuotient(program.column_norms).cwiseAbs2());
   fit.min_pseudo_inertia_eigenvalue = MinPseudoInertiaEigenvalues(fit.pi, n_links);
   fit.evaluations = solution.newton_steps;
-  fit.rounds = 1;
   fit.duality_gap = solution.relative_gap;
   fit.converged = solution.converged;
   fit.feasible = solution.feasible;

@@ -206,14 +206,6 @@ Eigen::MatrixXd Decimate(const Eigen::MatrixXd& x, int factor) {
   return y;
 }
 
-Eigen::MatrixXd FilterAndDecimate(const Eigen::MatrixXd& x, int factor, int order) {
-  if (factor < 1) throw std::invalid_argument("decimate: expected factor >= 1, got " + std::to_string(factor));
-  if (factor == 1) return x;
-  // Normalised to fs = 2, so the new Nyquist frequency is 1/factor.
-  const SosMatrix sos = DesignButterworthLowPass(order, 0.8 / factor, 2.0);
-  return Decimate(FiltFilt(sos, x), factor);
-}
-
 bool LogFilterOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;

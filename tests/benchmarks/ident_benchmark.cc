@@ -98,9 +98,8 @@ BENCHMARK(BM_StackDenseAndOlsPuma560)->Arg(100000)->Unit(benchmark::kMillisecond
 // The physically consistent estimate from the triangular factor of [W τ]
 // (its cost does not depend on the number of samples): torques of the PUMA
 // 560 itself (Fv, Fc from the robot file) along random states, with noise, so
-// that some bounds are active. The plausible fit (barrier method on the SDP,
-// bounds and prior) side by side with the SLSQP fit over Cholesky factors it
-// replaced in `identify`.
+// that some bounds are active: the plausible fit (barrier method on the SDP,
+// bounds and prior) that `identify` runs.
 struct Puma560ConsistentProblem {
   Puma560Problem p{2000};
   Eigen::MatrixXd factor;
@@ -127,19 +126,6 @@ void BM_PlausibleFitPuma560(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PlausibleFitPuma560)->Unit(benchmark::kMillisecond);
-
-void BM_SlsqpConsistentFitPuma560(benchmark::State& state) {
-  const Puma560ConsistentProblem c;
-  PhysicallyConsistentOptions options;
-  options.nonnegative = MakePlausibleFitOptions(c.p.model, c.p.friction, PlausibilitySettings{}).nonnegative;
-  const Eigen::VectorXd beta_start = SolutionNearPrior(c.factor, c.p.base.combination * c.pi_model);
-  for (auto _ : state) {
-    const PhysicallyConsistentFit fit = SolvePhysicallyConsistent(c.factor, c.p.base, 6, beta_start, c.pi_model, options);
-    benchmark::DoNotOptimize(fit.pi.data());
-    state.counters["evaluations"] = fit.evaluations;
-  }
-}
-BENCHMARK(BM_SlsqpConsistentFitPuma560)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench

@@ -74,24 +74,6 @@ TEST_F(PerBodyIdentifierTest, GeneralMotionRecoversTable1) {
   ExpectB1Unidentifiable(r);
 }
 
-TEST_F(PerBodyIdentifierTest, WholeRobotSystemAgreesWithPerBodySolves) {
-  const auto motion = MakeGeneralMotion(6, 2.0);
-  const SimulationLog log = Simulate(model_, *motion, SimulationOptions{});
-  const std::vector<int> steps = Steps(log, {0.2, 0.7, 1.1, 1.6});
-  const PerBodyIdentificationResult per_body = IdentifyPerBody(model_, log, steps);
-  const LeastSquaresSolution whole = IdentifyWholeRobot(model_, log, steps);
-  const char* names[4] = {"m", "J11", "J22", "J33"};
-  for (int b = 0; b < 6; ++b) {
-    for (int k = 0; k < 4; ++k) {
-      const ParameterResult& p = Param(per_body, b, names[k]);
-      ASSERT_EQ(whole.identifiable[static_cast<size_t>(4 * b + k)], p.identifiable) << b << names[k];
-      if (p.identifiable) {
-        EXPECT_NEAR(whole.x[4 * b + k], p.identified, 1e-10 * std::abs(p.identified));
-      }
-    }
-  }
-}
-
 TEST_F(PerBodyIdentifierTest, AtRestOnlyGravityIsSeen) {
   // A single sample at t = 0 (from rest): no centripetal terms. B1 and B2
   // have their centroids on hinge 1's axis, and hinge 2 (about y) moves

@@ -381,28 +381,6 @@ TEST(DecimateTest, KeepsEveryKthSample) {
   EXPECT_NE(ThrownMessage([&] { Decimate(X, 0); }).find("expected factor >= 1, got 0"), std::string::npos);
 }
 
-// Decimating 1 kHz by 4 (new Nyquist 125 Hz, anti-aliasing cutoff 100 Hz,
-// order 8): 20 Hz passes; 200 Hz, which would alias to 50 Hz, is scaled by
-// |H(200 Hz)|² = 1/(1 + (tan(0.2π)/tan(0.1π))^16) ≈ 2.6e-6.
-TEST(DecimateTest, FilterAndDecimateRemovesWhatWouldAlias) {
-  const double fs = 1000.0;
-  const int factor = 4;
-  Eigen::MatrixXd X(4000, 2);
-  X.col(0) = Sine(4000, fs, 20.0, 1.0);
-  X.col(1) = Sine(4000, fs, 200.0, 1.0);
-  const Eigen::MatrixXd Y = FilterAndDecimate(X, factor);
-  ASSERT_EQ(Y.rows(), 1000);
-  const Eigen::MatrixXd kept = Decimate(X, factor);
-  // Middle half of the decimated record, away from the end transients.
-  const double pass_gain = std::pow(ButterworthMagnitude(8, 2 * kPi * 20.0 / fs, 2 * kPi * 100.0 / fs), 2);
-  EXPECT_GT(pass_gain, 1.0 - 1e-8);
-  EXPECT_LT((Y.col(0) - kept.col(0)).segment(250, 500).cwiseAbs().maxCoeff(), 1e-6);
-  const double stop_gain = std::pow(ButterworthMagnitude(8, 2 * kPi * 200.0 / fs, 2 * kPi * 100.0 / fs), 2);
-  EXPECT_NEAR(stop_gain, 2.6e-6, 0.1e-6);
-  EXPECT_LT(Y.col(1).segment(250, 500).cwiseAbs().maxCoeff(), 1.05 * stop_gain);
-  EXPECT_EQ(FilterAndDecimate(X, 1), X);
-}
-
 // ─── Joint-log front-end ────────────────────────────────────────────────────
 
 TEST(LogFilterOptionsTest, IsValid) {

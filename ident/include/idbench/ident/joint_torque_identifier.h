@@ -119,7 +119,7 @@ struct JointTorqueIdentification {
   Eigen::VectorXd beta_model;   // the robot file's parameters as base parameters (C·π_model)
   // OLS, or WLS when asked. When the log does not determine every base
   // parameter, β is the minimum-norm solution, with those flagged (LinearFit);
-  // the physically consistent fit starts from SolutionNearPrior(·, beta_model).
+  // the physically consistent fit keeps the robot file's values there (its prior).
   LinearFit linear;
   // Always computed: standard parameters need it (a URDF holds physical links).
   PhysicallyConsistentFit consistent;

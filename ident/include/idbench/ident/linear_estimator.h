@@ -38,18 +38,6 @@ struct LinearFit {
   std::vector<bool> identifiable;  // per parameter: the data determine it (p)
 };
 
-// The least-squares solution from a combined factor [R z; 0 ρ]
-// (CombinedFactor), pulled toward `prior` (e.g. the robot file's parameters)
-// only in the directions the data hardly determine:
-//   argmin ‖R β − z‖² + λ² ‖D⁻¹ (β − prior)‖²,  λ = relative · σ_max(R D),
-// D scaling R's columns to unit norm. A direction with singular value σ ≫ λ
-// keeps its least-squares value (to (λ/σ)² relative); one with σ ≪ λ (not or
-// hardly excited) takes the prior's, exactly so below LinearFit's rank
-// tolerance. Throws std::invalid_argument on a size
-// mismatch.
-Eigen::VectorXd SolutionNearPrior(const Eigen::MatrixXd& factor, const Eigen::VectorXd& prior,
-                                  double relative = 1e-6);
-
 // What the data say about one parameter, from its estimate β̂ and σ:
 //   kDetermined: σ ≤ 10 % of |β̂|;
 //   kPoor: 10 % < σ/|β̂| < 1/3;

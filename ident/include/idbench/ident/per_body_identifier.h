@@ -59,12 +59,4 @@ PerBodyIdentificationResult IdentifyPerBody(const RobotModel& model, const Simul
                                             const std::vector<int>& steps,
                                             const LeastSquaresOptions& options = {});
 
-// The whole robot as one block-diagonal system (eq. 27): unknowns
-// [m, J11, J22, J33] per body, stacked. Each body's Newton and Euler columns
-// are scaled to unit largest norm first (units differ), so a column counts as
-// zero relative to its own block; cond refers to that scaled matrix.
-// Must agree with IdentifyPerBody.
-LeastSquaresSolution IdentifyWholeRobot(const RobotModel& model, const SimulationLog& log,
-                                        const std::vector<int>& steps, const LeastSquaresOptions& options = {});
-
 }  // namespace idbench

@@ -87,15 +87,9 @@ Eigen::MatrixXd SecondDerivative(const Eigen::MatrixXd& x, double dt);
 
 // Keeps every factor-th sample: rows 0, factor, 2·factor, … (ceil(n/factor)
 // rows). Does NOT filter: the caller must remove content above the new Nyquist
-// frequency fs/(2·factor) first (or use FilterAndDecimate), else it aliases.
+// frequency fs/(2·factor) first (FiltFilt), else it aliases.
 // Throws std::invalid_argument if factor < 1.
 Eigen::MatrixXd Decimate(const Eigen::MatrixXd& x, int factor);
-
-// Anti-aliased decimation: FiltFilt with a Butterworth of `order` cut off at
-// 0.8 × the new Nyquist frequency, 0.8·fs/(2·factor), then Decimate. factor 1
-// returns x unchanged. Throws std::invalid_argument for factor < 1 or as
-// DesignButterworthLowPass / FiltFilt.
-Eigen::MatrixXd FilterAndDecimate(const Eigen::MatrixXd& x, int factor, int order = 8);
 
 struct LogFilterOptions {
   int order = 4;            // Butterworth order N (1..8); filtfilt doubles its effect
