@@ -5,11 +5,15 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sstream>
 
 #include "workbench/cli/cli_fixture.h"
 
 #include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/kinematics.h"
+#include "idbench/engine/link_clearance.h"
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 
 namespace idbench {
 namespace {
@@ -253,6 +257,75 @@ TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
     EXPECT_GT(refs, 1);
   }
   EXPECT_TRUE(fs::exists(dir_ / "d" / "figure.png"));
+}
+
+// Clearance means at least that distance: the case, the UR10e-like
+// arm at --clearance 0.2, whose floor pairs are all closer than 0.2 m at
+// q = 0 (6ab1a0b dropped them and wrote a motion 1 m into the floor). The
+// written trajectory.csv, sampled every 1 ms by this test, keeps every pair
+// (all but joined or touching at q = 0) at least min(0.2 m, its distance at
+// q = 0) apart. The search makes no progress at this budget: exit 1, each
+// start says so, and trajectory.csv is written only because it is asked for.
+TEST_F(DesignCliTest, ClearanceHoldsEveryPairInTheWrittenTrajectory) {
+  const std::string data = IDBENCH_SOURCE_DIR "/tests/data/ur10e_like/";
+  const std::string common = "design --robot " + data + "ur10e_like.urdf --limits " + data +
+                             "lim_acc.json --clearance 0.2 --harmonics 2 --samples 40 --starts 2 "
+                             "--max-evaluations 30 --csv-columns q --quiet --out ";
+  const Result refused = Run(common + (dir_ / "a").string());
+  const Result r = Run(common + (dir_ / "b").string() + " --write-trajectory-anyway");
+  const json design = json::parse(Slurp(dir_ / "b" / "design.json"));
+  const bool usable = design["verdict"]["usable"];
+  EXPECT_EQ(r.exit_code, usable ? 0 : 1) << r.err;
+  EXPECT_EQ(refused.exit_code, r.exit_code);
+  EXPECT_EQ(fs::exists(dir_ / "a" / "trajectory.csv"), usable);
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "design.json"));
+  for (const json& start : design["starts"]) {  // no progress: the criterion did not fall
+    const bool improved = !start["best"].is_null() && start["best"].get<double>() < start["initial"].get<double>() - 1e-9;
+    if (!start["best"].is_null() && start["initial_violation"].get<double>() <= 0.0) {
+      EXPECT_EQ(start["progressed"].get<bool>(), improved) << start.dump();
+    }
+  }
+  EXPECT_EQ(design["clearance_pairs"]["held_at_home"].size(), 9u);
+  const RobotModel model = LoadUrdfFile(data + "ur10e_like.urdf").model;
+  const ClearanceModel distances(model, 0.0);
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  std::vector<Clearance> d;
+  ComputeKinematicsT<double>(model, zero, zero, zero, &k);
+  distances.Compute(k, &d);
+  std::vector<double> bound(d.size());
+  for (size_t i = 0; i < d.size(); ++i) bound[i] = std::min(0.2, d[i].distance) - 1e-6;
+  std::istringstream csv(Slurp(dir_ / "b" / "trajectory.csv"));
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  double t_prev = -1.0;
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    std::getline(fields, field, ',');
+    const double t = std::stod(field);
+    if (rows > 0) ASSERT_NEAR(t - t_prev, 1e-3, 1e-9);  // every 1 ms
+    t_prev = t;
+    Eigen::VectorXd q(model.n_dof());
+    for (int j = 0; j < model.n_dof(); ++j) std::getline(fields, field, ','), q[j] = std::stod(field);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    distances.Compute(k, &d);
+    for (size_t i = 0; i < d.size(); ++i) {
+      ASSERT_GE(d[i].distance, bound[i]) << distances.pairs()[i].Name(model) << " at t = " << t;
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 10001);  // one period 1/f0 = 10 s at 1 kHz
+}
+
+// --rate that cannot sample the motion: refused before any work (exit 2), the bound stated.
+TEST_F(DesignCliTest, RateTooLowIsRefusedBeforeWork) {
+  const Result r = Run("design --robot puma560 --rate 0.001 --out " + (dir_ / "d").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--rate: 0.001 Hz cannot sample the motion"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("= 5 Hz"), std::string::npos) << r.err;  // 10 x 5 harmonics x 0.1 Hz
+  EXPECT_FALSE(fs::exists(dir_ / "d"));
 }
 
 // Ctrl-C: the design stops and keeps the best feasible point found so far.
