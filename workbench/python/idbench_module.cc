@@ -14,6 +14,9 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -219,17 +222,53 @@ struct DesignOutput {
   std::string trajectory_json, trajectory_csv, design_json, summary;
 };
 
+// progress must be callable as progress(start, evaluations, best_value,
+// feasible): TypeError before any work otherwise.
+void CheckProgressCallback(const py::object& progress) {
+  if (progress.is_none()) return;
+  if (!PyCallable_Check(progress.ptr())) {
+    throw py::type_error("progress: expected a callable progress(start, evaluations, best_value, feasible), got " +
+                         std::string(py::str(py::type::of(progress).attr("__name__"))));
+  }
+  py::object signature;
+  try {
+    signature = py::module_::import("inspect").attr("signature")(progress);
+  } catch (const py::error_already_set&) {
+    return;  // no signature to check (some built-ins): called as is
+  }
+  try {
+    signature.attr("bind")(0, 0, 0.0, false);
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_TypeError)) throw;
+    throw py::type_error("progress: expected a callable taking (start, evaluations, best_value, feasible), got one "
+                         "with the signature " + std::string(py::str(signature)) + ": " + e.what());
+  }
+}
+
 DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, const py::object& progress) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const RobotModel& model = *robot.model;
   if (!options.IsValidFor(model, &why)) throw std::invalid_argument(why);
+  CheckProgressCallback(progress);
   DesignControl control;
   control.stop = &g_design_stop;
+  // An exception raised by progress (KeyboardInterrupt included) stops the
+  // design and is raised again here: it may not cross the worker threads.
+  std::mutex callback_mutex;
+  std::optional<py::error_already_set> callback_error;
+  std::atomic<bool> callback_failed{false};
   if (!progress.is_none()) {
-    control.progress = [progress](const DesignProgress& p) {
+    control.progress = [&](const DesignProgress& p) {
+      if (callback_failed) return;
       py::gil_scoped_acquire acquire;
-      progress(p.start, p.evaluations, p.best_value, p.feasible);
+      try {
+        progress(p.start, p.evaluations, p.best_value, p.feasible);
+      } catch (py::error_already_set& e) {
+        const std::lock_guard<std::mutex> lock(callback_mutex);
+        if (!callback_failed.exchange(true)) callback_error.emplace(std::move(e));
+        g_design_stop = true;
+      }
     };
   }
   g_design_stop = false;
@@ -242,10 +281,11 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
       report = RunDesign(model, options, limits, control);
     } catch (...) {
       std::signal(SIGINT, previous);
-      throw;
+      if (!callback_failed) throw;
     }
     std::signal(SIGINT, previous);
   }
+  if (callback_failed) throw *callback_error;  // the GIL is held again here
   const DesignResult& result = report->result;
   DesignOutput out;
   out.value = result.value;
