@@ -328,6 +328,59 @@ TEST_F(DesignCliTest, RateTooLowIsRefusedBeforeWork) {
   EXPECT_FALSE(fs::exists(dir_ / "d"));
 }
 
+// compare checks its options against what one simulation holds before any
+// work (6ab1a0b ran --duration 5000 without bound and refused 1001 after 21 s),
+// and a sample count off the simulation steps names --samples and values that
+// divide the steps (it blamed --tau-noise).
+TEST_F(DesignCliTest, CompareRefusesDurationsAndSampleCountsBeforeWork) {
+  const std::string out = " --out " + (dir_ / "c").string();
+  Result r = Run("compare general --robot puma560 --duration 5000" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--duration: must be in (0, 1000] s (the simulation keeps at most 1000000 steps of 0.001 s), "
+                       "got 5000"), std::string::npos) << r.err;
+  r = Run("compare general --robot puma560 --samples 300" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  // 10 s = 10000 steps: the divisors of 10000 nearest to 300, found here by trial.
+  int below = 300, above = 300;
+  while (10000 % below != 0) --below;
+  while (10000 % above != 0) ++above;
+  EXPECT_NE(r.err.find("--samples: 300 samples over general's 10 s fall every 33.33 simulation steps"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--samples " + std::to_string(below) + " or " + std::to_string(above) + " would"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("tau-noise"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c"));
+}
+
+// %σ is never a ratio to a true value that is zero up to rounding (6ab1a0b
+// printed 1.7e+20 %): there compare.json has null and predicted_sigma the σ;
+// elsewhere %σ = 100 σ/|true value|, the true values from compare.json.
+TEST_F(DesignCliTest, ComparePrintsSigmaWhereTheValueIsZero) {
+  const Result r = Run("compare general --robot puma560 --samples 200 --trials 2 --out " + (dir_ / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(Slurp(dir_ / "c" / "compare.json"));
+  const std::vector<double> truth = c["true_parameters"];
+  const json& m = c["motions"][0];
+  double largest = 0.0;
+  for (double v : truth) largest = std::max(largest, std::abs(v));
+  int zeros = 0;
+  ASSERT_EQ(m["predicted_sigma"].size(), truth.size());
+  for (size_t k = 0; k < truth.size(); ++k) {
+    const double sigma = m["predicted_sigma"][k];
+    EXPECT_GT(sigma, 0.0);
+    if (std::abs(truth[k]) <= 1e-9 * largest) {
+      EXPECT_TRUE(m["predicted_percent_sigma"][k].is_null()) << k;
+      ++zeros;
+    } else {
+      EXPECT_NEAR(m["predicted_percent_sigma"][k].get<double>(), 100.0 * sigma / std::abs(truth[k]),
+                  1e-9 * 100.0 * sigma / std::abs(truth[k])) << k;
+    }
+  }
+  EXPECT_GT(zeros, 0);  // puma560 has first moments that are zero
+  EXPECT_NE(r.out.find("s=…: sigma itself"), std::string::npos);
+  EXPECT_EQ(r.out.find("e+1"), std::string::npos) << r.out;  // no huge ratios
+}
+
 // Ctrl-C: the design stops and keeps the best feasible point found so far.
 TEST_F(DesignCliTest, InterruptKeepsTheBestFeasibleDesign) {
   const Result r = Run("design --robot puma560 --limits " + PumaLimits() +
