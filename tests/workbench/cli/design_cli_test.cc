@@ -381,6 +381,21 @@ TEST_F(DesignCliTest, ComparePrintsSigmaWhereTheValueIsZero) {
   EXPECT_EQ(r.out.find("e+1"), std::string::npos) << r.out;  // no huge ratios
 }
 
+// A dangling symbolic link as --out: refused before any work (exit 2) by
+// every command with an output directory.
+TEST_F(DesignCliTest, DanglingLinkOutIsRefusedBeforeWork) {
+  fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+  const std::string out = " --out " + (dir_ / "dangling").string();
+  for (const std::string& command : {"design --robot puma560", "compare general --robot puma560",
+                                     "montecarlo --robot puma560", "run --no-figure"}) {
+    const Result r = Run(command + out);
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("is a symbolic link to '" + (dir_ / "nowhere").string() + "', which does not exist"),
+              std::string::npos) << command << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "nowhere"));
+}
+
 // Ctrl-C: the design stops and keeps the best feasible point found so far.
 TEST_F(DesignCliTest, InterruptKeepsTheBestFeasibleDesign) {
   const Result r = Run("design --robot puma560 --limits " + PumaLimits() +
