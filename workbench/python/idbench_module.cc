@@ -219,6 +219,8 @@ struct DesignOutput {
   double cond = 0.0, initial_cond = 0.0;
   bool feasible = false;
   bool stopped = false;
+  bool usable = false;     // DesignResult::usable(): feasible and better than its start point
+  std::string rejection;   // why not ("" when usable)
   std::string trajectory_json, trajectory_csv, design_json, summary;
 };
 
@@ -294,6 +296,8 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
   out.initial_cond = result.initial.cond;
   out.feasible = result.check.feasible();
   out.stopped = result.stopped;
+  out.usable = result.usable();
+  out.rejection = result.Rejection();
   out.trajectory_json = FormatTrajectoryJson(result.trajectory);
   out.trajectory_csv = FormatDesignTrajectoryCsv(model, options, *report);
   out.design_json = FormatDesignJson(model, options, *report);
@@ -511,6 +515,9 @@ PYBIND11_MODULE(idbench, m) {
       .def_readonly("initial_cond", &DesignOutput::initial_cond)
       .def_readonly("feasible", &DesignOutput::feasible, "Within every limit at the check rate")
       .def_readonly("stopped", &DesignOutput::stopped, "Stopped early (Ctrl-C): the best design so far")
+      .def_readonly("usable", &DesignOutput::usable,
+                    "Feasible and better than its start point (the command line writes trajectory.csv only then)")
+      .def_readonly("rejection", &DesignOutput::rejection, "Why the design is not usable ('' when it is)")
       .def_readonly("trajectory_json", &DesignOutput::trajectory_json, "trajectory.json")
       .def_readonly("trajectory_csv", &DesignOutput::trajectory_csv, "trajectory.csv")
       .def_readonly("design_json", &DesignOutput::design_json, "design.json")
@@ -565,7 +572,8 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
       py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). progress(start, evaluations, best_value, feasible) "
-      "is called as the starts run; Ctrl-C stops and returns the best design so far (stopped = True).");
+      "is called as the starts run (TypeError before any work if it cannot be called so; an exception it raises "
+      "stops the design and is raised again); Ctrl-C stops and returns the best design so far (stopped = True).");
 
   const RenderOptions render_defaults;
   m.def(

@@ -137,6 +137,7 @@ def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
                             friction=["viscous"], limits=str(tmp_path / "limits.json"),
                             progress=lambda *args: calls.append(args))
     assert result.feasible and not result.stopped
+    assert result.usable == (result.value < result.initial_value) and result.rejection == ""
     assert calls and all(start == 0 for start, *_ in calls)
     assert np.isfinite(result.cond) and result.value <= result.initial_value
     design = json.loads(result.design_json)
