@@ -350,6 +350,11 @@ TEST_F(DesignCliTest, CompareRefusesDurationsAndSampleCountsBeforeWork) {
             std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("tau-noise"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "c"));
+  r = Run("montecarlo --robot puma560 --samples 300");  // the same rule, the same option named
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--samples: 300 samples over the 10 s motion fall every 33.33 simulation steps"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("tau-noise"), std::string::npos) << r.err;
 }
 
 // %σ is never a ratio to a true value that is zero up to rounding (6ab1a0b
