@@ -305,7 +305,9 @@ TEST_F(DesignCliTest, ClearanceHoldsEveryPairInTheWrittenTrajectory) {
     std::string field;
     std::getline(fields, field, ',');
     const double t = std::stod(field);
-    if (rows > 0) ASSERT_NEAR(t - t_prev, 1e-3, 1e-9);  // every 1 ms
+    if (rows > 0) {
+      ASSERT_NEAR(t - t_prev, 1e-3, 1e-9);  // every 1 ms
+    }
     t_prev = t;
     Eigen::VectorXd q(model.n_dof());
     for (int j = 0; j < model.n_dof(); ++j) std::getline(fields, field, ','), q[j] = std::stod(field);
@@ -391,9 +393,9 @@ TEST_F(DesignCliTest, ComparePrintsSigmaWhereTheValueIsZero) {
 TEST_F(DesignCliTest, DanglingLinkOutIsRefusedBeforeWork) {
   fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
   const std::string out = " --out " + (dir_ / "dangling").string();
-  for (const std::string& command : {"design --robot puma560", "compare general --robot puma560",
+  for (const char* command : {"design --robot puma560", "compare general --robot puma560",
                                      "montecarlo --robot puma560", "run --no-figure"}) {
-    const Result r = Run(command + out);
+    const Result r = Run(std::string(command) + out);
     EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
     EXPECT_NE(r.err.find("is a symbolic link to '" + (dir_ / "nowhere").string() + "', which does not exist"),
               std::string::npos) << command << ": " << r.err;
