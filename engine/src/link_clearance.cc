@@ -148,7 +148,9 @@ struct ClearanceModel::Impl {
 
 ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
     : impl_(std::make_unique<Impl>()), min_clearance_(min_clearance) {
-  if (!(min_clearance >= 0.0)) throw std::invalid_argument("clearance must be >= 0 m");
+  if (!(min_clearance >= 0.0) || !std::isfinite(min_clearance)) {
+    throw std::invalid_argument("clearance must be finite and >= 0 m");
+  }
   // Bullet keeps a margin around convex shapes (GJK works on the core and
   // rounds it by the margin). Every shape but a sphere gets a 1 mm margin
   // outside its true surface: boxes and cylinders are built 1 mm larger (Bullet
@@ -189,25 +191,52 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
       impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG, radius});
     }
   }
-  // Candidate pairs; those touching at the home pose are left out.
+  // Candidate pairs: every pair of links with shapes, and each with the
+  // ground, but those in contact by construction (link_clearance.h).
   KinematicsData<double> home(model);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
   ComputeKinematicsT<double>(model, zero, zero, zero, &home);
+  constexpr double kTouching = 0.0;  // [m] measured (1 mm inflated shapes): a true gap under 2 mm
+  // Whether no joint can change link a's height: all joints to it turn about
+  // the vertical (then every point of it keeps its z).
+  auto height_fixed = [&](int a) {
+    for (int j = a; j >= 0; j = model.link(j).parent) {
+      if (std::abs(home.axis_W[static_cast<size_t>(j)].z()) < 1.0 - 1e-9) return false;
+    }
+    return true;
+  };
+  char buf[160];
   for (int a = 0; a < model.n_links(); ++a) {
     if (impl_->shapes[static_cast<size_t>(a)].empty()) continue;
     for (int b = -1; b < a; ++b) {
-      if (b >= 0 && (impl_->shapes[static_cast<size_t>(b)].empty() || model.link(a).parent == b)) continue;
-      const ClearancePair pair{a, b};
-      const double d = impl_->Compute(home, pair).distance;
-      if (d < min_clearance) {
-        char buf[96];
-        std::snprintf(buf, sizeof buf, ": %.3g m apart at q = 0 (touching by construction)", d);
-        excluded_.push_back(pair.Name(model) + buf);
-      } else {
-        pairs_.push_back(pair);
+      if (b >= 0 && impl_->shapes[static_cast<size_t>(b)].empty()) continue;
+      ClearancePair pair{a, b};
+      if (b >= 0 && model.link(a).parent == b) {
+        excluded_.push_back(pair.Name(model) + ": joined by joint '" + model.link(a).joint_name + "'");
+        continue;
       }
+      const double d = impl_->Compute(home, pair).distance;
+      if (d <= kTouching && b >= 0) {
+        std::snprintf(buf, sizeof buf, ": in contact at q = 0 (%.3g m), by construction", d);
+        excluded_.push_back(pair.Name(model) + buf);
+        continue;
+      }
+      if (d <= kTouching && height_fixed(a)) {
+        std::snprintf(buf, sizeof buf, ": on the ground at q = 0 (%.3g m) and no joint raises it (a base on the floor)",
+                      d);
+        excluded_.push_back(pair.Name(model) + buf);
+        continue;
+      }
+      pair.home_distance = d;
+      pair.minimum = std::min(min_clearance, d - kHomeTolerance);
+      pairs_.push_back(pair);
     }
   }
+}
+
+int ClearanceModel::n_held_at_home() const {
+  return static_cast<int>(std::count_if(pairs_.begin(), pairs_.end(),
+                                        [&](const ClearancePair& p) { return p.minimum < min_clearance_; }));
 }
 
 ClearanceModel::~ClearanceModel() = default;

@@ -218,7 +218,11 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
     }
   }
   for (size_t i = 0; i < n_pairs; ++i) {
-    result[i] = (clearance_->min_clearance() + kSlack - worst[i]) / kScale;
+    // The slack only where the pair has it at q = 0 (none for a pair held at
+    // its distance there: the home pose itself must stay feasible).
+    const ClearancePair& pair = clearance_->pairs()[i];
+    const double slack = std::clamp(pair.home_distance - pair.minimum, 0.0, kSlack);
+    result[i] = (pair.minimum + slack - worst[i]) / kScale;
     if (!grad) continue;
     const JointState x = StateAt(*instants[at[i]], theta);
     ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);

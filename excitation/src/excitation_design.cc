@@ -104,6 +104,14 @@ struct StartRun {
     return *std::max_element(nonlinear_values.begin(), nonlinear_values.end()) <= kFeasibilityTolerance;
   }
 
+  // The worst normalised violation of every constraint at theta (≤ 0: feasible).
+  double Violation(const double* theta) {
+    double v = problem->MaxLinearViolation(theta);
+    NonlinearFeasible(theta);
+    for (double c : nonlinear_values) v = std::max(v, c);
+    return v;
+  }
+
   bool Feasible(const double* theta) {
     return problem->MaxLinearViolation(theta) <= kFeasibilityTolerance && NonlinearFeasible(theta);
   }
@@ -318,6 +326,36 @@ bool DesignOptions::IsValid(std::string* why) const {
   return true;
 }
 
+// A start's outcome line and whether it got anywhere (DesignStartSummary).
+static void DescribeProgress(DesignStartSummary* s) {
+  // A criterion change below this (relative) is no change.
+  constexpr double kUnchanged = 1e-9;
+  if (std::isfinite(s->best_value)) {
+    const bool from_infeasible = s->initial_violation > kFeasibilityTolerance;
+    const bool improved = s->best_value < s->initial_value - kUnchanged * std::max(1.0, std::abs(s->initial_value));
+    s->progressed = improved || from_infeasible;
+    s->outcome = improved          ? "improved"
+                 : from_infeasible ? "reached the limits from an infeasible start"
+                                   : "no progress: the criterion did not improve on the start point";
+    return;
+  }
+  s->progressed = s->final_violation < s->initial_violation - kFeasibilityTolerance;
+  s->outcome = (s->progressed ? "infeasible: the violation fell from " : "no progress: infeasible, the violation went from ") +
+               Format("%.3g to %.3g", s->initial_violation, s->final_violation) + " (of a limit's scale)";
+}
+
+std::string DesignResult::Rejection() const {
+  if (!check.feasible()) return "the design violates the limits or the clearance at " + Format("%g Hz", check.rate_hz);
+  const bool improved = value < initial_value - 1e-9 * std::max(1.0, std::abs(initial_value));
+  if (!improved) {
+    int none = 0;
+    for (const DesignStartSummary& s : starts) none += s.progressed ? 0 : 1;
+    return "no progress: the design is its start point (criterion unchanged); " + std::to_string(none) + " of " +
+           std::to_string(starts.size()) + " starts made no progress";
+  }
+  return "";
+}
+
 RampedTrajectory DesignResult::RobotTrajectory() const {
   return RampedTrajectory(std::make_shared<FourierSeriesTrajectory>(trajectory), home, ramp_seconds);
 }
@@ -364,8 +402,9 @@ std::string FeasibilityCheck::Explain() const {
   for (const ConstraintMargin& m : margins) {
     if (m.margin >= 0.0) continue;
     if (m.quantity == "clearance") {
-      out += m.pair + Format(" clearance: %.4g m at t = %.4g s is below the minimum %.4g m by %.3g m\n", m.value,
-                             m.time, m.limit, -m.margin);
+      out += m.pair + Format(" clearance: %.4g m at t = %.4g s is below its minimum %.4g m", m.value, m.time, m.limit) +
+             (m.held_at_home ? " (its distance at q = 0, closer than the clearance asked)" : "") +
+             Format(" by %.3g m\n", -m.margin);
       continue;
     }
     const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
@@ -407,7 +446,8 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.quantity = "clearance";
     m.joint = static_cast<int>(i);
     m.pair = clearance->pairs()[i].Name(model);
-    m.limit = clearance->min_clearance();
+    m.limit = clearance->pairs()[i].minimum;
+    m.held_at_home = m.limit < clearance->min_clearance();
     m.value = kInf;  // the closest distance so far
     m.margin = kInf;
     worst.push_back(m);
@@ -617,6 +657,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       run.start_theta = theta;
       DesignStartSummary& summary = summaries[static_cast<size_t>(s)];
       summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
+      summary.initial_violation = run.Violation(theta.data());
       run.best_value = kInf;
       if (run.Feasible(theta.data())) {
         run.best_value = summary.initial_value, run.best_theta = theta, run.feasible_at = 0;
@@ -651,6 +692,8 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       summary.evaluations = run.evaluations;
       summary.feasible_at = run.feasible_at;
       summary.status = result == NLOPT_FORCED_STOP ? "stopped" : nlopt_result_to_string(result);
+      summary.final_violation = run.Violation(theta.data());
+      DescribeProgress(&summary);
     }
   };
   std::vector<std::thread> pool;

@@ -54,7 +54,7 @@ std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vecto
   std::vector<double> asked(change.size(), 0.0);
   for (size_t i = 0; i < change.size(); ++i) {
     if (change[i] >= kUnchanged) {
-      asked[i] = std::clamp(0.5 * (most[i] - clearance->min_clearance()), 0.0, kClearanceRoom);
+      asked[i] = std::clamp(0.5 * (most[i] - clearance->pairs()[i].minimum), 0.0, kClearanceRoom);
     }
   }
   return asked;

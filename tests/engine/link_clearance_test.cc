@@ -130,16 +130,50 @@ TEST(LinkClearanceTest, PrunedMinimumEqualsTheFullMinimum) {
   for (size_t i = 0; i < n_pairs; ++i) EXPECT_EQ(pruned[i], full[i]) << clearance.pairs()[i].Name(model);
 }
 
-TEST(LinkClearanceTest, PumaLeavesOutPairsTouchingAtHome) {
-  const RobotModel model = MakePuma560();
-  const ClearanceModel clearance(model, 0.01);
-  EXPECT_FALSE(clearance.excluded().empty());
-  for (const std::string& e : clearance.excluded()) EXPECT_NE(e.find("touching by construction"), std::string::npos);
+// A pair already closer than the clearance at q = 0 is kept, held at its
+// distance there (less 1 µm), never dropped; only joined pairs are left out.
+// Sphere robot at q = 0: L0 0.4 m above the ground, L1 and L2 0.9 m, L2–L0
+// |(1.5, 0, 0.5)| − 0.2 m apart. (6ab1a0b dropped the three ground pairs at
+// a clearance of 1 m: asking for more gave less protection.)
+TEST(LinkClearanceTest, PairsInsideTheClearanceAtHomeAreHeldThereNotDropped) {
+  const double r = 0.1;
+  const RobotModel model = MakeSphereRobot(r);
+  const ClearanceModel clearance(model, 1.0);
+  ASSERT_EQ(clearance.pairs().size(), 4u);
+  const double tol = ClearanceModel::kHomeTolerance;
   for (const ClearancePair& p : clearance.pairs()) {
-    if (p.link_b >= 0) {
-      EXPECT_NE(p.link_b, model.link(p.link_a).parent) << p.Name(model);
-    }
+    const double home = p.link_b >= 0 ? std::hypot(1.5, 0.5) - 2 * r : (p.link_a == 0 ? 0.5 : 1.0) - r;
+    EXPECT_NEAR(p.home_distance, home, 1e-6) << p.Name(model);
+    EXPECT_NEAR(p.minimum, std::min(1.0, home - tol), 1e-6) << p.Name(model);
   }
+  EXPECT_EQ(clearance.n_held_at_home(), 3);
+  ASSERT_EQ(clearance.excluded().size(), 2u);
+  EXPECT_EQ(clearance.excluded()[0], "L1–L0: joined by joint ''");
+}
+
+// In contact by construction: spheres overlapping at q = 0 are left out; a
+// base on the floor (its only joint vertical) too; but a link on the floor
+// that a joint can raise is kept at its distance at q = 0.
+TEST(LinkClearanceTest, OnlyContactByConstructionIsLeftOut) {
+  std::vector<Link> links = MakeSphereRobot(0.1).links();
+  links[0].shapes[0].X_BG.translation() = Eigen::Vector3d(0, 0, 0.05);  // L0 sinks 5 cm into the floor
+  links[2].shapes[0].X_BG.translation() = Eigen::Vector3d(-1.0, 0, -0.8);  // L2 at (0, 0, 0.2): into L0
+  const RobotModel model("contacts", links);
+  const ClearanceModel clearance(model, 0.05);
+  std::vector<std::string> names;
+  for (const ClearancePair& p : clearance.pairs()) names.push_back(p.Name(model));
+  EXPECT_EQ(names, (std::vector<std::string>{"L1–ground", "L2–ground"}));
+  ASSERT_EQ(clearance.excluded().size(), 4u);  // L1–L0, L2–L1 joined; L0–ground base; L2–L0 overlap
+  EXPECT_NE(clearance.excluded()[0].find("L0–ground: on the ground at q = 0"), std::string::npos);
+  EXPECT_NE(clearance.excluded()[2].find("L2–L0: in contact at q = 0 (-0.05 m)"), std::string::npos);
+  EXPECT_NEAR(clearance.pairs()[1].home_distance, 0.1, 1e-9);  // L2 0.2 m up, radius 0.1
+  EXPECT_EQ(clearance.pairs()[1].minimum, 0.05);
+  // Tilt L0's joint off the vertical: the base can dip, so it is kept, held at −0.05 m.
+  links[0].axis_J = Eigen::Vector3d(1, 0, 0);
+  const RobotModel tilting("tilting", links);
+  const ClearanceModel kept(tilting, 0.05);
+  ASSERT_EQ(kept.pairs()[0].Name(tilting), "L0–ground");
+  EXPECT_NEAR(kept.pairs()[0].minimum, -0.05 - ClearanceModel::kHomeTolerance, 1e-9);
 }
 
 // The sphere robot's links as boxes, primitive or mesh (the same box as 12

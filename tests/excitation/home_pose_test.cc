@@ -135,7 +135,7 @@ TEST(HomePoseTest, ShoulderRangeInTheFloorIsExplainedBeforeTheSearch) {
       if (m.margin < 0.0 && m.pair.find("–ground") != std::string::npos) ground = true;
     }
     EXPECT_TRUE(ground) << e.what();
-    EXPECT_NE(std::string(e.what()).find("below the minimum"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("below its minimum"), std::string::npos) << e.what();
     ASSERT_FALSE(e.advice().empty());
     EXPECT_NE(e.advice()[0].find("--clearance"), std::string::npos) << e.what();
     // The shoulder's range holds the arm there: the advice names it too.

@@ -261,18 +261,29 @@ int DesignCommand(const idbench::DesignCommandOptions& options, const idbench::U
   std::signal(SIGINT, SIG_DFL);
   std::fputs(idbench::FormatDesignSummary(options, report).c_str(), stdout);
   idbench::EnsureOutputDirectory(dir);
+  // What a controller would run only from a usable design (or when asked).
+  const bool usable = report.result.usable();
   std::vector<std::pair<std::filesystem::path, std::string>> files{
-      {dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)},
-      {dir / "trajectory.csv", idbench::FormatDesignTrajectoryCsv(model, options, report)},
       {dir / "design.json", idbench::FormatDesignJson(model, options, report)}};
+  if (usable || options.write_trajectory_anyway) {
+    files.push_back({dir / "trajectory.json", idbench::FormatTrajectoryJson(report.result.trajectory)});
+    files.push_back({dir / "trajectory.csv", idbench::FormatDesignTrajectoryCsv(model, options, report)});
+  }
   if (with_report) {
     for (auto& file : idbench::FormatReportFiles(idbench::MakeDesignReportContent(model, options, report), dir))
       files.push_back(std::move(file));
   }
   idbench::WriteFilesAtomically(files);
+  if (!usable) {
+    std::fprintf(stderr, "idbench: error: the design is not usable: %s; wrote %s with the diagnostics%s\n",
+                 report.result.Rejection().c_str(), (dir / "design.json").c_str(),
+                 options.write_trajectory_anyway ? " and, as asked, trajectory.json and trajectory.csv"
+                                                 : ", no trajectory (--write-trajectory-anyway writes it)");
+    return kExitFailure;
+  }
   std::printf("wrote %s, trajectory.csv and design.json%s\n", (dir / "trajectory.json").c_str(),
               with_report ? ", report.html and report.pdf" : "");
-  return report.result.check.feasible() ? 0 : kExitFailure;
+  return 0;
 }
 
 int CompareCommand(const idbench::CompareOptions& options, const idbench::UrdfLoadOptions& load, bool with_report) {
@@ -558,6 +569,9 @@ int main(int argc, char** argv) {
   design_cmd->add_option("--home", design.home, "Home pose q1,...,qn [rad] the motion oscillates about")
       ->delimiter(',');
   design_cmd->add_flag("--quiet", design.quiet, "No progress on stderr");
+  design_cmd->add_flag("--write-trajectory-anyway", design.write_trajectory_anyway,
+                       "Write trajectory.json/.csv even when the design is not usable (infeasible or no progress); "
+                       "still exits 1");
   bool design_report = false;
   design_cmd->add_flag("--report", design_report, "Also write report.html, report.pdf and the plots");
   design_cmd->add_option("--out", design.out_dir, "Output directory (created if missing, never wiped)")

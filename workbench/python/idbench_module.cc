@@ -14,6 +14,9 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -212,20 +215,58 @@ struct DesignOutput {
   double cond = 0.0, initial_cond = 0.0;
   bool feasible = false;
   bool stopped = false;
+  bool usable = false;     // DesignResult::usable(): feasible and better than its start point
+  std::string rejection;   // why not ("" when usable)
   std::string trajectory_json, trajectory_csv, design_json, summary;
 };
+
+// progress must be callable as progress(start, evaluations, best_value,
+// feasible): TypeError before any work otherwise.
+void CheckProgressCallback(const py::object& progress) {
+  if (progress.is_none()) return;
+  if (!PyCallable_Check(progress.ptr())) {
+    throw py::type_error("progress: expected a callable progress(start, evaluations, best_value, feasible), got " +
+                         std::string(py::str(py::type::of(progress).attr("__name__"))));
+  }
+  py::object signature;
+  try {
+    signature = py::module_::import("inspect").attr("signature")(progress);
+  } catch (const py::error_already_set&) {
+    return;  // no signature to check (some built-ins): called as is
+  }
+  try {
+    signature.attr("bind")(0, 0, 0.0, false);
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_TypeError)) throw;
+    throw py::type_error("progress: expected a callable taking (start, evaluations, best_value, feasible), got one "
+                         "with the signature " + std::string(py::str(signature)) + ": " + e.what());
+  }
+}
 
 DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, const py::object& progress) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const RobotModel& model = *robot.model;
   if (!options.IsValidFor(model, &why)) throw std::invalid_argument(why);
+  CheckProgressCallback(progress);
   DesignControl control;
   control.stop = &g_design_stop;
+  // An exception raised by progress (KeyboardInterrupt included) stops the
+  // design and is raised again here: it may not cross the worker threads.
+  std::mutex callback_mutex;
+  std::optional<py::error_already_set> callback_error;
+  std::atomic<bool> callback_failed{false};
   if (!progress.is_none()) {
-    control.progress = [progress](const DesignProgress& p) {
+    control.progress = [&](const DesignProgress& p) {
+      if (callback_failed) return;
       py::gil_scoped_acquire acquire;
-      progress(p.start, p.evaluations, p.best_value, p.feasible);
+      try {
+        progress(p.start, p.evaluations, p.best_value, p.feasible);
+      } catch (py::error_already_set& e) {
+        const std::lock_guard<std::mutex> lock(callback_mutex);
+        if (!callback_failed.exchange(true)) callback_error.emplace(std::move(e));
+        g_design_stop = true;
+      }
     };
   }
   g_design_stop = false;
@@ -238,10 +279,11 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
       report = RunDesign(model, options, limits, control);
     } catch (...) {
       std::signal(SIGINT, previous);
-      throw;
+      if (!callback_failed) throw;
     }
     std::signal(SIGINT, previous);
   }
+  if (callback_failed) throw *callback_error;  // the GIL is held again here
   const DesignResult& result = report->result;
   DesignOutput out;
   out.value = result.value;
@@ -250,6 +292,8 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
   out.initial_cond = result.initial.cond;
   out.feasible = result.check.feasible();
   out.stopped = result.stopped;
+  out.usable = result.usable();
+  out.rejection = result.Rejection();
   out.trajectory_json = FormatTrajectoryJson(result.trajectory);
   out.trajectory_csv = FormatDesignTrajectoryCsv(model, options, *report);
   out.design_json = FormatDesignJson(model, options, *report);
@@ -481,6 +525,9 @@ PYBIND11_MODULE(idbench, m) {
       .def_readonly("initial_cond", &DesignOutput::initial_cond)
       .def_readonly("feasible", &DesignOutput::feasible, "Within every limit at the check rate")
       .def_readonly("stopped", &DesignOutput::stopped, "Stopped early (Ctrl-C): the best design so far")
+      .def_readonly("usable", &DesignOutput::usable,
+                    "Feasible and better than its start point (the command line writes trajectory.csv only then)")
+      .def_readonly("rejection", &DesignOutput::rejection, "Why the design is not usable ('' when it is)")
       .def_readonly("trajectory_json", &DesignOutput::trajectory_json, "trajectory.json")
       .def_readonly("trajectory_csv", &DesignOutput::trajectory_csv, "trajectory.csv")
       .def_readonly("design_json", &DesignOutput::design_json, "design.json")
@@ -535,7 +582,8 @@ PYBIND11_MODULE(idbench, m) {
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
       py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). progress(start, evaluations, best_value, feasible) "
-      "is called as the starts run; Ctrl-C stops and returns the best design so far (stopped = True).");
+      "is called as the starts run (TypeError before any work if it cannot be called so; an exception it raises "
+      "stops the design and is raised again); Ctrl-C stops and returns the best design so far (stopped = True).");
 
   const RenderOptions render_defaults;
   m.def(

@@ -5,11 +5,15 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sstream>
 
 #include "workbench/cli/cli_fixture.h"
 
 #include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/kinematics.h"
+#include "idbench/engine/link_clearance.h"
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 
 namespace idbench {
 namespace {
@@ -253,6 +257,150 @@ TEST_F(DesignCliTest, ReportsReferenceOnlyExistingFiles) {
     EXPECT_GT(refs, 1);
   }
   EXPECT_TRUE(fs::exists(dir_ / "d" / "figure.png"));
+}
+
+// Clearance means at least that distance: the case, the UR10e-like
+// arm at --clearance 0.2, whose floor pairs are all closer than 0.2 m at
+// q = 0 (6ab1a0b dropped them and wrote a motion 1 m into the floor). The
+// written trajectory.csv, sampled every 1 ms by this test, keeps every pair
+// (all but joined or touching at q = 0) at least min(0.2 m, its distance at
+// q = 0) apart. The search makes no progress at this budget: exit 1, each
+// start says so, and trajectory.csv is written only because it is asked for.
+TEST_F(DesignCliTest, ClearanceHoldsEveryPairInTheWrittenTrajectory) {
+  const std::string data = IDBENCH_SOURCE_DIR "/tests/data/ur10e_like/";
+  const std::string common = "design --robot " + data + "ur10e_like.urdf --limits " + data +
+                             "lim_acc.json --clearance 0.2 --harmonics 2 --samples 40 --starts 2 "
+                             "--max-evaluations 30 --csv-columns q --quiet --out ";
+  const Result refused = Run(common + (dir_ / "a").string());
+  const Result r = Run(common + (dir_ / "b").string() + " --write-trajectory-anyway");
+  const json design = json::parse(Slurp(dir_ / "b" / "design.json"));
+  const bool usable = design["verdict"]["usable"];
+  EXPECT_EQ(r.exit_code, usable ? 0 : 1) << r.err;
+  EXPECT_EQ(refused.exit_code, r.exit_code);
+  EXPECT_EQ(fs::exists(dir_ / "a" / "trajectory.csv"), usable);
+  EXPECT_TRUE(fs::exists(dir_ / "a" / "design.json"));
+  for (const json& start : design["starts"]) {  // no progress: the criterion did not fall
+    const bool improved = !start["best"].is_null() && start["best"].get<double>() < start["initial"].get<double>() - 1e-9;
+    if (!start["best"].is_null() && start["initial_violation"].get<double>() <= 0.0) {
+      EXPECT_EQ(start["progressed"].get<bool>(), improved) << start.dump();
+    }
+  }
+  EXPECT_EQ(design["clearance_pairs"]["held_at_home"].size(), 9u);
+  const RobotModel model = LoadUrdfFile(data + "ur10e_like.urdf").model;
+  const ClearanceModel distances(model, 0.0);
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  std::vector<Clearance> d;
+  ComputeKinematicsT<double>(model, zero, zero, zero, &k);
+  distances.Compute(k, &d);
+  std::vector<double> bound(d.size());
+  for (size_t i = 0; i < d.size(); ++i) bound[i] = std::min(0.2, d[i].distance) - 1e-6;
+  std::istringstream csv(Slurp(dir_ / "b" / "trajectory.csv"));
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  double t_prev = -1.0;
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    std::getline(fields, field, ',');
+    const double t = std::stod(field);
+    if (rows > 0) {
+      ASSERT_NEAR(t - t_prev, 1e-3, 1e-9);  // every 1 ms
+    }
+    t_prev = t;
+    Eigen::VectorXd q(model.n_dof());
+    for (int j = 0; j < model.n_dof(); ++j) std::getline(fields, field, ','), q[j] = std::stod(field);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    distances.Compute(k, &d);
+    for (size_t i = 0; i < d.size(); ++i) {
+      ASSERT_GE(d[i].distance, bound[i]) << distances.pairs()[i].Name(model) << " at t = " << t;
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 10001);  // one period 1/f0 = 10 s at 1 kHz
+}
+
+// --rate that cannot sample the motion: refused before any work (exit 2), the bound stated.
+TEST_F(DesignCliTest, RateTooLowIsRefusedBeforeWork) {
+  const Result r = Run("design --robot puma560 --rate 0.001 --out " + (dir_ / "d").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--rate: 0.001 Hz cannot sample the motion"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("= 5 Hz"), std::string::npos) << r.err;  // 10 x 5 harmonics x 0.1 Hz
+  EXPECT_FALSE(fs::exists(dir_ / "d"));
+}
+
+// compare checks its options against what one simulation holds before any
+// work (6ab1a0b ran --duration 5000 without bound and refused 1001 after 21 s),
+// and a sample count off the simulation steps names --samples and values that
+// divide the steps (it blamed --tau-noise).
+TEST_F(DesignCliTest, CompareRefusesDurationsAndSampleCountsBeforeWork) {
+  const std::string out = " --out " + (dir_ / "c").string();
+  Result r = Run("compare general --robot puma560 --duration 5000" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--duration: must be in (0, 1000] s (the simulation keeps at most 1000000 steps of 0.001 s), "
+                       "got 5000"), std::string::npos) << r.err;
+  r = Run("compare general --robot puma560 --samples 300" + out);
+  EXPECT_EQ(r.exit_code, 2);
+  // 10 s = 10000 steps: the divisors of 10000 nearest to 300, found here by trial.
+  int below = 300, above = 300;
+  while (10000 % below != 0) --below;
+  while (10000 % above != 0) ++above;
+  EXPECT_NE(r.err.find("--samples: 300 samples over general's 10 s fall every 33.33 simulation steps"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--samples " + std::to_string(below) + " or " + std::to_string(above) + " would"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("tau-noise"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c"));
+  r = Run("montecarlo --robot puma560 --samples 300");  // the same rule, the same option named
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--samples: 300 samples over the 10 s motion fall every 33.33 simulation steps"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("tau-noise"), std::string::npos) << r.err;
+}
+
+// %σ is never a ratio to a true value that is zero up to rounding (6ab1a0b
+// printed 1.7e+20 %): there compare.json has null and predicted_sigma the σ;
+// elsewhere %σ = 100 σ/|true value|, the true values from compare.json.
+TEST_F(DesignCliTest, ComparePrintsSigmaWhereTheValueIsZero) {
+  const Result r = Run("compare general --robot puma560 --samples 200 --trials 2 --out " + (dir_ / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json c = json::parse(Slurp(dir_ / "c" / "compare.json"));
+  const std::vector<double> truth = c["true_parameters"];
+  const json& m = c["motions"][0];
+  double largest = 0.0;
+  for (double v : truth) largest = std::max(largest, std::abs(v));
+  int zeros = 0;
+  ASSERT_EQ(m["predicted_sigma"].size(), truth.size());
+  for (size_t k = 0; k < truth.size(); ++k) {
+    const double sigma = m["predicted_sigma"][k];
+    EXPECT_GT(sigma, 0.0);
+    if (std::abs(truth[k]) <= 1e-9 * largest) {
+      EXPECT_TRUE(m["predicted_percent_sigma"][k].is_null()) << k;
+      ++zeros;
+    } else {
+      EXPECT_NEAR(m["predicted_percent_sigma"][k].get<double>(), 100.0 * sigma / std::abs(truth[k]),
+                  1e-9 * 100.0 * sigma / std::abs(truth[k])) << k;
+    }
+  }
+  EXPECT_GT(zeros, 0);  // puma560 has first moments that are zero
+  EXPECT_NE(r.out.find("s=…: sigma itself"), std::string::npos);
+  EXPECT_EQ(r.out.find("e+1"), std::string::npos) << r.out;  // no huge ratios
+}
+
+// A dangling symbolic link as --out: refused before any work (exit 2) by
+// every command with an output directory.
+TEST_F(DesignCliTest, DanglingLinkOutIsRefusedBeforeWork) {
+  fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+  const std::string out = " --out " + (dir_ / "dangling").string();
+  for (const char* command : {"design --robot puma560", "compare general --robot puma560",
+                                     "montecarlo --robot puma560", "run --no-figure"}) {
+    const Result r = Run(std::string(command) + out);
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("is a symbolic link to '" + (dir_ / "nowhere").string() + "', which does not exist"),
+              std::string::npos) << command << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "nowhere"));
 }
 
 // Ctrl-C: the design stops and keeps the best feasible point found so far.

@@ -86,6 +86,7 @@ TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
   const Case cases[] = {
       {"--times 0,3", 2, "--times: time 3 s is outside the trajectory [0, 2] s"},
       {"--times -0.5", 2, "--times: time -0.5 s is outside the trajectory [0, 2] s"},
+      {"--times inf", 2, "--times: expected finite times [s], got inf"},  // not "outside [0, inf]"
       {"--size 0x0", 2, "--size: panels must be 32..4096 px per side, got 0x0"},
       {"--size 100000x360", 2, "--size: panels must be 32..4096 px per side, got 100000x360"},
       {"--size 4000x4000", 2, "--size: the figure would have 128000000 pixels"},

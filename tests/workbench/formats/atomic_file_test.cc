@@ -96,5 +96,26 @@ TEST_F(AtomicFileTest, RefusesWhatIsNotARegularFileAndWritesNothing) {
   EXPECT_EQ(why, "--out: '" + kept.string() + "' exists and is not a directory");
 }
 
+// An output directory that create_directories could not make is refused
+// by the option check, before any work (6ab1a0b let a dangling symbolic link
+// pass and failed after the work): the link itself, the link as a parent, a
+// file as a parent; a new directory under an existing one is fine.
+TEST_F(AtomicFileTest, OutputDirectoryThroughADanglingLinkIsRefusedUpFront) {
+  fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+  std::ofstream(dir_ / "file.txt") << "x";
+  std::string why;
+  EXPECT_FALSE(IsUsableOutputDirectory((dir_ / "dangling").string(), "--out", &why));
+  EXPECT_EQ(why, "--out: '" + (dir_ / "dangling").string() + "' is a symbolic link to '" + (dir_ / "nowhere").string() +
+                     "', which does not exist");
+  EXPECT_FALSE(IsUsableOutputDirectory((dir_ / "dangling" / "sub").string(), "--out", &why));
+  EXPECT_NE(why.find("'" + (dir_ / "dangling").string() + "' is a symbolic link"), std::string::npos) << why;
+  EXPECT_FALSE(IsUsableOutputDirectory((dir_ / "file.txt" / "sub").string(), "--out", &why));
+  EXPECT_EQ(why, "--out: '" + (dir_ / "file.txt").string() + "' exists and is not a directory");
+  EXPECT_TRUE(IsUsableOutputDirectory((dir_ / "new" / "deeper").string(), "--out", &why));
+  fs::create_directories(dir_ / "real");
+  fs::create_symlink(dir_ / "real", dir_ / "link");
+  EXPECT_TRUE(IsUsableOutputDirectory((dir_ / "link").string(), "--out", &why));
+}
+
 }  // namespace
 }  // namespace idbench

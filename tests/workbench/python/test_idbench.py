@@ -192,6 +192,7 @@ def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
                             friction=["viscous"], limits=str(tmp_path / "limits.json"),
                             progress=lambda *args: calls.append(args))
     assert result.feasible and not result.stopped
+    assert result.usable == (result.value < result.initial_value) and result.rejection == ""
     assert calls and all(start == 0 for start, *_ in calls)
     assert np.isfinite(result.cond) and result.value <= result.initial_value
     design = json.loads(result.design_json)
@@ -210,6 +211,50 @@ def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
     assert np.array_equal(first, home) and np.array_equal(last, home)
     with pytest.raises(ValueError, match="--home: expected 6 joint angles"):
         idbench.design(puma, home=[0.0, 0.0], limits=str(tmp_path / "limits.json"))
+
+
+def test_design_progress_callbacks_that_fail_raise_in_python(puma, tmp_path):
+    # 6ab1a0b aborted the interpreter (SIGABRT, terminate … error_already_set) in each case; run in a child
+    # so that an abort shows as a return code, not as a dead test session.
+    script = tmp_path / "callbacks.py"
+    script.write_text("""
+import json, time, idbench
+limits = [{"qd_max": 1.5, "qdd_max": 4}] * 3 + [{"qd_max": 3, "qdd_max": 8}] * 3
+open("limits.json", "w").write(json.dumps({"joints": limits}))
+puma = idbench.Robot("puma560")
+kw = dict(harmonics=2, f0=0.5, samples=40, starts=2, max_evaluations=400, clearance=-1, limits="limits.json")
+class Boom(Exception):
+    pass
+calls = []
+def raises(start, evaluations, best, feasible):
+    calls.append(evaluations)
+    raise Boom("from progress")
+def interrupts(start, evaluations, best, feasible):
+    raise KeyboardInterrupt
+for name, progress in [("not callable", 42), ("wrong arity", lambda start: None), ("raises", raises),
+                       ("interrupts", interrupts)]:
+    began = time.perf_counter()
+    try:
+        idbench.design(puma, progress=progress, **kw)
+        print(name, "returned")
+    except BaseException as e:
+        print(name, type(e).__name__, str(e).splitlines()[0] if str(e) else "", round(time.perf_counter() - began, 3))
+print("calls", len(calls))
+""")
+    child = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert child.returncode == 0, child.stderr
+    lines = {line.split(" ", 1)[0] if not line.startswith(("not ", "wrong ")) else " ".join(line.split(" ", 2)[:2]):
+             line for line in child.stdout.splitlines()}
+    assert lines["not callable"].startswith("not callable TypeError progress: expected a callable")
+    assert "int" in lines["not callable"]
+    assert lines["wrong arity"].startswith("wrong arity TypeError progress: expected a callable taking")
+    # TypeError before any work: no design ran (well under the time of one).
+    for name in ("not callable", "wrong arity"):
+        assert float(lines[name].rsplit(" ", 1)[1]) < 0.5
+    assert lines["raises"].startswith("raises Boom from progress")
+    assert lines["interrupts"].startswith("interrupts KeyboardInterrupt")
+    # The first exception stopped the design: progress was not called again after it raised.
+    assert lines["calls"] == "calls 1"
 
 
 def test_render_gives_the_figure_as_an_array_and_png(tmp_path):

@@ -23,6 +23,9 @@ namespace idbench {
 namespace {
 
 constexpr double kCheckRateHz = 1000.0;
+// A true parameter value at most this fraction of the largest is zero up to
+// rounding: no %σ (a ratio to ~0), σ itself instead.
+constexpr double kZeroValue = 1e-9;
 
 // W of the regressor at the states of a joint log (what Bullet executed).
 Eigen::MatrixXd StackStates(const DesignRegressor& regressor, const Eigen::MatrixXd& q, const Eigen::MatrixXd& qd,
@@ -91,6 +94,38 @@ void PerBodyMonteCarlo(const RobotModel& model, const Trajectory& motion, const 
   }
 }
 
+// A motion compare can simulate: at most SimulationOptions::kMaxSteps steps
+// of dt, and samples that fall on whole steps (the log rate samples/duration
+// divides the simulation rate 1/dt). Throws std::invalid_argument naming the
+// motion, the option and values that would work.
+void CheckCompareMotion(const std::string& name, double duration, const CompareOptions& options) {
+  const double steps = duration / options.dt;
+  if (!std::isfinite(duration) || !(steps <= SimulationOptions::kMaxSteps)) {
+    throw std::invalid_argument(name + ": lasts " + Shortest(duration) + " s; compare simulates at most " +
+                                Shortest(SimulationOptions::kMaxSteps * options.dt) + " s (" +
+                                std::to_string(std::lround(SimulationOptions::kMaxSteps)) + " steps of " +
+                                Shortest(options.dt) + " s)");
+  }
+  const double per_sample = steps / options.samples;  // simulation steps between samples
+  if (per_sample >= 1.0 - 1e-9 && std::abs(per_sample - std::round(per_sample)) <= 1e-6 * per_sample) return;
+  // The nearest sample counts that divide the steps: one below, one above.
+  const long n_steps = std::lround(steps);
+  long below = 0, above = 0;
+  for (long s = std::min<long>(options.samples, n_steps); s >= 1 && below == 0; --s) {
+    if (n_steps % s == 0) below = s;
+  }
+  for (long s = options.samples; s <= n_steps && above == 0; ++s) {
+    if (n_steps % s == 0) above = s;
+  }
+  std::string works = below > 0 ? std::to_string(below) : "";
+  if (above > 0 && above != below) works += (works.empty() ? "" : " or ") + std::to_string(above);
+  throw std::invalid_argument(
+      "--samples: " + std::to_string(options.samples) + " samples over " + name + "'s " + Shortest(duration) +
+      " s fall every " + Format("%.4g", per_sample) + " simulation steps of " + Shortest(options.dt) +
+      " s; they must fall on whole steps (samples must divide the " + std::to_string(n_steps) + " steps)" +
+      (works.empty() ? "" : ": --samples " + works + " would"));
+}
+
 }  // namespace
 
 bool CompareOptions::IsValid(std::string* why) const {
@@ -106,7 +141,11 @@ bool CompareOptions::IsValid(std::string* why) const {
   if (trials < 2 || trials > kMaxTrials) {
     return fail("--trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
   }
-  if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
+  const double max_duration = SimulationOptions::kMaxSteps * dt;  // [s] what one simulation holds
+  if (!(duration > 0.0) || !(duration <= max_duration)) {
+    return fail("--duration: must be in (0, " + Shortest(max_duration) + "] s (the simulation keeps at most " +
+                std::to_string(std::lround(SimulationOptions::kMaxSteps)) + " steps of " + Shortest(dt) + " s), got " + Shortest(duration));
+  }
   for (double s : tau_noise) {
     if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
   }
@@ -129,8 +168,16 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
   std::optional<ClearanceModel> clearance;
   if (options.clearance >= 0.0) clearance.emplace(model, options.clearance);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
+  // Every motion read and checked before any work: its duration fits one
+  // simulation, and its samples fall on whole simulation steps.
+  std::vector<std::unique_ptr<Trajectory>> motions;
   for (const std::string& name : options.trajectories) {
-    const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(name, model, builtin);
+    motions.push_back(LoadTrajectoryArg(name, model, builtin));
+    CheckCompareMotion(name, motions.back()->duration(), options);
+  }
+  for (size_t m = 0; m < options.trajectories.size(); ++m) {
+    const std::string& name = options.trajectories[m];
+    const std::unique_ptr<Trajectory>& motion = motions[m];
     MotionComparison row;
     row.name = name;
     row.duration = motion->duration();
@@ -162,7 +209,16 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
       mc.seed = options.seed;
       const MonteCarloReport r = RunMonteCarlo(model, mc);
       row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
+      // %σ only where the true value is not zero up to rounding (kZeroValue);
+      // there σ itself (FormatCompareTable).
+      row.predicted_sigma = r.predicted_sigma;
       row.predicted_percent_sigma = 100.0 * r.predicted_sigma.cwiseQuotient(r.beta_true.cwiseAbs());
+      const double largest = r.beta_true.cwiseAbs().maxCoeff();
+      for (Eigen::Index k = 0; k < r.beta_true.size(); ++k) {
+        if (std::abs(r.beta_true[k]) <= kZeroValue * largest) {
+          row.predicted_percent_sigma[k] = std::numeric_limits<double>::quiet_NaN();
+        }
+      }
       row.mean_relative_error = r.mean_relative_error;
     }
     report.motions.push_back(std::move(row));
@@ -201,12 +257,15 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
       std::snprintf(line, sizeof line, " %11s", ("T" + std::to_string(m + 1)).c_str());
       out += line;
     }
-    out += "  parameter\n";
+    out += "  parameter   (s=…: sigma itself, in the parameter's unit, where its true value is zero)\n";
     for (size_t k = 0; k < report.parameter_names.size(); ++k) {
       std::snprintf(line, sizeof line, "%4zu", k + 1);
       out += line;
       for (const MotionComparison& m : report.motions) {
-        std::snprintf(line, sizeof line, " %11s", Format("%.4g", m.predicted_percent_sigma[static_cast<Eigen::Index>(k)]).c_str());
+        const Eigen::Index i = static_cast<Eigen::Index>(k);
+        const bool zero = m.unexcited.empty() && m.predicted_sigma.size() > i && std::isnan(m.predicted_percent_sigma[i]);
+        std::snprintf(line, sizeof line, " %11s",
+                      (zero ? Format("s=%.3g", m.predicted_sigma[i]) : Format("%.4g", m.predicted_percent_sigma[i])).c_str());
         out += line;
       }
       out += "  " + report.parameter_names[k] + "\n";
@@ -243,7 +302,12 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
               {"within_robot_limits", m.limits.feasible()},
               {"limit_violations", m.limits.Explain()}};
     if (m.predicted_percent_sigma.size() > 0 && m.unexcited.empty()) {
-      j["predicted_percent_sigma"] = ToStdVector(m.predicted_percent_sigma);
+      json percent = json::array();  // null where the true value is zero: see predicted_sigma
+      for (Eigen::Index k = 0; k < m.predicted_percent_sigma.size(); ++k) {
+        percent.push_back(std::isnan(m.predicted_percent_sigma[k]) ? json(nullptr) : json(m.predicted_percent_sigma[k]));
+      }
+      j["predicted_percent_sigma"] = percent;
+      j["predicted_sigma"] = ToStdVector(m.predicted_sigma);
     }
     motions.push_back(j);
   }

@@ -47,6 +47,14 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
   }
   if (!design.IsValid(why)) return false;
   if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("--rate: must be > 0 Hz");
+  if (csv_rate_hz < MinimumCsvRate(design)) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "--rate: %g Hz cannot sample the motion; trajectory.csv needs at least 10 samples per period of "
+                  "the highest harmonic, 10 x %d harmonics x %g Hz (--f0) = %g Hz",
+                  csv_rate_hz, design.harmonics, design.f0, MinimumCsvRate(design));
+    return fail(buf);
+  }
   if (csv_columns != "q" && csv_columns != "q,qd,qdd") {
     return fail("--csv-columns: expected 'q' or 'q,qd,qdd', got '" + csv_columns + "'");
   }
@@ -56,6 +64,8 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
+
+double MinimumCsvRate(const DesignOptions& design) { return 10.0 * design.harmonics * design.f0; }
 
 bool DesignCommandOptions::IsValidFor(const RobotModel& robot, std::string* why) const {
   if (home.empty() || static_cast<int>(home.size()) == robot.n_dof()) return true;
@@ -116,6 +126,25 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
       std::fprintf(stderr, "idbench: warning: clearance is not checked for links without shapes: %s\n", bare.c_str());
     }
   }
+  std::vector<std::string> excluded, held;
+  if (design.clearance >= 0.0) {  // the pairs left out and those held at q = 0, named once
+    const ClearanceModel clearance(model, design.clearance);
+    excluded = clearance.excluded();
+    for (const ClearancePair& p : clearance.pairs()) {
+      if (p.minimum < clearance.min_clearance()) held.push_back(p.Name(model) + Format(" >= %.4g m", p.minimum));
+    }
+    if (!options.quiet) {
+      std::string line;
+      for (const std::string& e : excluded) line += "\n  " + e;
+      if (!excluded.empty()) std::fprintf(stderr, "clearance: not checked (in contact by construction):%s\n", line.c_str());
+      line.clear();
+      for (const std::string& h : held) line += "\n  " + h;
+      if (!held.empty()) {
+        std::fprintf(stderr, "clearance: closer than %g m at q = 0, kept at least as far as there:%s\n",
+                     design.clearance, line.c_str());
+      }
+    }
+  }
   if (!options.quiet) {
     std::fprintf(stderr, "design: %s, %s model (%d parameters), %s, %d starts on %d threads, seed %u\n",
                  model.name().c_str(), options.model.c_str(), regressor.n_parameters(),
@@ -132,13 +161,15 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
                    CriterionText(design.criterion, p.best_value).c_str(), p.feasible ? "" : " (current point infeasible)");
     };
   }
-  DesignCommandReport report{limits, DesignExcitation(regressor, limits, design, control), regressor.parameter_names()};
+  DesignCommandReport report{limits, DesignExcitation(regressor, limits, design, control), regressor.parameter_names(),
+                             excluded, held};
   if (!options.quiet) {
     for (size_t s = 0; s < report.result.starts.size(); ++s) {
       const DesignStartSummary& st = report.result.starts[s];
-      std::fprintf(stderr, "  start %zu: %s -> %s, %d evaluations (%s)\n", s + 1,
+      std::fprintf(stderr, "  start %zu: %s -> %s, %d evaluations (%s): %s\n", s + 1,
                    CriterionText(design.criterion, st.initial_value).c_str(),
-                   CriterionText(design.criterion, st.best_value).c_str(), st.evaluations, st.status.c_str());
+                   CriterionText(design.criterion, st.best_value).c_str(), st.evaluations, st.status.c_str(),
+                   st.outcome.c_str());
     }
     if (report.result.stopped) std::fprintf(stderr, "design: stopped; keeping the best feasible design so far\n");
   }
@@ -188,6 +219,7 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
     out += "to relax:\n";
     for (const std::string& a : RelaxationAdvice(r.check, design, false)) out += "  " + a + "\n";
   }
+  if (!r.usable()) out += "NOT USABLE: " + r.Rejection() + "\n";
   return out;
 }
 
@@ -250,7 +282,11 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
                       {"best", std::isfinite(s.best_value) ? json(s.best_value) : json(nullptr)},
                       {"evaluations", s.evaluations},
                       {"feasible_at", s.feasible_at >= 0 ? json(s.feasible_at) : json(nullptr)},
-                      {"status", s.status}});
+                      {"status", s.status},
+                      {"progressed", s.progressed},
+                      {"outcome", s.outcome},
+                      {"initial_violation", s.initial_violation},
+                      {"final_violation", s.final_violation}});
   }
   json result = SettingsJson(model, options, report.limits, report.parameter_names);
   result.update({
@@ -264,6 +300,8 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"evaluations", r.evaluations},
       {"wall_seconds", r.wall_seconds},
       {"stopped", r.stopped},
+      {"verdict", {{"usable", r.usable()}, {"reason", r.Rejection()}}},
+      {"clearance_pairs", {{"excluded", report.clearance_excluded}, {"held_at_home", report.clearance_held}}},
   });
   return result.dump(2) + "\n";
 }

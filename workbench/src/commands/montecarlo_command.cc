@@ -65,7 +65,17 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   sensors.rate_hz = options.samples / motion->duration();
   sensors.tau_noise = options.tau_noise;
   std::string why;
-  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--samples/--tau-noise: " + why);
+  // The log rate samples/duration must divide the simulation rate: name
+  // --samples (not --tau-noise) and the steps it must divide.
+  const double per_sample = motion->duration() / options.dt / options.samples;
+  if (per_sample < 1.0 - 1e-9 || std::abs(per_sample - std::round(per_sample)) > 1e-6 * per_sample) {
+    throw std::invalid_argument("--samples: " + std::to_string(options.samples) + " samples over the " +
+                                Shortest(motion->duration()) + " s motion fall every " + Format("%.4g", per_sample) +
+                                " simulation steps of " + Shortest(options.dt) +
+                                " s; they must fall on whole steps (samples must divide the " +
+                                std::to_string(std::lround(motion->duration() / options.dt)) + " steps)");
+  }
+  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--tau-noise: " + why);
   // 1. One noise-free experiment and one held-out, and the fixed regressors.
   const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
   const JointLog log = SimulateNoiseFree(model, *motion, options.dt, sensors.rate_hz);

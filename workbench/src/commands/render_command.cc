@@ -46,7 +46,11 @@ bool RenderOptions::IsValid(std::string* why) const {
     return fail("--accel: must be > 0 deg/s^2, got " + Shortest(paper_accel_deg_s2));
   }
   if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
-  // Everything but the times against the trajectory, checked once it is known.
+  // The times alone here (the trajectory's span is not known yet: no "[0, inf]"),
+  // then everything but the times against the trajectory, checked once it is known.
+  for (double t : times) {
+    if (!std::isfinite(t)) return fail("--times: expected finite times [s], got " + Shortest(t));
+  }
   return figure().IsValid(INFINITY, why);
 }
 

@@ -120,6 +120,20 @@ bool IsUsableOutputDirectory(const std::string& dir, const std::string& option, 
   std::error_code ec;
   if (dir.empty()) problem = "empty path";
   else if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) problem = "'" + dir + "' exists and is not a directory";
+  // What create_directories would meet, checked before any work: a path (or
+  // a parent) that is a symbolic link to nothing, a parent that is not a
+  // directory, a nearest existing parent that cannot be written.
+  for (fs::path p = fs::path(dir); problem.empty() && !p.empty(); p = p.parent_path()) {
+    if (fs::is_symlink(p, ec) && !fs::exists(p, ec)) {
+      problem = "'" + p.string() + "' is a symbolic link to '" + fs::read_symlink(p, ec).string() +
+                "', which does not exist";
+    } else if (fs::exists(p, ec)) {
+      if (!fs::is_directory(p, ec)) problem = "'" + p.string() + "' exists and is not a directory";
+      else if (::access(p.c_str(), W_OK | X_OK) != 0) problem = "'" + p.string() + "' cannot be written: " + std::strerror(errno);
+      break;
+    }
+    if (p == p.parent_path()) break;
+  }
   if (problem.empty()) return true;
   if (why) *why = option + ": " + problem;
   return false;

@@ -10,10 +10,19 @@
 // the full hull reaches beyond them (~2 mm for a 10 cm sphere mesh): still
 // conservative.
 //
-// Pairs that touch by construction are left out: parent and child, and pairs
-// already closer than `min_clearance` at the home pose q = 0 (a base resting
-// on the ground, wrist links sharing a centre); ClearanceModel::excluded()
-// lists them with the reason.
+// Each pair is held at least its own minimum distance apart: min_clearance,
+// or, for a pair already closer than that at the home pose q = 0 (the robot
+// file's zero pose), its distance there (less 1 µm, kHomeTolerance) — it may
+// not get closer than it starts. No pair is dropped for being close. Only pairs in contact by
+// construction are left out, and ClearanceModel::excluded() names each once
+// with the reason:
+//  - parent and child (joined by a joint);
+//  - two links whose shapes touch or overlap at q = 0 (distance ≤ 0 with the
+//    1 mm inflation: a true gap under 2 mm; wrist links sharing a centre);
+//  - a link on the ground at q = 0 that no joint can raise or lower (every
+//    joint from the ground to it turns about the vertical: a base on the
+//    floor). A link on the ground at q = 0 that joints can move keeps its
+//    distance there as its minimum.
 #pragma once
 
 #include <Eigen/Core>
@@ -29,6 +38,9 @@ namespace idbench {
 struct ClearancePair {
   int link_a = 0;
   int link_b = -1;  // −1: the ground
+  double minimum = 0.0;        // [m] the least distance allowed: min_clearance, or the distance
+                               // at q = 0 less kHomeTolerance when the pair starts closer
+  double home_distance = 0.0;  // [m] at q = 0
   std::string Name(const RobotModel& model) const;  // "link2–link5", "link4–ground"
 };
 
@@ -40,7 +52,11 @@ struct Clearance {
 
 class ClearanceModel {
  public:
-  // Throws std::invalid_argument if min_clearance < 0.
+  // [m] a pair held at its distance at q = 0 may come this much closer: GJK's
+  // accuracy, so that a pair whose distance no joint changes meets its minimum.
+  static constexpr double kHomeTolerance = 1e-6;
+
+  // Throws std::invalid_argument if min_clearance < 0 (or is not finite).
   ClearanceModel(const RobotModel& model, double min_clearance);
   ~ClearanceModel();
   ClearanceModel(ClearanceModel&&) noexcept;
@@ -48,7 +64,10 @@ class ClearanceModel {
 
   double min_clearance() const { return min_clearance_; }
   const std::vector<ClearancePair>& pairs() const { return pairs_; }
+  // The pairs not checked, one line each: "a–b: <reason>".
   const std::vector<std::string>& excluded() const { return excluded_; }
+  // The number of pairs whose minimum is their distance at q = 0 (< min_clearance).
+  int n_held_at_home() const;
 
   // The clearance of every pair at the link poses in k (one entry per pair).
   // With at_least (one value per pair), a pair whose shapes' bounding spheres

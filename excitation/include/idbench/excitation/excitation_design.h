@@ -73,6 +73,8 @@ struct ConstraintMargin {
   double value = 0.0;    // q, |qd|, |qdd| or |τ| there
   double limit = 0.0;
   double margin = 0.0;   // limit − value (for q_min: value − limit); < 0 is a violation
+  bool held_at_home = false;  // clearance: limit is the pair's distance at q = 0, closer than
+                              // the clearance asked (link_clearance.h)
 };
 
 struct FeasibilityCheck {
@@ -115,6 +117,14 @@ struct DesignStartSummary {
   int feasible_at = -1;        // evaluation at which it first met every limit on the grid
                                // (0: the start point itself); −1: never
   std::string status;          // NLopt's result or "stopped"
+  // Worst normalised constraint violation (≤ 0: feasible on the grid) at the
+  // start point and where the search ended.
+  double initial_violation = 0.0, final_violation = 0.0;
+  // Whether the start got anywhere: a feasible start improved its criterion;
+  // an infeasible one became feasible or reduced its violation.
+  bool progressed = false;
+  // "improved", "no progress: …", "infeasible: …" (one line, for the start's line and design.json).
+  std::string outcome;
 };
 
 struct DesignResult {
@@ -132,6 +142,11 @@ struct DesignResult {
   int evaluations = 0;               // all starts
   double wall_seconds = 0.0;
   bool stopped = false;              // stopped early by the control flag
+  // Whether this is a design to run: feasible at the check rate and better
+  // than the start point it came from (the search made progress); else
+  // why not, one line ("" when usable).
+  bool usable() const { return Rejection().empty(); }
+  std::string Rejection() const;
   double ramp_seconds = 0.0;         // [s] DesignOptions::ramp_seconds
 
   // What the robot runs: the trajectory framed by the ramps from and to the

@@ -39,7 +39,9 @@ struct MotionComparison {
   double duration = 0.0;
   Identifiability designed;             // analytic motion on the sample grid
   Identifiability realised;             // the states Bullet executed, same samples
-  Eigen::VectorXd predicted_percent_sigma;  // 100 σ/|true| per parameter (torque model; empty otherwise)
+  Eigen::VectorXd predicted_percent_sigma;  // 100 σ/|true| per parameter (torque model; empty otherwise);
+                                            // NaN where the true value is zero up to rounding (≤ 1e-9 of the largest)
+  Eigen::VectorXd predicted_sigma;          // σ per parameter, in its unit (torque model)
   double mean_relative_error = 0.0;     // Monte-Carlo mean over trials (see FormatCompareTable)
   double max_relative_error = 0.0;      // worst parameter, worst trial
   FeasibilityCheck limits;              // against the robot file's limits and the clearance at 1 kHz

@@ -32,6 +32,10 @@ struct DesignCommandOptions {
   std::string csv_columns = "q,qd,qdd";              // trajectory.csv: "q" (positions) or "q,qd,qdd"
   std::vector<double> home;                          // [rad] --home (n_dof); empty: found (home_pose.h)
   bool quiet = false;                                // no progress on stderr
+  // Write trajectory.json and trajectory.csv even when the design is not
+  // usable (DesignResult::Rejection: infeasible, or no progress); the exit
+  // code stays 1.
+  bool write_trajectory_anyway = false;
   std::string out_dir = "out/design";
   std::string command_line;                          // recorded in design.json
 
@@ -49,7 +53,14 @@ struct DesignCommandReport {
   std::vector<JointLimits> limits;   // as used
   DesignResult result;
   std::vector<std::string> parameter_names;
+  // Clearance (link_clearance.h): the pairs not checked, with the reason, and
+  // the pairs held at their distance at q = 0 ("a–b ≥ 0.104 m").
+  std::vector<std::string> clearance_excluded, clearance_held;
 };
+
+// The smallest trajectory.csv rate that samples the motion: ten samples per
+// period of the highest harmonic, 10 H f0 [Hz].
+double MinimumCsvRate(const DesignOptions& design);
 
 // The limits a design keeps: the --limits file's, else the robot file's.
 // Throws std::invalid_argument naming a bad file.
