@@ -276,6 +276,26 @@ TEST(HeadlessGuiTest, ViewportFollowsTheTimelineAndShowsFrames) {
   fs::remove_all(gui.session().out_dir);
 }
 
+// Issue 20: a design that is not usable (here: one evaluation per start, so
+// no start improves on where it began) is never exported as a motion a robot
+// would run; `idbench design` writes only design.json for it too.
+TEST(HeadlessGuiTest, UnusableDesignIsNotExported) {
+  const fs::path out = TempDir("unusable");
+  HeadlessGui gui({.width = 800, .height = 600, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click limits.fill\nset design.harmonics 2\nset design.f0 0.5\nset design.samples 40\n"
+                 "set design.max_evaluations 1\nclick design.run\nwait design 60\n");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  const DesignResult& r = session.design_report()->result;
+  ASSERT_FALSE(r.usable()) << "one evaluation per start should not improve: " << r.initial_value << " -> " << r.value;
+  EXPECT_NE(session.last_error().find("not usable"), std::string::npos) << session.last_error();
+  RunScript(gui, "click tab.export\nclick export.trajectory_json\nclick export.trajectory_csv\n");
+  EXPECT_NE(session.last_error().find("export: the design is not usable"), std::string::npos) << session.last_error();
+  EXPECT_FALSE(fs::exists(out / "trajectory.json"));
+  EXPECT_FALSE(fs::exists(out / "trajectory.csv"));
+  fs::remove_all(out);
+}
+
 TEST(HeadlessGuiTest, BadInputShowsAMessageAndKeepsTheSession) {
   const fs::path out = TempDir("bad");
   const fs::path garbage = out / "broken.urdf";

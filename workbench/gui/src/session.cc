@@ -149,6 +149,7 @@ void Session::StartDesign() {
                     r.stopped ? " (stopped)" : "");
       Info(line);
       if (!r.check.feasible()) Error("design violates limits at " + std::to_string(r.check.rate_hz) + " Hz:\n" + r.check.Explain());
+      else if (!r.usable()) Error("design is not usable: " + r.Rejection() + " (it is not exported)");
       SelectMotion("designed");
     });
   });
@@ -391,11 +392,23 @@ bool Session::Export(const std::string& file, const std::function<std::string()>
   }
 }
 
-bool Session::ExportTrajectoryJson() {
+// A designed motion a robot would run is exported only when the design is
+// usable (feasible at 1 kHz and better than its start), as `idbench design`
+// writes it.
+bool Session::DesignedMotionExportable() {
   if (!design_report_) {
     Error("export: no designed motion yet (built-in motions are named, not exported)");
     return false;
   }
+  if (!design_report_->result.usable()) {
+    Error("export: the design is not usable, nothing written: " + design_report_->result.Rejection());
+    return false;
+  }
+  return true;
+}
+
+bool Session::ExportTrajectoryJson() {
+  if (!DesignedMotionExportable()) return false;
   return Export("trajectory.json", [&] { return FormatTrajectoryJson(design_report_->result.trajectory); });
 }
 
@@ -405,6 +418,7 @@ bool Session::ExportTrajectoryCsv() {
     Error("export: no motion selected");
     return false;
   }
+  if (motion == "designed" && !DesignedMotionExportable()) return false;
   return Export("trajectory.csv", [&] { return FormatTrajectoryCsv(*t, design.csv_rate_hz); });
 }
 

@@ -162,6 +162,7 @@ class Session {
   int motion_version_ = 0;
 
   std::optional<DesignCommandReport> design_report_;
+  bool DesignedMotionExportable();  // Error() says why not
   std::optional<JointLog> log_;
   std::optional<IdentifyReport> identify_report_;
   IdentifyOptions identified_with_;   // the options of identify_report_
