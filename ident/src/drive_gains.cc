@@ -253,22 +253,24 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
                   out.gains.cwiseAbs().minCoeff(), out.gains.cwiseAbs().maxCoeff());
     out.status = DriveGainStatus::kNotObserved;
     out.message = text;
-  } else if (!(out.torque_scale > 0.0)) {
-    std::snprintf(text, sizeof(text),
-                  "the gains turn the unloaded log's torques against the robot file's prediction (scale %.3g): the "
-                  "two logs look swapped (the log with the payload must be the loaded one), or every current is "
-                  "logged with the opposite sign",
-                  out.torque_scale);
-    out.status = DriveGainStatus::kNotObserved;
-    out.message = text;
-  } else if (!(out.torque_scale >= 1.0 / DriveGainOptions::kMaxTorqueScale &&
-               out.torque_scale <= DriveGainOptions::kMaxTorqueScale)) {
+  } else if (!(std::abs(out.torque_scale) >= 1.0 / DriveGainOptions::kMaxTorqueScale &&
+               std::abs(out.torque_scale) <= DriveGainOptions::kMaxTorqueScale)) {
+    // Near 0 (of either sign: the same log twice gives ±1e-13 by rounding)
+    // or far from 1: not the payload's effect.
     std::snprintf(text, sizeof(text),
                   "the payload's effect is not seen in the data as its mass implies: the gains make the unloaded "
                   "log's torques %.3g times what the robot file predicts (%g to %g expected); check that the loaded "
                   "log was recorded with the payload fixed to the last link, the payload mass, that the two logs are "
                   "different recordings, and the robot file's masses",
                   out.torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);
+    out.status = DriveGainStatus::kNotObserved;
+    out.message = text;
+  } else if (out.torque_scale < 0.0) {  // |scale| in range, against the file
+    std::snprintf(text, sizeof(text),
+                  "the gains turn the unloaded log's torques against the robot file's prediction (scale %.3g): the "
+                  "two logs look swapped (the log with the payload must be the loaded one), or every current is "
+                  "logged with the opposite sign",
+                  out.torque_scale);
     out.status = DriveGainStatus::kNotObserved;
     out.message = text;
   }

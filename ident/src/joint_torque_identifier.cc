@@ -23,7 +23,8 @@ void CheckLog(const RobotModel& model, const JointLog& log) {
                                 model.name() + "' has " + std::to_string(n));
   }
   if (!log.has_derivatives()) {
-    throw std::invalid_argument("joint log has no qd/qdd: estimate them first (filtering, signal_filter.h)");
+    throw std::invalid_argument("joint log has no velocities and accelerations (qd, qdd): estimate them from q "
+                                "first (zero-phase low-pass filtering and differentiation)");
   }
 }
 
