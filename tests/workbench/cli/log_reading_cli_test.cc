@@ -16,6 +16,7 @@
 #include "idbench/excitation/builtin_motions.h"
 #include "ident/synthetic_log.h"
 #include "workbench/cli/cli_fixture.h"
+#include "workbench/cli/joint_log_writer.h"
 
 namespace idbench {
 namespace {
@@ -34,31 +35,7 @@ class LogReadingCliTest : public testing::CliFixture {
   // "i" (currents tau / gains_); with a header of idbench's names when
   // `header`.
   fs::path Write(const std::string& name, const JointLog& log, const std::vector<std::string>& signals, bool header) {
-    std::string text;
-    char number[32];
-    auto add = [&](double v) {
-      std::snprintf(number, sizeof(number), "%.17g", v);
-      text += (text.empty() || text.back() == '\n' ? "" : ",") + std::string(number);
-    };
-    if (header) {
-      std::string names;
-      for (const std::string& s : signals) {
-        if (s == "t") names += ",t";
-        for (int j = 1; s != "t" && j <= 6; ++j) names += "," + s + std::to_string(j);
-      }
-      text += names.substr(1) + "\n";
-    }
-    for (int k = 0; k < log.n_samples(); ++k) {
-      for (const std::string& s : signals) {
-        if (s == "t") add(log.t[k]);
-        for (int j = 0; s != "t" && j < 6; ++j) {
-          add(s == "q" ? log.q(k, j) : s == "qd" ? log.qd(k, j) : s == "qdd" ? log.qdd(k, j)
-              : s == "tau" ? log.tau(k, j) : log.tau(k, j) / gains_[j]);
-        }
-      }
-      text += "\n";
-    }
-    std::ofstream(dir_ / name) << text;
+    std::ofstream(dir_ / name) << testing::JointLogCsvText(log, signals, header, gains_);
     return dir_ / name;
   }
 
