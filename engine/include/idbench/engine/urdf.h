@@ -106,7 +106,7 @@ bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string
 // <dynamics damping friction> → JointDynamics viscous, coulomb.
 // Visuals: box, cylinder (size (r, r, length), axis along z of G), sphere, and
 // mesh (read with assimp: STL, COLLADA, OBJ, …; scale applied; the file found
-// as ResolveMeshUri in urdf.cc says: package:// names through
+// as ResolveMeshUri in mesh_uri.h says: package:// names through
 // ROS_PACKAGE_PATH or a directory of that name above the URDF, relative paths
 // against `base_directory`, the current directory when empty). <collision>
 // geometry, the same kinds, goes to Link::collision_shapes (what clearance

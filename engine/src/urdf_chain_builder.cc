@@ -1,14 +1,8 @@
-#include "idbench/engine/urdf.h"
-
-#include <console_bridge/console.h>
-#include <urdf_parser/urdf_parser.h>
+#include "urdf_chain_builder.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <cstdlib>
 #include <map>
 #include <memory>
 #include <optional>
@@ -17,24 +11,18 @@
 #include <stdexcept>
 #include <utility>
 
-#include "idbench/engine/input_file.h"
 #include "idbench/engine/link_bounding_box.h"
-#include "idbench/engine/printable_text.h"
-#include "urdf_document.h"
+#include "urdf_messages.h"
+#include "urdf_shape_reader.h"
 
-namespace idbench {
+namespace idbench::internal {
 namespace {
 
-// A name or path from the file as a message shows it: escaped, and cut only
-// beyond the length of a long path (a mesh's package:// URI must stay whole
-// for the user to find it; 64 bytes cut the KUKA's).
-constexpr std::size_t kMaxQuotedBytes = 1024;
 // Beyond any robot link: the largest <inertial> mass [kg], inertia entry
 // [kg m²] and centre-of-mass offset from the link frame [m] a file may give.
 constexpr double kMaxMass = 1e6;
 constexpr double kMaxInertia = 1e8;
 constexpr double kMaxOffset = 1e3;
-std::string Quote(const std::string& name) { return "'" + PrintableText(name, kMaxQuotedBytes) + "'"; }
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -73,51 +61,6 @@ LinkInertia Lump(const std::vector<PointInertia>& parts) {
   return lumped;
 }
 
-// The file a URDF <mesh filename> names:
-//   package://P/rest → D/P/rest for each D in ROS_PACKAGE_PATH (':'-separated);
-//     then, walking up from the URDF's directory, A/rest for an ancestor A
-//     named P, or A/P/rest (a package next to or above the URDF);
-//   file:///abs → /abs; an absolute path as is; a relative path against the
-//   URDF's directory.
-// The first candidate that exists (a regular file or not: LoadTriangleMesh
-// says what is wrong with it); nullopt otherwise, with every candidate in
-// *looked.
-std::optional<std::filesystem::path> ResolveMeshUri(const std::string& uri, const std::filesystem::path& base_directory,
-                                                    std::vector<std::string>* looked) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> candidates;
-  const std::string package = "package://", file = "file://";
-  if (uri.rfind(package, 0) == 0) {
-    const std::string rest = uri.substr(package.size());
-    const size_t slash = rest.find('/');
-    const std::string name = rest.substr(0, slash), inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
-    if (const char* paths = std::getenv("ROS_PACKAGE_PATH")) {
-      std::stringstream list(paths);
-      for (std::string dir; std::getline(list, dir, ':');) {
-        if (!dir.empty()) candidates.push_back(fs::path(dir) / name / inside);
-      }
-    }
-    std::error_code error;
-    for (fs::path a = fs::absolute(base_directory, error); !a.empty(); a = a.parent_path()) {
-      if (a.filename() == name) candidates.push_back(a / inside);
-      candidates.push_back(a / name / inside);
-      if (a == a.parent_path()) break;
-    }
-  } else if (uri.rfind(file, 0) == 0) {
-    candidates.push_back(fs::path(uri.substr(file.size())));
-  } else if (fs::path(uri).is_absolute()) {
-    candidates.push_back(fs::path(uri));
-  } else {
-    candidates.push_back(base_directory / uri);
-  }
-  for (const fs::path& c : candidates) {
-    std::error_code error;
-    if (fs::exists(c, error)) return fs::absolute(c, error).lexically_normal();
-    looked->push_back(c.string());
-  }
-  return std::nullopt;
-}
-
 const char* TypeName(const urdf::Joint& joint) {
   switch (joint.type) {
     case urdf::Joint::REVOLUTE: return "revolute";
@@ -128,13 +71,6 @@ const char* TypeName(const urdf::Joint& joint) {
     case urdf::Joint::FIXED: return "fixed";
     default: return "unknown-type";
   }
-}
-
-// A number as a message shows it (6 significant digits).
-std::string Format(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 // What --lock takes for a joint: "NAME=VALUE", or "NAME=0" for a floating or
@@ -154,11 +90,11 @@ std::string QuotedList(const std::vector<std::string>& names) {
 // Chooses the chain of a urdfdom tree (the joints that become the model's
 // degrees of freedom), then walks it from the root, merging every link held
 // rigidly (fixed or locked joints) into the chain link above it.
-class Loader {
+class UrdfChainBuilder {
  public:
-  Loader(const urdf::ModelInterface& urdf, std::string source, std::filesystem::path base_directory,
-         const UrdfLoadOptions& options)
-      : urdf_(urdf), source_(std::move(source)), base_directory_(std::move(base_directory)), options_(options) {}
+  UrdfChainBuilder(const urdf::ModelInterface& urdf, std::string source, std::filesystem::path base_directory,
+                   const UrdfLoadOptions& options)
+      : urdf_(urdf), source_(std::move(source)), options_(options), shapes_(std::move(base_directory), &warnings_) {}
 
   UrdfLoadResult Load() {
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
@@ -600,15 +536,15 @@ class Loader {
         part.I_Lcm_B = X_BI.linear() * I_Lcm_I * X_BI.linear().transpose();
         parts.push_back(part);
       }
-      for (const urdf::VisualSharedPtr& visual : Visuals(*member)) {
+      for (const urdf::VisualSharedPtr& visual : UrdfShapeReader::Visuals(*member)) {
         if (visual->geometry == nullptr) continue;
-        if (auto shape = ReadShape(*visual->geometry, X_BL * ToIsometry(visual->origin), where)) {
+        if (auto shape = shapes_.ReadShape(*visual->geometry, X_BL * ToIsometry(visual->origin), where)) {
           link->shapes.push_back(std::move(*shape));
         }
       }
-      for (const urdf::CollisionSharedPtr& collision : Collisions(*member)) {
+      for (const urdf::CollisionSharedPtr& collision : UrdfShapeReader::Collisions(*member)) {
         if (collision->geometry == nullptr) continue;
-        if (auto shape = ReadShape(*collision->geometry, X_BL * ToIsometry(collision->origin), where)) {
+        if (auto shape = shapes_.ReadShape(*collision->geometry, X_BL * ToIsometry(collision->origin), where)) {
           link->collision_shapes.push_back(std::move(*shape));
         }
       }
@@ -648,337 +584,20 @@ class Loader {
     }
   }
 
-  static std::vector<urdf::VisualSharedPtr> Visuals(const urdf::Link& link) {
-    if (!link.visual_array.empty()) return link.visual_array;
-    if (link.visual != nullptr) return {link.visual};
-    return {};
-  }
-  static std::vector<urdf::CollisionSharedPtr> Collisions(const urdf::Link& link) {
-    if (!link.collision_array.empty()) return link.collision_array;
-    if (link.collision != nullptr) return {link.collision};
-    return {};
-  }
-
-  // A <visual> or <collision> geometry placed at X_BG; nullopt (with a
-  // warning) for a mesh that cannot be found or read.
-  std::optional<Shape> ReadShape(const urdf::Geometry& geometry, const Eigen::Isometry3d& X_BG,
-                                 const std::string& where) {
-    Shape shape;
-    shape.X_BG = X_BG;
-    switch (geometry.type) {
-      case urdf::Geometry::BOX: {
-        const urdf::Vector3& dim = static_cast<const urdf::Box&>(geometry).dim;
-        shape.kind = Shape::Kind::kBox;
-        shape.size = Eigen::Vector3d(dim.x, dim.y, dim.z);
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
-        shape.kind = Shape::Kind::kCylinder;
-        shape.size = Eigen::Vector3d(cylinder.radius, cylinder.radius, cylinder.length);
-        break;
-      }
-      case urdf::Geometry::SPHERE: {
-        const double radius = static_cast<const urdf::Sphere&>(geometry).radius;
-        shape.kind = Shape::Kind::kSphere;
-        shape.size = Eigen::Vector3d::Constant(radius);
-        break;
-      }
-      case urdf::Geometry::MESH: {
-        const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
-        shape.kind = Shape::Kind::kMesh;
-        shape.size = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        shape.mesh_uri = mesh.filename;
-        shape.mesh = Mesh(mesh.filename, shape.size, where, &shape.mesh_uri);
-        if (shape.mesh == nullptr) return std::nullopt;
-        break;
-      }
-      default:
-        return std::nullopt;
-    }
-    return shape;
-  }
-
-  // The mesh a <mesh filename> names, read once per file and scale; null with
-  // a warning when it cannot be found or read (the link then lacks that shape).
-  // A relative path in *uri is made absolute (so that a URDF written
-  // elsewhere still finds it).
-  std::shared_ptr<const TriangleMesh> Mesh(const std::string& uri, const Eigen::Vector3d& scale,
-                                           const std::string& where, std::string* written_uri) {
-    std::vector<std::string> looked;
-    const std::optional<std::filesystem::path> path = ResolveMeshUri(uri, base_directory_, &looked);
-    if (!path) {
-      std::string places;
-      for (const std::string& p : looked) places += (places.empty() ? "" : ", ") + p;
-      warnings_.push_back(where + "mesh " + Quote(uri) + " not found (looked in " + places +
-                          "; set ROS_PACKAGE_PATH for package:// names); shape skipped");
-      return nullptr;
-    }
-    if (uri.find("://") == std::string::npos && std::filesystem::path(uri).is_relative()) *written_uri = path->string();
-    const std::string key = path->string() + " " + std::to_string(scale.x()) + " " + std::to_string(scale.y()) +
-                            " " + std::to_string(scale.z());
-    // A file read (or refused, with its one warning) once: a mesh used by a
-    // <visual> and a <collision> is not read or reported twice.
-    if (const auto it = meshes_.find(key); it != meshes_.end()) return it->second;
-    std::shared_ptr<const TriangleMesh>& mesh = meshes_[key];
-    try {
-      mesh = std::make_shared<const TriangleMesh>(LoadTriangleMesh(path->string(), scale));
-    } catch (const std::exception& e) {
-      warnings_.push_back(where + e.what() + "; the shapes using it are skipped");
-    }
-    return mesh;
-  }
-
   const urdf::ModelInterface& urdf_;
   std::string source_;
-  std::filesystem::path base_directory_;  // relative mesh paths start here
   const UrdfLoadOptions& options_;
   std::set<std::string> chain_;           // names of the joints that are the model's degrees of freedom
   std::vector<Locked> locked_;            // joints held still, in the order they were merged
   std::vector<std::string> warnings_;
-  std::map<std::string, std::shared_ptr<const TriangleMesh>> meshes_;  // by path and scale; null: refused
+  UrdfShapeReader shapes_;               // the visuals' and collisions' shapes; warns into warnings_
 };
-
-// ---- Writing ----
-
-// 17 significant digits: parses back to the same double. −0 is written as 0.
-std::string Number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value == 0.0 ? 0.0 : value);
-  return buffer;
-}
-
-std::string Numbers(const Eigen::Vector3d& v) {
-  return Number(v.x()) + " " + Number(v.y()) + " " + Number(v.z());
-}
-
-
-std::string Attribute(const std::string& name, const std::string& value) {
-  return " " + name + "=\"" + EscapeXml(value) + "\"";
-}
-
-std::string Origin(const Eigen::Isometry3d& X) {
-  return "<origin" + Attribute("xyz", Numbers(X.translation())) +
-         Attribute("rpy", Numbers(RpyFromRotation(X.linear()))) + "/>";
-}
-
-// A name not in `taken`: `base`, else `base_1`, `base_2`, ...
-std::string UniqueName(const std::string& base, const std::set<std::string>& taken) {
-  if (!taken.contains(base)) return base;
-  for (int k = 1;; ++k) {
-    const std::string name = base + "_" + std::to_string(k);
-    if (!taken.contains(name)) return name;
-  }
-}
-
-// <visual> or <collision> with the shape's origin and geometry.
-std::string ShapeElement(const std::string& tag, const Shape& shape) {
-  std::ostringstream out;
-  out << "    <" << tag << ">\n"
-      << "      " << Origin(shape.X_BG) << "\n"
-      << "      <geometry>";
-  switch (shape.kind) {
-    case Shape::Kind::kBox: out << "<box" << Attribute("size", Numbers(shape.size)) << "/>"; break;
-    case Shape::Kind::kCylinder:
-      out << "<cylinder" << Attribute("radius", Number(shape.size.x())) << Attribute("length", Number(shape.size.z()))
-          << "/>";
-      break;
-    case Shape::Kind::kSphere: out << "<sphere" << Attribute("radius", Number(shape.size.x())) << "/>"; break;
-    case Shape::Kind::kMesh:
-      out << "<mesh" << Attribute("filename", shape.mesh_uri) << Attribute("scale", Numbers(shape.size)) << "/>";
-      break;
-  }
-  out << "</geometry>\n"
-      << "    </" << tag << ">\n";
-  return out.str();
-}
 
 }  // namespace
 
-Eigen::Matrix3d RotationFromRpy(const Eigen::Vector3d& rpy) {
-  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
+UrdfLoadResult BuildUrdfChain(const urdf::ModelInterface& urdf, const std::string& source,
+                              const std::filesystem::path& base_directory, const UrdfLoadOptions& options) {
+  return UrdfChainBuilder(urdf, source, base_directory, options).Load();
 }
 
-Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R) {
-  // R = Rz(y)·Ry(p)·Rx(r) has first column (cy·cp, sy·cp, −sp). Take yaw from
-  // it (arbitrary, here 0, when cp = 0), then read pitch and roll from
-  // M = Rz(y)ᵀ·R = Ry(p)·Rx(r) = [cp  sp·sr  sp·cr; 0  cr  −sr; −sp  cp·sr  cp·cr].
-  // Near gimbal lock the yaw is poorly determined, but M's entries used here
-  // have magnitude ~1 or are exact given that yaw, so Rz(y)·Ry(p)·Rx(r)
-  // reproduces R to rounding for every pitch.
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  const Eigen::Matrix3d M = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * R;
-  const double pitch = std::atan2(-M(2, 0), M(0, 0));
-  const double roll = std::atan2(-M(1, 2), M(1, 1));
-  return Eigen::Vector3d(roll, pitch, yaw);
-}
-
-bool UrdfLoadOptions::IsValid(std::string* why) const {
-  for (const auto& [name, value] : locked_joints) {
-    if (name.empty()) {
-      *why = "--lock: a joint name is empty";
-      return false;
-    }
-    if (!std::isfinite(value)) {
-      *why = "--lock " + name + ": expected a finite value, got " + Format(value);
-      return false;
-    }
-  }
-  return true;
-}
-
-bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string* why) {
-  const auto fail = [&](const std::string& what) {
-    *why = "--lock '" + text + "': " + what;
-    return false;
-  };
-  const size_t equals = text.find('=');
-  if (equals == std::string::npos || equals == 0) {
-    return fail("expected JOINT=VALUE (VALUE in rad, or in m for a prismatic joint)");
-  }
-  const std::string name = text.substr(0, equals), number = text.substr(equals + 1);
-  char* end = nullptr;
-  const double value = std::strtod(number.c_str(), &end);
-  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value)) {
-    return fail("expected a finite number after '=', got '" + number + "'");
-  }
-  if (!options->locked_joints.emplace(name, value).second) return fail("joint " + Quote(name) + " is locked twice");
-  return true;
-}
-
-UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_name,
-                               const std::string& base_directory, const UrdfLoadOptions& options) {
-  // urdfdom reports why a file is invalid through console_bridge: keep the
-  // first error for our one message instead of letting it print.
-  struct FirstError : console_bridge::OutputHandler {
-    std::string text;
-    void log(const std::string& message, console_bridge::LogLevel level, const char*, int) override {
-      if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && text.empty()) text = message;
-    }
-  } first_error;
-  internal::CheckUrdfDocument(xml, source_name);
-  console_bridge::useOutputHandler(&first_error);
-  urdf::ModelInterfaceSharedPtr urdf;
-  try {
-    urdf = urdf::parseURDF(xml);
-  } catch (const std::exception& e) {
-    console_bridge::restorePreviousOutputHandler();
-    throw std::invalid_argument(source_name + ": not a valid URDF (" + e.what() + ")");
-  }
-  console_bridge::restorePreviousOutputHandler();
-  // urdfdom logs an element it cannot parse and loads the rest without it:
-  // any error it logs refuses the file.
-  if (urdf == nullptr || urdf->getRoot() == nullptr || !first_error.text.empty()) {
-    throw std::invalid_argument(source_name + ": not a valid URDF" +
-                                (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
-  }
-  return Loader(*urdf, source_name, std::filesystem::path(base_directory.empty() ? "." : base_directory), options)
-      .Load();
-}
-
-UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& options) {
-  return LoadUrdfString(ReadInputFile(path), path, std::filesystem::path(path).parent_path().string(), options);
-}
-
-std::string WriteUrdf(const RobotModel& model) {
-  // Names: URDF needs unique link and joint names; the ground gets a fresh one.
-  std::set<std::string> link_names;
-  std::set<std::string> joint_names;
-  for (const Link& link : model.links()) {
-    if (!link_names.insert(link.name).second) {
-      throw std::invalid_argument("WriteUrdf: link " + Quote(link.name) +
-                                  ": duplicate link name; URDF needs unique names");
-    }
-    if (!link.joint_name.empty() && !joint_names.insert(link.joint_name).second) {
-      throw std::invalid_argument("WriteUrdf: link " + Quote(link.name) + ": duplicate joint name " +
-                                  Quote(link.joint_name) + "; URDF needs unique names");
-    }
-  }
-  std::string ground = "base";
-  if (link_names.contains(ground)) ground = "world";
-  ground = UniqueName(ground, link_names);
-  std::vector<std::string> joint_name(static_cast<size_t>(model.n_links()));
-  for (int i = 0; i < model.n_links(); ++i) {
-    const Link& link = model.link(i);
-    std::string& name = joint_name[static_cast<size_t>(i)];
-    name = link.joint_name.empty() ? UniqueName(link.name + "_joint", joint_names) : link.joint_name;
-    joint_names.insert(name);
-  }
-
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<!-- Written by idbench::WriteUrdf. Not expressible in URDF and so not written:\n"
-      << "     rotor inertia, acceleration limits, gravity. -->\n"
-      << "<robot" << Attribute("name", model.name()) << ">\n"
-      << "  <link" << Attribute("name", ground) << "/>\n";
-
-  for (int i = 0; i < model.n_links(); ++i) {
-    const Link& link = model.link(i);
-
-    // The link: mass properties at the COM, then its shapes.
-    const LinkInertia& inertia = link.inertia;
-    const Eigen::Matrix3d& I = inertia.I_Bcm_B;
-    out << "  <link" << Attribute("name", link.name) << ">\n"
-        << "    <inertial>\n"
-        << "      <origin" << Attribute("xyz", Numbers(inertia.p_BoBcm_B)) << " rpy=\"0 0 0\"/>\n"
-        << "      <mass" << Attribute("value", Number(inertia.mass)) << "/>\n"
-        << "      <inertia" << Attribute("ixx", Number(I(0, 0))) << Attribute("ixy", Number(I(0, 1)))
-        << Attribute("ixz", Number(I(0, 2))) << Attribute("iyy", Number(I(1, 1)))
-        << Attribute("iyz", Number(I(1, 2))) << Attribute("izz", Number(I(2, 2))) << "/>\n"
-        << "    </inertial>\n";
-    for (const Shape& shape : link.shapes) out << ShapeElement("visual", shape);
-    for (const Shape& shape : link.collision_shapes) out << ShapeElement("collision", shape);
-    out << "  </link>\n";
-
-    // Its inboard joint. Infinite velocity/effort are written as 0, which the
-    // loader (and the URDF convention) reads as "not given".
-    const JointLimits& limits = link.limits;
-    const bool bounded = std::isfinite(limits.q_min) && std::isfinite(limits.q_max);
-    if (!bounded && (std::isfinite(limits.q_min) || std::isfinite(limits.q_max))) {
-      throw std::invalid_argument("WriteUrdf: link " + Quote(link.name) +
-                                  ": URDF cannot express a one-sided joint limit (q_min = " +
-                                  Number(limits.q_min) + ", q_max = " + Number(limits.q_max) + ")");
-    }
-    const auto finite_or_zero = [](double value) { return std::isfinite(value) ? value : 0.0; };
-    const std::string parent = link.parent < 0 ? ground : model.link(link.parent).name;
-    out << "  <joint" << Attribute("name", joint_name[static_cast<size_t>(i)])
-        << Attribute("type", bounded ? "revolute" : "continuous") << ">\n"
-        << "    <parent" << Attribute("link", parent) << "/>\n"
-        << "    <child" << Attribute("link", link.name) << "/>\n"
-        << "    " << Origin(link.X_PJ) << "\n"
-        << "    <axis" << Attribute("xyz", Numbers(link.axis_J)) << "/>\n";
-    if (bounded || std::isfinite(limits.qd_max) || std::isfinite(limits.tau_max)) {
-      out << "    <limit";
-      if (bounded) out << Attribute("lower", Number(limits.q_min)) << Attribute("upper", Number(limits.q_max));
-      out << Attribute("effort", Number(finite_or_zero(limits.tau_max)))
-          << Attribute("velocity", Number(finite_or_zero(limits.qd_max))) << "/>\n";
-    }
-    if (link.dynamics.viscous != 0.0 || link.dynamics.coulomb != 0.0) {
-      out << "    <dynamics" << Attribute("damping", Number(link.dynamics.viscous))
-          << Attribute("friction", Number(link.dynamics.coulomb)) << "/>\n";
-    }
-    out << "  </joint>\n";
-  }
-  out << "</robot>\n";
-  return out.str();
-}
-
-std::string EscapeXml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace idbench
+}  // namespace idbench::internal

@@ -1,0 +1,124 @@
+#include "design_start.h"
+
+#include "design_outcome.h"
+
+namespace idbench::internal {
+
+nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta) {
+  const nlopt_algorithm algorithm = options->algorithm == DesignAlgorithm::kSlsqp    ? NLOPT_LD_SLSQP
+                                    : options->algorithm == DesignAlgorithm::kMma    ? NLOPT_LD_MMA
+                                    : options->algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
+                                                                                     : NLOPT_LN_SBPLX;
+  const unsigned n_theta = static_cast<unsigned>(problem->n_unknowns());
+  nlopt_result result = NLOPT_SUCCESS;
+  const int first_evaluation = evaluations;
+  for (;;) {
+    opt = nlopt_create(algorithm, n_theta);
+    nlopt_set_min_objective(opt, &StartRun::NloptObjective, this);
+    nlopt_set_lower_bounds(opt, lower.data());
+    nlopt_set_upper_bounds(opt, upper.data());
+    // SLSQP with one max-row per limit stalls (cond 170 where the rows reach
+    // 42 for puma560); MMA's dual is too slow with many rows, so it and
+    // COBYLA take the max.
+    if (algorithm == NLOPT_LD_SLSQP) {
+      const std::vector<double> tol(rows.size(), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptLinear, this,
+                                       tol.data());
+    } else if (algorithm != NLOPT_LN_SBPLX) {
+      const std::vector<double> tol(static_cast<size_t>(problem->n_groups()), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptGrouped, this,
+                                       tol.data());
+    }
+    if (problem->n_nonlinear_constraints() > 0 && algorithm != NLOPT_LN_SBPLX) {
+      const std::vector<double> tol(static_cast<size_t>(problem->n_nonlinear_constraints()), 1e-10);
+      nlopt_add_inequality_mconstraint(opt, static_cast<unsigned>(tol.size()), &StartRun::NloptNonlinear, this,
+                                       tol.data());
+    }
+    if (algorithm == NLOPT_LN_COBYLA || algorithm == NLOPT_LN_SBPLX) {
+      // A first step of 10 % of each unknown's box (COBYLA's and SBPLX's scale).
+      const Eigen::VectorXd step = 0.1 * (upper - lower).cwiseMin(2.0 * theta->cwiseAbs().cwiseMax(1e-2));
+      nlopt_set_initial_step(opt, step.data());
+    }
+    nlopt_set_maxeval(opt, std::max(1, options->max_evaluations - (evaluations - first_evaluation)));
+    nlopt_set_ftol_rel(opt, 1e-10);  // looser (1e-7) stops SLSQP on plateaus: cond 50 instead of 43
+    nlopt_set_xtol_rel(opt, 1e-10);
+    if (options->max_seconds > 0.0) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+      nlopt_set_maxtime(opt, std::max(1e-3, options->max_seconds - elapsed));
+    }
+    double value = 0.0;
+    reselect = false;
+    result = nlopt_optimize(opt, theta->data(), &value);
+    nlopt_destroy(opt);
+    opt = nullptr;
+    if (!reselect || (control->stop && control->stop->load()) ||
+        evaluations - first_evaluation >= options->max_evaluations) {
+      break;
+    }
+    // Resume from the best feasible point (else where it stepped out) with
+    // the rows near both.
+    if (best_theta.size() > 0) *theta = best_theta;
+    else *theta = reselect_theta;
+    SelectRows(theta->data(), reselect_theta.data(), true);
+  }
+  if (reselect && result == NLOPT_FORCED_STOP && !(control->stop && control->stop->load())) {
+    result = NLOPT_MAXEVAL_REACHED;  // stopped to resume, but out of evaluations
+  }
+  return result;
+}
+
+void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
+              const DesignOptions& options, const DesignControl& control, const DesignProblem& problem,
+              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+              std::chrono::steady_clock::time_point t_begin, StartRun* run_out, DesignStartSummary* summary_out) {
+  StartRun& run = *run_out;
+  run.problem = &problem;
+  run.options = &options;
+  run.control = &control;
+  run.index = s;
+  run.ws.emplace(problem);
+  Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws);
+  run.start_theta = theta;
+  DesignStartSummary& summary = *summary_out;
+  summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
+  summary.initial_violation = run.Violation(theta.data());
+  run.best_value = kInf;
+  if (run.Feasible(theta.data())) {
+    run.best_value = summary.initial_value, run.best_theta = theta, run.feasible_at = 0;
+  }
+
+  // SLSQP takes the grid rows near the limits (see SelectRows), MMA and
+  // COBYLA one max-row per limit. When SLSQP ends outside rows it did
+  // not take, they join and it resumes from there; clearance is
+  // constrained on the grid, and where the fine check finds the links
+  // closer between grid instants, those instants join this start's grid
+  // and the search resumes from its best point (at most twice).
+  run.SelectRows(theta.data());
+  nlopt_result result = run.Optimize(lower, upper, t_begin, &theta);
+  for (int round = 0; round < 2 && problem.clearance() && run.best_theta.size() > 0 && run.Resumable(result);
+       ++round) {
+    const FeasibilityCheck fine = CheckTrajectoryLimits(regressor.model(), limits,
+                                                        problem.Trajectory(run.best_theta),
+                                                        options.check_rate_hz, problem.clearance());
+    bool added = false;
+    for (const ConstraintMargin& m : fine.margins) {
+      if (m.quantity == "clearance" && m.margin < 0.0) problem.AddClearanceInstant(m.time, &*run.ws), added = true;
+    }
+    if (!added) break;
+    theta = run.best_theta;
+    run.best_value = kInf;
+    run.best_theta.resize(0);
+    run.SelectRows(theta.data());
+    result = run.Optimize(lower, upper, t_begin, &theta);
+  }
+  run.last_theta = theta;
+  summary.best_value = run.best_value;
+  summary.evaluations = run.evaluations;
+  summary.feasible_at = run.feasible_at;
+  summary.status = result == NLOPT_FORCED_STOP ? "stopped" : nlopt_result_to_string(result);
+  summary.final_violation = run.Violation(theta.data());
+  DescribeProgress(&summary);
+}
+
+}  // namespace idbench::internal

@@ -1,0 +1,159 @@
+// The fine re-check of a design against the limits and the clearance
+// (FeasibilityCheck, CheckTrajectoryLimits), the InfeasibleDesign it makes,
+// and the advice on what to relax (excitation_design.h).
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "excitation_design_internal.h"
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/excitation/excitation_design.h"
+
+namespace idbench {
+namespace {
+
+using internal::Format;
+using internal::kInf;
+
+}  // namespace
+
+bool FeasibilityCheck::feasible() const {
+  return std::all_of(margins.begin(), margins.end(), [](const ConstraintMargin& m) { return m.margin >= 0.0; });
+}
+
+std::string FeasibilityCheck::Explain() const {
+  std::string out;
+  for (const ConstraintMargin& m : margins) {
+    if (m.margin >= 0.0) continue;
+    if (m.quantity == "clearance") {
+      out += m.pair + Format(" clearance: %.4g m at t = %.4g s is below its minimum %.4g m", m.value, m.time, m.limit) +
+             (m.held_at_home ? " (its distance at q = 0, closer than the clearance asked)" : "") +
+             Format(" by %.3g m\n", -m.margin);
+      continue;
+    }
+    const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
+    const bool lower = m.quantity == "q_min";
+    out += "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
+           (m.quantity == "q_min" || m.quantity == "q_max" ? "q" : "|" + m.quantity + "|") +
+           Format(" = %.6g", m.value) + " " + unit + Format(" at t = %.4g s ", m.time) +
+           (lower ? "is below" : "exceeds") + Format(" the limit %.6g ", m.limit) + unit +
+           Format(" by %.3g ", -m.margin) + unit + "\n";
+  }
+  return out;
+}
+
+FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                       const Trajectory& trajectory, double rate_hz, const ClearanceModel* clearance) {
+  const int n = model.n_dof();
+  FeasibilityCheck check;
+  check.rate_hz = rate_hz;
+  const char* names[5] = {"q_min", "q_max", "qd", "qdd", "tau"};
+  auto limit_of = [&](int j, int i) {
+    const JointLimits& l = limits[static_cast<size_t>(j)];
+    const double values[5] = {l.q_min, l.q_max, l.qd_max, l.qdd_max, l.tau_max};
+    return values[i];
+  };
+  std::vector<ConstraintMargin> worst;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < 5; ++i) {
+      ConstraintMargin m;
+      m.quantity = names[i];
+      m.joint = j;
+      m.limit = limit_of(j, i);
+      m.margin = kInf;
+      worst.push_back(m);
+    }
+  }
+  const size_t n_pairs = clearance ? clearance->pairs().size() : 0;
+  for (size_t i = 0; i < n_pairs; ++i) {
+    ConstraintMargin m;
+    m.quantity = "clearance";
+    m.joint = static_cast<int>(i);
+    m.pair = clearance->pairs()[i].Name(model);
+    m.limit = clearance->pairs()[i].minimum;
+    m.held_at_home = m.limit < clearance->min_clearance();
+    m.value = kInf;  // the closest distance so far
+    m.margin = kInf;
+    worst.push_back(m);
+  }
+  std::vector<Clearance> distances;
+  std::vector<double> closest(n_pairs);
+  RobotData data(model);
+  JointState x(n);
+  const long steps = static_cast<long>(std::floor(trajectory.duration() * rate_hz + 1e-9));
+  for (long k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / rate_hz;
+    trajectory.Evaluate(t, &x);
+    Eigen::VectorXd tau = InverseDynamics(model, x.q, x.qd, x.qdd, &data);
+    AddJointDynamicsTorque(model, x.qd, x.qdd, &tau);
+    for (int j = 0; j < n; ++j) {
+      const double values[5] = {x.q[j], x.q[j], std::abs(x.qd[j]), std::abs(x.qdd[j]), std::abs(tau[j])};
+      for (int i = 0; i < 5; ++i) {
+        ConstraintMargin& w = worst[static_cast<size_t>(5 * j + i)];
+        const double margin = i == 0 ? values[i] - w.limit : w.limit - values[i];
+        if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
+      }
+    }
+    if (n_pairs == 0) continue;
+    for (size_t i = 0; i < n_pairs; ++i) closest[i] = worst[static_cast<size_t>(5 * n) + i].value;
+    clearance->Compute(data, &distances, &closest);  // data holds the poses InverseDynamics computed
+    for (size_t i = 0; i < n_pairs; ++i) {
+      ConstraintMargin& w = worst[static_cast<size_t>(5 * n) + i];
+      const double margin = distances[i].distance - w.limit;
+      if (margin < w.margin) w.margin = margin, w.time = t, w.value = distances[i].distance;
+    }
+  }
+  for (const ConstraintMargin& m : worst) {
+    if (std::isfinite(m.limit)) check.margins.push_back(m);
+  }
+  return check;
+}
+
+InfeasibleDesign::InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
+                                   bool before_search)
+    : std::runtime_error([&] {
+        std::string what = summary + "\n" + check.Explain();
+        if (!advice.empty()) what += "to relax:\n";
+        for (const std::string& a : advice) what += "  " + a + "\n";
+        if (!what.empty() && what.back() == '\n') what.pop_back();
+        return what;
+      }()),
+      check_(std::move(check)),
+      advice_(std::move(advice)),
+      before_search_(before_search) {}
+
+std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
+                                          bool before_search) {
+  std::vector<std::string> advice;
+  auto add = [&](const std::string& line) {
+    if (std::find(advice.begin(), advice.end(), line) == advice.end()) advice.push_back(line);
+  };
+  const double ramp = options.ramp_seconds, motion_end = ramp + options.period_duration();
+  bool in_motion = false;  // a violation outside the ramps
+  for (const ConstraintMargin& m : check.margins) {
+    if (m.margin >= 0.0) continue;
+    const std::string joint = "joint " + std::to_string(m.joint + 1);
+    if (!before_search && ramp > 0.0 && (m.time < ramp || m.time > motion_end)) {
+      add(Format("--ramp (now %g s): longer ramps from and to the home pose (violated during t < %g s", ramp, ramp) +
+          Format(" or t > %g s)", motion_end));
+      continue;
+    }
+    in_motion = true;
+    if (m.quantity == "clearance") {
+      add(Format("--clearance (now %g m), or a --home pose with the links further apart", options.clearance));
+    } else if (m.quantity == "q_min" || m.quantity == "q_max") {
+      add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a --home inside it" : ""));
+    } else if (m.quantity == "tau") {
+      add(joint + "'s torque limit tau_max in the limits file, or a --home where gravity loads it less");
+    } else {
+      add(joint + "'s " + (m.quantity == "qd" ? "velocity limit qd_max" : "acceleration limit qdd_max") +
+          " in the limits file, or fewer --harmonics, a lower --f0 or a longer --duration");
+    }
+  }
+  if (!before_search && (in_motion || advice.empty())) {
+    add(Format("--margin (now %g), which tightens every limit during the search", options.margin));
+  }
+  return advice;
+}
+
+}  // namespace idbench
