@@ -2,15 +2,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "idbench/logs/joint_log_format.h"
-#include "idbench/logs/recorded_joint_log.h"
 
 namespace idbench::internal {
 
 // With angle_unit "deg", a log whose every joint moves less than
 // kSmallMotionDeg is most likely in radians (a motion of 2 rad read as 2°):
 // a warning, since a log of small motions in degrees is possible.
-void WarnIfRadiansReadAsDegrees(const JointLogFormat& format, const std::string& source, RecordedJointLog* out);
+// q: the log's joint positions as read (n_samples × n_dof); the warning,
+// naming `source`, goes to *warnings.
+void WarnIfRadiansReadAsDegrees(const JointLogFormat& format, const std::string& source, const Eigen::MatrixXd& q,
+                                std::vector<std::string>* warnings);
 
 }  // namespace idbench::internal

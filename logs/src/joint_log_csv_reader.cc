@@ -359,7 +359,7 @@ RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel
   const std::vector<std::vector<double>> rows =
       ReadDataRows(in, text, columns, model, format, source, header, line_number, &out.lines);
   FillLog(rows, columns, use, n_dof, format, torques, &out);
-  WarnIfRadiansReadAsDegrees(format, source, &out);
+  WarnIfRadiansReadAsDegrees(format, source, out.log.q, &out.warnings);
   return out;
 }
 

@@ -101,7 +101,7 @@ RecordedJointLog RecordedJointLogFromArrays(const std::map<std::string, Eigen::M
   }
   out.lines.resize(static_cast<size_t>(n));
   for (size_t k = 0; k < out.lines.size(); ++k) out.lines[k] = static_cast<int>(k);  // row numbers
-  WarnIfRadiansReadAsDegrees(format, source, &out);
+  WarnIfRadiansReadAsDegrees(format, source, out.log.q, &out.warnings);
   return out;
 }
 
