@@ -1,11 +1,11 @@
 # Install rules: the `idbench` executable, the libraries with their public
 # headers (include/idbench/<module>/) and a CMake package, so that
-# find_package(idbench) gives idbench::engine, idbench::ident, ...
+# find_package(idbench) gives idbench::engine, idbench::logs, idbench::ident, ...
 include(CMakePackageConfigHelpers)
 
-install(TARGETS idbench_engine idbench_ident idbench_excitation idbench_render idbench_osmesa idbench_workbench
+install(TARGETS idbench_engine idbench_logs idbench_ident idbench_excitation idbench_render idbench_osmesa idbench_workbench
         EXPORT idbenchTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-foreach(module engine ident excitation render workbench)
+foreach(module engine logs ident excitation render workbench)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 install(TARGETS idbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -94,6 +94,135 @@ MinNormSolution SolveMinNorm(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
   return out;
 }
 
+// Both logs' equations stacked, [W, payload columns, −diag(i)] x = b for the
+// unknowns x = [β; φ'; K] (p of them): the unloaded log's rows first.
+struct GainEquations {
+  Eigen::MatrixXd A;           // (m_u + m_l) × p
+  Eigen::VectorXd b;           // (m_u + m_l): −m_payload × the mass column on the loaded rows
+  Eigen::MatrixXd W_unloaded;  // the unloaded log's base regressor (m_u × n_base)
+  Eigen::Index m_u = 0, m_l = 0;
+};
+GainEquations StackGainSystem(const RobotModel& model, const DriveGainOptions& options, const BaseParameters& base,
+                              const CurrentLog& unloaded, const CurrentLog& loaded, int p) {
+  const int n = model.n_dof();
+  const int n_base = base.n_base();
+  const int n_payload = kInertialParametersPerLink - 1;
+  const Eigen::MatrixXd U = StackGainEquations(model, options.friction, base, unloaded, "unloaded");
+  const Eigen::MatrixXd L = StackGainEquations(model, options.friction, base, loaded, "loaded");
+  GainEquations eq;
+  eq.m_u = U.rows(), eq.m_l = L.rows();
+  const Eigen::Index n_equations = eq.m_u + eq.m_l;
+  if (n_equations <= p) {
+    throw std::invalid_argument("drive gains: " + std::to_string(n_equations) + " equations for " +
+                                std::to_string(p) + " unknowns; record longer logs");
+  }
+  const int mass_col = n_base, payload_col = n_base + 1;  // in U, L
+  eq.A = Eigen::MatrixXd::Zero(n_equations, p);
+  eq.b = Eigen::VectorXd::Zero(n_equations);
+  eq.A.topLeftCorner(eq.m_u, n_base) = U.leftCols(n_base);
+  eq.A.topRightCorner(eq.m_u, n) = -U.rightCols(n);
+  eq.A.bottomLeftCorner(eq.m_l, n_base) = L.leftCols(n_base);
+  eq.A.block(eq.m_u, n_base, eq.m_l, n_payload) = L.middleCols(payload_col, n_payload);
+  eq.A.bottomRightCorner(eq.m_l, n) = -L.rightCols(n);
+  eq.b.tail(eq.m_l) = -options.payload_mass * L.col(mass_col);
+  eq.W_unloaded = U.leftCols(n_base);
+  return eq;
+}
+
+// Gauss–Newton on the linear model in current units, the noise where it is
+// measured: e = (W β + Y φ' + M y)/K_j − i per row of joint j (the first
+// n_head unknowns are [β; φ'], the last n the gains K). Started at *x;
+// noise-free data are a fixed point. *solution: the solve at the estimate
+// (its Jacobian, for σ) with the residual ‖e‖².
+void RefineInCurrentUnits(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
+                          const std::vector<std::string>& names, Eigen::VectorXd* x, MinNormSolution* solution) {
+  const Eigen::Index p = A.cols(), n_head = p - n;
+  auto current_residual = [&](const Eigen::VectorXd& xk, Eigen::MatrixXd* J) {
+    const Eigen::VectorXd torque = A.leftCols(n_head) * xk.head(n_head) - b;  // W β + Y φ' + M y
+    Eigen::VectorXd e(A.rows());
+    if (J) J->setZero(A.rows(), p);
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      const int j = static_cast<int>(r % n);
+      const double K = xk[n_head + j], current = -A(r, n_head + j);
+      e[r] = torque[r] / K - current;
+      if (J) {
+        J->row(r).head(n_head) = A.row(r).head(n_head) / K;
+        (*J)(r, n_head + j) = -torque[r] / (K * K);
+      }
+    }
+    return e;
+  };
+  Eigen::MatrixXd J;
+  constexpr int kMaxIterations = 30;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const Eigen::VectorXd e = current_residual(*x, &J);
+    const MinNormSolution step = SolveMinNorm(J, -e, names);
+    *x += step.x;
+    if (step.x.tail(n).cwiseQuotient(x->tail(n)).cwiseAbs().maxCoeff() < 1e-13) break;
+  }
+  const Eigen::VectorXd e = current_residual(*x, &J);
+  *solution = SolveMinNorm(J, e, names);  // for σ: the Jacobian at the estimate
+  solution->residual2 = e.squaredNorm();
+}
+
+// The estimate's status and message: gains the logs do not determine (from
+// the solve's reasons), the payload not seen above the noise, or torques K·i
+// far from (or against) what the robot file predicts.
+void JudgeGains(const std::vector<std::string>& reasons, DriveGainEstimate* out) {
+  const int n = static_cast<int>(out->gains.size());
+  const size_t first_gain = out->identifiable.size() - static_cast<size_t>(n);
+  // Gains the logs do not determine: a status, with the reason.
+  std::string missing;
+  for (int j = 0; j < n; ++j) {
+    const size_t c = first_gain + static_cast<size_t>(j);
+    if (out->identifiable[c]) continue;
+    missing += (missing.empty() ? "" : "; ") + reasons[c];
+  }
+  if (!missing.empty()) {
+    out->status = DriveGainStatus::kNotIdentifiable;
+    out->message = "the logs do not determine every drive gain (" + missing +
+                   "): the loaded motion must move the payload so that its mass shows in every joint's torque, and "
+                   "each joint must move in both logs";
+    return;
+  }
+
+  // Gains the data cannot carry: the payload not seen above the noise, or
+  // torques K·i far from (or against) what the robot file predicts.
+  char text[768];
+  if (!(out->payload_signal_to_noise >= DriveGainOptions::kMinPayloadSignalToNoise)) {
+    std::snprintf(text, sizeof(text),
+                  "the payload's effect is not seen in the data: its torque in the loaded log is %.3g times that "
+                  "log's residual (at least %g expected), so the gains are not determined (they came out at %.3g to "
+                  "%.3g N m/A); check that the loaded log was recorded with the payload fixed to the last link, that "
+                  "the payload mass is right, that the two logs are different recordings, and cut rest phases where "
+                  "the drives idle (time_window, loaded_time_window)",
+                  out->payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
+                  out->gains.cwiseAbs().minCoeff(), out->gains.cwiseAbs().maxCoeff());
+    out->status = DriveGainStatus::kNotObserved;
+    out->message = text;
+  } else if (!(std::abs(out->torque_scale) >= 1.0 / DriveGainOptions::kMaxTorqueScale &&
+               std::abs(out->torque_scale) <= DriveGainOptions::kMaxTorqueScale)) {
+    // Near 0 (of either sign: the same log twice gives ±1e-13 by rounding)
+    // or far from 1: not the payload's effect.
+    std::snprintf(text, sizeof(text),
+                  "the payload's effect is not seen in the data as its mass implies: the gains make the unloaded "
+                  "log's torques %.3g times what the robot file predicts (%g to %g expected); check that the loaded "
+                  "log was recorded with the payload fixed to the last link, the payload mass, that the two logs are "
+                  "different recordings, and the robot file's masses",
+                  out->torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);
+    out->status = DriveGainStatus::kNotObserved;
+    out->message = text;
+  } else if (out->torque_scale < 0.0) {  // |scale| in range, against the file
+    std::snprintf(text, sizeof(text),
+                  "the gains turn the unloaded log's torques against the robot file's prediction (scale %.3g): the "
+                  "two logs look swapped (the log with the payload must be the loaded one), or every current is "
+                  "logged with the opposite sign",
+                  out->torque_scale);
+    out->status = DriveGainStatus::kNotObserved;
+    out->message = text;
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& PayloadParameterNames() {
@@ -125,23 +254,11 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
   const int p = n_base + n_payload + n;  // unknowns x = [β; φ'; K]
 
   // Both logs' equations: [W, payload columns, −diag(i)] x = b.
-  const Eigen::MatrixXd U = StackGainEquations(model, options.friction, out.base, unloaded, "unloaded");
-  const Eigen::MatrixXd L = StackGainEquations(model, options.friction, out.base, loaded, "loaded");
-  const Eigen::Index m_u = U.rows(), m_l = L.rows();
+  const GainEquations eq = StackGainSystem(model, options, out.base, unloaded, loaded, p);
+  const Eigen::MatrixXd& A = eq.A;
+  const Eigen::VectorXd& b = eq.b;
+  const Eigen::Index m_u = eq.m_u, m_l = eq.m_l;
   out.n_equations = m_u + m_l;
-  if (out.n_equations <= p) {
-    throw std::invalid_argument("drive gains: " + std::to_string(out.n_equations) + " equations for " +
-                                std::to_string(p) + " unknowns; record longer logs");
-  }
-  const int mass_col = n_base, payload_col = n_base + 1;  // in U, L
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(out.n_equations, p);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(out.n_equations);
-  A.topLeftCorner(m_u, n_base) = U.leftCols(n_base);
-  A.topRightCorner(m_u, n) = -U.rightCols(n);
-  A.bottomLeftCorner(m_l, n_base) = L.leftCols(n_base);
-  A.block(m_u, n_base, m_l, n_payload) = L.middleCols(payload_col, n_payload);
-  A.bottomRightCorner(m_l, n) = -L.rightCols(n);
-  b.tail(m_l) = -options.payload_mass * L.col(mass_col);
 
   // Names of the unknowns, for the messages.
   out.unknown_names = out.base.names;
@@ -159,37 +276,9 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
   const Eigen::Index n_head = n_base + n_payload;
   const bool gains_found = (x.tail(n).array().abs() > 0.0).all() && x.allFinite();
 
-  // 2. Gauss–Newton on the same model in current units, the noise where it is
-  //    measured: e = (W β + Y φ' + M y)/K_j − i per row of joint j. Started
-  //    at the linear estimate; noise-free data are a fixed point.
-  auto current_residual = [&](const Eigen::VectorXd& xk, Eigen::MatrixXd* J) {
-    const Eigen::VectorXd torque = A.leftCols(n_head) * xk.head(n_head) - b;  // W β + Y φ' + M y
-    Eigen::VectorXd e(A.rows());
-    if (J) J->setZero(A.rows(), p);
-    for (Eigen::Index r = 0; r < A.rows(); ++r) {
-      const int j = static_cast<int>(r % n);
-      const double K = xk[n_head + j], current = -A(r, n_head + j);
-      e[r] = torque[r] / K - current;
-      if (J) {
-        J->row(r).head(n_head) = A.row(r).head(n_head) / K;
-        (*J)(r, n_head + j) = -torque[r] / (K * K);
-      }
-    }
-    return e;
-  };
-  Eigen::MatrixXd J;
-  if (gains_found) {
-    constexpr int kMaxIterations = 30;
-    for (int it = 0; it < kMaxIterations; ++it) {
-      const Eigen::VectorXd e = current_residual(x, &J);
-      const MinNormSolution step = SolveMinNorm(J, -e, out.unknown_names);
-      x += step.x;
-      if (step.x.tail(n).cwiseQuotient(x.tail(n)).cwiseAbs().maxCoeff() < 1e-13) break;
-    }
-    const Eigen::VectorXd e = current_residual(x, &J);
-    solution = SolveMinNorm(J, e, out.unknown_names);  // for σ: the Jacobian at the estimate
-    solution.residual2 = e.squaredNorm();
-  }
+  // 2. Gauss–Newton in current units (RefineInCurrentUnits), from the linear
+  //    estimate.
+  if (gains_found) RefineInCurrentUnits(A, b, n, out.unknown_names, &x, &solution);
   const Eigen::VectorXd x_full = x;  // the undetermined entries as the minimum-norm steps left them
   for (size_t c = 0; c < out.identifiable.size(); ++c) {
     if (!out.identifiable[c]) x[static_cast<Eigen::Index>(c)] = std::numeric_limits<double>::quiet_NaN();
@@ -218,62 +307,14 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
   // sign), and the payload's torque in the loaded log against that log's
   // residual.
   const Eigen::VectorXd beta_file = out.base.combination * StandardParameters(model, options.friction);
-  const Eigen::VectorXd tau_file = U.leftCols(n_base) * beta_file;
+  const Eigen::VectorXd tau_file = eq.W_unloaded * beta_file;
   out.torque_scale = tau_file.squaredNorm() > 0.0 ? torque.head(m_u).dot(tau_file) / tau_file.squaredNorm()
                                                    : std::numeric_limits<double>::quiet_NaN();
   const Eigen::VectorXd payload_torque = A.block(m_u, n_base, m_l, n_payload) * x_full.segment(n_base, n_payload) - b.tail(m_l);
   out.payload_signal_to_noise = payload_torque.norm() / r.tail(m_l).norm();
 
-  // Gains the logs do not determine: a status, with the reason.
-  std::string missing;
-  for (int j = 0; j < n; ++j) {
-    const size_t c = static_cast<size_t>(n_base + n_payload + j);
-    if (out.identifiable[c]) continue;
-    missing += (missing.empty() ? "" : "; ") + solution.ls.reason[c];
-  }
-  if (!missing.empty()) {
-    out.status = DriveGainStatus::kNotIdentifiable;
-    out.message = "the logs do not determine every drive gain (" + missing +
-                  "): the loaded motion must move the payload so that its mass shows in every joint's torque, and "
-                  "each joint must move in both logs";
-    return out;
-  }
-
-  // Gains the data cannot carry: the payload not seen above the noise, or
-  // torques K·i far from (or against) what the robot file predicts.
-  char text[768];
-  if (!(out.payload_signal_to_noise >= DriveGainOptions::kMinPayloadSignalToNoise)) {
-    std::snprintf(text, sizeof(text),
-                  "the payload's effect is not seen in the data: its torque in the loaded log is %.3g times that "
-                  "log's residual (at least %g expected), so the gains are not determined (they came out at %.3g to "
-                  "%.3g N m/A); check that the loaded log was recorded with the payload fixed to the last link, that "
-                  "the payload mass is right, that the two logs are different recordings, and cut rest phases where "
-                  "the drives idle (time_window, loaded_time_window)",
-                  out.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
-                  out.gains.cwiseAbs().minCoeff(), out.gains.cwiseAbs().maxCoeff());
-    out.status = DriveGainStatus::kNotObserved;
-    out.message = text;
-  } else if (!(std::abs(out.torque_scale) >= 1.0 / DriveGainOptions::kMaxTorqueScale &&
-               std::abs(out.torque_scale) <= DriveGainOptions::kMaxTorqueScale)) {
-    // Near 0 (of either sign: the same log twice gives ±1e-13 by rounding)
-    // or far from 1: not the payload's effect.
-    std::snprintf(text, sizeof(text),
-                  "the payload's effect is not seen in the data as its mass implies: the gains make the unloaded "
-                  "log's torques %.3g times what the robot file predicts (%g to %g expected); check that the loaded "
-                  "log was recorded with the payload fixed to the last link, the payload mass, that the two logs are "
-                  "different recordings, and the robot file's masses",
-                  out.torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);
-    out.status = DriveGainStatus::kNotObserved;
-    out.message = text;
-  } else if (out.torque_scale < 0.0) {  // |scale| in range, against the file
-    std::snprintf(text, sizeof(text),
-                  "the gains turn the unloaded log's torques against the robot file's prediction (scale %.3g): the "
-                  "two logs look swapped (the log with the payload must be the loaded one), or every current is "
-                  "logged with the opposite sign",
-                  out.torque_scale);
-    out.status = DriveGainStatus::kNotObserved;
-    out.message = text;
-  }
+  // The verdict: determined, observed, consistent with the robot file.
+  JudgeGains(solution.ls.reason, &out);
   return out;
 }
 

@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "idbench/engine/paper6r.h"
-#include "idbench/workbench/formats/log_csv.h"
+#include "idbench/logs/simulation_log_csv.h"
 #include "idbench/workbench/commands/run_command.h"
 
 namespace idbench {

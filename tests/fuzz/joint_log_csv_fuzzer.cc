@@ -7,7 +7,7 @@
 #include <string>
 
 #include "idbench/engine/puma560.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/joint_log_csv_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const idbench::RobotModel robot = idbench::MakePuma560();

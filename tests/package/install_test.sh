@@ -9,6 +9,7 @@ trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 test -x "$work/prefix/bin/idbench"
 test -f "$work/prefix/include/idbench/ident/joint_torque_identifier.h"
+test -f "$work/prefix/include/idbench/logs/joint_log_csv_reader.h"
 test -f "$work/prefix/lib/cmake/idbench/idbenchConfig.cmake"
 # Internal headers stay out.
 if find "$work/prefix/include" -name number_format.h -o -name plausible_program.h | grep -q .; then

@@ -1,12 +1,15 @@
 // Identifies the built-in PUMA 560 from a noise-free simulated log (Bullet,
 // exact qd, qdd) through the installed libraries, and checks the identified
-// base parameters against the robot file's own (β_model = C·π_model).
+// base parameters against the robot file's own (β_model = C·π_model), the
+// log passed through the joint-log CSV (idbench::logs) as a file would be.
 // Prints the numbers; exits 1 when they disagree.
 #include <cmath>
 #include <cstdio>
 
 #include "idbench/engine/robot_library.h"
 #include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/logs/joint_log_csv_reader.h"
+#include "idbench/logs/joint_log_csv_writer.h"
 #include "idbench/workbench/commands/simulate_command.h"
 #include "idbench/workbench/version.h"
 
@@ -17,7 +20,7 @@ int main() {
   simulate.trajectory = "general";
   simulate.duration = 4.0;
   simulate.sensors.rate_hz = 200.0;
-  const JointLog log = SimulateJointLog(model, simulate);
+  const JointLog log = ParseJointLogCsv(FormatJointLogCsv(SimulateJointLog(model, simulate)), model, "log.csv");
 
   JointTorqueOptions options;
   options.friction = {.viscous = true, .coulomb = true, .rotor_inertia = true};

@@ -15,7 +15,7 @@
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
 #include "idbench/excitation/ramped_trajectory.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/joint_log_csv_reader.h"
 
 namespace idbench {
 namespace {

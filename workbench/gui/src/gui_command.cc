@@ -7,7 +7,6 @@
 #include "idbench/gui/headless_gui.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/engine/input_file.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
 
 namespace idbench::gui {
 

@@ -9,7 +9,7 @@
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/engine/robot_library.h"
 #include "idbench/excitation/builtin_motions.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/joint_log_csv_writer.h"
 #include "idbench/workbench/formats/limits_file.h"
 #include "idbench/workbench/reports/report_command.h"
 #include "idbench/workbench/formats/trajectory_file.h"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "idbench/logs/joint_log_csv_reader.h"
 #include "number_format.h"
 
 namespace idbench {

@@ -12,7 +12,8 @@
 #include "idbench/excitation/fourier_series.h"
 #include "idbench/engine/input_file.h"
 #include "idbench/engine/resource_limits.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/joint_log_csv_reader.h"
+#include "idbench/logs/joint_log_csv_writer.h"
 #include "number_format.h"
 #include "idbench/engine/printable_text.h"
 

@@ -9,7 +9,7 @@
 #include "idbench/engine/measurements.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/signal_filter.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/joint_log_format.h"
 #include "idbench/workbench/commands/log_preparation.h"
 
 namespace idbench {

@@ -14,7 +14,7 @@
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/log_resampling.h"
 #include "idbench/ident/signal_filter.h"
-#include "idbench/workbench/formats/joint_log_csv.h"
+#include "idbench/logs/recorded_joint_log.h"
 
 namespace idbench {
 

@@ -1,4 +1,4 @@
-#include "idbench/workbench/formats/log_csv.h"
+#include "idbench/logs/simulation_log_csv.h"
 
 #include "number_format.h"
 

@@ -1,4 +1,5 @@
-// Numbers as the workbench writes them: shortest decimals that read back exactly.
+// Numbers as idbench writes them (logs/ and the workbench, an internal header
+// of both, not installed): shortest decimals that read back exactly.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,0 +1,15 @@
+// Writes a joint log in the joint-log CSV format (joint_log_csv_reader.h):
+// a header naming the columns, then one sample per line, numbers in their
+// shortest round-trip form.
+#pragma once
+
+#include <string>
+
+#include "idbench/engine/measurements.h"
+
+namespace idbench {
+
+// Writes the columns the log has: t, q, qd and qdd if present, tau if present.
+std::string FormatJointLogCsv(const JointLog& log);
+
+}  // namespace idbench

@@ -1,0 +1,35 @@
+// Joint-log column names (README.md, "Joint logs"): t, q<j>, qd<j>, qdd<j>,
+// tau<j>, i<j> and "_", where each column's values go, and how a column is
+// named in messages.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "idbench/engine/robot_model.h"
+
+namespace idbench::internal {
+
+// Where a column's values go: kind (0 t, 1 q, 2 qd, 3 qdd, 4 tau, 5 i;
+// -1 skipped) and joint.
+struct ColumnTarget {
+  int kind;
+  int joint;
+};
+constexpr const char* kKindPrefix[] = {"t", "q", "qd", "qdd", "tau", "i"};
+constexpr int kKinds = 6;
+
+// Parses a column name: t, q<j>, qd<j>, qdd<j>, tau<j>, i<j> (j >= 1) or "_".
+// Returns false for anything else.
+bool ParseColumnName(const std::string& name, ColumnTarget* target);
+
+// "column C ('name')" for messages, C counted from 1, the name escaped and cut.
+std::string ColumnLabel(size_t c, const std::string& name);
+
+// A header field as an idbench column name: itself when it is one (t, q3,
+// tau1, ...); q.<joint name>, qd.<..>, qdd.<..>, tau.<..>, i.<..> (as
+// trajectory.csv is headed) → the joint's number; "" for any other name (a
+// vendor's, e.g. Joint_1). A joint name the robot does not have throws.
+std::string IdbenchColumnName(const std::string& field, size_t c, const RobotModel& model, const std::string& where);
+
+}  // namespace idbench::internal

@@ -1,0 +1,16 @@
+// The CSV text of a joint log, line by line: fields split on commas (no
+// quoting: every field is a name or a number) and told apart as numbers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace idbench::internal {
+
+// Splits one CSV line on commas; each field trimmed of spaces, tabs and '\r'.
+std::vector<std::string> SplitFields(const std::string& line);
+
+// Whether every field of a line is a number (a data line, not a header).
+bool AllNumbers(const std::vector<std::string>& fields);
+
+}  // namespace idbench::internal

@@ -1,0 +1,204 @@
+// The files `identify` writes: identified.json, joints.yaml, identified.urdf.
+#include "idbench/workbench/commands/identify_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "idbench/engine/urdf.h"
+#include "number_format.h"
+
+namespace idbench {
+
+namespace {
+
+// Per joint, what a controller loads besides the URDF: the physically
+// consistent estimate's friction, offset and rotor inertia (null when not in
+// the model) and the drive gain the log was read with (null without currents).
+struct JointDynamicsValues {
+  std::string name;
+  std::optional<double> viscous, coulomb, offset, rotor_inertia, drive_gain;
+};
+std::vector<JointDynamicsValues> JointDynamicsOf(const RobotModel& model, const IdentifyOptions& options,
+                                                 const IdentifyReport& report) {
+  const std::vector<std::string>& names = report.identification.standard_names;
+  std::vector<JointDynamicsValues> joints(static_cast<size_t>(model.n_dof()));
+  for (int j = 0; j < model.n_dof(); ++j) {
+    JointDynamicsValues& v = joints[static_cast<size_t>(j)];
+    v.name = model.link(j).joint_name;
+    const std::string s = std::to_string(j + 1);
+    for (size_t c = 0; c < names.size(); ++c) {
+      const double value = report.identification.consistent.pi[static_cast<Eigen::Index>(c)];
+      if (names[c] == "Fv" + s) v.viscous = value;
+      if (names[c] == "Fc" + s) v.coulomb = value;
+      if (names[c] == "offset" + s) v.offset = value;
+      if (names[c] == "Ia" + s) v.rotor_inertia = value;
+    }
+    if (!options.format.drive_gains.empty()) v.drive_gain = options.format.drive_gains[static_cast<size_t>(j)];
+  }
+  return joints;
+}
+
+nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions& options, const IdentifyReport& report) {
+  auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  nlohmann::json joints = nlohmann::json::array();
+  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
+    joints.push_back({{"name", v.name}, {"viscous", value(v.viscous)}, {"coulomb", value(v.coulomb)},
+                      {"offset", value(v.offset)}, {"rotor_inertia", value(v.rotor_inertia)},
+                      {"drive_gain", value(v.drive_gain)}});
+  }
+  return joints;
+}
+
+}  // namespace
+
+std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
+                                    const IdentifyReport& report) {
+  auto value = [](const std::optional<double>& v) { return v ? Shortest(*v) : std::string("null"); };
+  std::string out = "# idbench identify: per-joint friction and drive values of the physically consistent estimate\n"
+                    "# (the rigid-body parameters are in identified.urdf). Units: viscous [N m s/rad], coulomb and\n"
+                    "# offset [N m], rotor_inertia [kg m^2], drive_gain [N m/A]; null: not in the model.\n"
+                    "robot: \"" + model.name() + "\"\njoints:\n";
+  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
+    out += "  - name: \"" + v.name + "\"\n    viscous: " + value(v.viscous) + "\n    coulomb: " + value(v.coulomb) +
+           "\n    offset: " + value(v.offset) + "\n    rotor_inertia: " + value(v.rotor_inertia) +
+           "\n    drive_gain: " + value(v.drive_gain) + "\n";
+  }
+  return out;
+}
+
+std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  using nlohmann::json;
+  const JointTorqueIdentification& id = report.identification;
+  json base = json::array();
+  for (int k = 0; k < id.base.n_base(); ++k) {
+    const bool identifiable = id.linear.identifiable[static_cast<size_t>(k)];
+    const json nothing;  // null: not identifiable from this log
+    base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
+                    {"value", identifiable ? json(id.beta[k]) : nothing},
+                    {"sigma", identifiable ? json(id.linear.sigma[k]) : nothing},
+                    {"rel_sigma_percent", identifiable && std::isfinite(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
+                                              ? json(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
+                                              : nothing},
+                    {"variance_inflation", identifiable ? json(id.linear.variance_inflation[k]) : nothing},
+                    {"status", ToString(ClassifyParameter(id.beta[k], id.linear.sigma[k]))},
+                    {"robot_file_value", id.beta_model[k]}});
+  }
+  const Eigen::VectorXd pi_model = StandardParameters(model, options.friction_model());
+  json standard = json::array();
+  for (size_t c = 0; c < id.standard_names.size(); ++c) {
+    const Eigen::Index k = static_cast<Eigen::Index>(c);
+    standard.push_back({{"name", id.standard_names[c]}, {"value", id.consistent.pi[k]}, {"robot_file_value", pi_model[k]}});
+  }
+  // Per link: the plausible estimate's mass and centre of mass, and the
+  // bounds it was held to.
+  const PlausibleFitOptions bounds = MakePlausibleFitOptions(model, options.friction_model(), options.plausibility);
+  json links = json::array();
+  for (int l = 0; l < model.n_links(); ++l) {
+    const Eigen::Index o = kInertialParametersPerLink * l;
+    const double m = id.consistent.pi[o];
+    const LinkPlausibilityBounds& b = bounds.links[static_cast<size_t>(l)];
+    const Eigen::Vector3d c = id.consistent.pi.segment<3>(o + 1) / m;
+    links.push_back({{"name", model.link(l).name},
+                     {"mass", m},
+                     {"robot_file_mass", model.link(l).inertia.mass},
+                     {"mass_bounds", {b.mass_min, b.mass_max}},
+                     {"com_B", {c.x(), c.y(), c.z()}},
+                     {"com_box_B", b.bound_com ? json{{"min", {b.com_min_B.x(), b.com_min_B.y(), b.com_min_B.z()}},
+                                                      {"max", {b.com_max_B.x(), b.com_max_B.y(), b.com_max_B.z()}}}
+                                               : json(nullptr)},
+                     {"com_bound", b.bound_com                       ? "geometry"
+                                   : b.com_outside_geometry > 0.0    ? "none: the file's centre of mass lies outside the box around its shapes"
+                                   : options.plausibility.com_in_geometry ? "none: the link has no shapes"
+                                                                          : "none"},
+                     {"com_outside_geometry", b.com_outside_geometry > 0.0 ? json(b.com_outside_geometry) : json(nullptr)}});
+  }
+  json unexcited = json::array();
+  for (int c : id.base.unexcited) unexcited.push_back(id.standard_names[static_cast<size_t>(c)]);
+  json bounds_at_optimum = json::array();
+  for (const ActiveBound& b : id.consistent.bounds_at_optimum) {
+    static const char* const kQuantity[] = {"mass", "com_x", "com_y", "com_z", "total_mass"};
+    bounds_at_optimum.push_back({{"link", b.link >= 0 ? json(model.link(b.link).name) : json(nullptr)},
+                                 {"joint", b.link >= 0 ? json(model.link(b.link).joint_name) : json(nullptr)},
+                                 {"quantity", kQuantity[static_cast<int>(b.quantity)]},
+                                 {"side", b.upper ? "upper" : "lower"},
+                                 {"bound", b.bound},
+                                 {"robot_file_value", b.file_value},
+                                 {"text", b.text}});
+  }
+  const IdentificationVerdict& v = id.verdict;
+  const json verdict = {
+      {"status", ToKey(v.status)},
+      {"fit_to_load", v.fit_to_load()},
+      {"message", v.message},
+      {"cause", v.fit_to_load() ? json(nullptr) : json(InFrontEndTerms(v.cause, OptionNames::kCommandLine))},
+      {"converged", id.consistent.converged},
+      {"cost_excess_percent", 100.0 * v.cost_excess},
+      {"cost_tolerance_percent", 100.0 * v.cost_tolerance},
+      {"bounds_at_optimum", bounds_at_optimum},
+      {"robot_model_written", WritesRobotModel(options, report)},
+      {"write_unverified", options.write_unverified}};
+  json result = {
+      {"command", options.command_line},
+      {"verdict", verdict},
+      {"robot", model.name()},
+      {"data", options.data},
+      {"n_samples", report.log.n_samples()},
+      {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences (" + report.derivatives + ")"
+                                      : "from the log"},
+      {"log_preparation", report.notes},
+      {"time_window", options.time_window.empty() ? json(nullptr) : json(options.time_window)},
+      {"model", options.model},
+      {"estimator", options.estimator},
+      {"friction", options.friction},
+      {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
+      {"rank", id.linear.rank},
+      {"base_parameters", base},
+      {"unexcited_standard_parameters", unexcited},
+      {"fit", {{"joint_rms", ToStdVector(report.identification.fit.joint_rms)}, {"relative_error", report.identification.fit.relative_error}}},
+      {"robot_file_fit",
+       {{"joint_rms", ToStdVector(report.identification.model_fit.joint_rms)}, {"relative_error", report.identification.model_fit.relative_error}}},
+      {"physically_consistent",
+       {{"cost", id.consistent.cost},
+        {"ols_cost", id.consistent.ols_cost},
+        {"start_cost", id.consistent.start_cost},
+        {"min_pseudo_inertia_eigenvalue", ToStdVector(id.consistent.min_pseudo_inertia_eigenvalue)},
+        {"prior_cost", id.consistent.prior_cost},
+        {"duality_gap", id.consistent.duality_gap},
+        {"converged", id.consistent.converged},
+        {"status", id.consistent.status},
+        {"iterations", id.consistent.evaluations},
+        {"active_bounds", id.consistent.active_bounds},
+        {"settings",
+         {{"mass_range", {options.plausibility.mass_factor_min, options.plausibility.mass_factor_max}},
+          {"total_mass", options.plausibility.total_mass > 0.0 ? json(options.plausibility.total_mass) : json(nullptr)},
+          {"total_mass_tolerance", options.plausibility.total_mass_tolerance},
+          {"com_bound", options.plausibility.com_in_geometry ? "geometry" : "none"},
+          {"prior_weight", options.plausibility.prior_weight},
+          {"cost_tolerance", options.plausibility.cost_tolerance}}},
+        {"standard_parameters", standard},
+        {"links", links}}},
+      {"joints", JointDynamicsJson(model, options, report)},
+  };
+  if (report.validation) {
+    result["validation"] = {{"data", options.validate},
+                            {"joint_rms", ToStdVector(report.validation->joint_rms)},
+                            {"relative_error", report.validation->relative_error}};
+    if (report.validation_whole_file) {
+      result["validation"]["window"] = options.validate_window;
+      result["validation"]["whole_file"] = {{"joint_rms", ToStdVector(report.validation_whole_file->joint_rms)},
+                                            {"relative_error", report.validation_whole_file->relative_error}};
+    }
+  }
+  return result.dump(2) + "\n";
+}
+
+std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  return WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
+}
+
+}  // namespace idbench

@@ -1,0 +1,102 @@
+// The tables `identify` prints: base parameters with σ, fit and validation.
+#include "idbench/workbench/commands/identify_command.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "number_format.h"
+
+namespace idbench {
+
+double RelativeSigmaPercent(double value, double sigma) {
+  if (!std::isfinite(value) || !std::isfinite(sigma) || !(std::abs(value) > 3.0 * sigma)) return std::nan("");
+  return 100.0 * sigma / std::abs(value);
+}
+
+std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  const JointTorqueIdentification& id = report.identification;
+  std::string out;
+  for (const std::string& note : report.notes) out += note + "\n";
+  char line[512];
+  std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
+                "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), report.log.n_samples(),
+                report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), options.estimator.c_str(),
+                id.linear.cond);
+  out += line;
+  std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
+                "%sigma", "status", "base parameter");
+  out += line;
+  for (int k = 0; k < id.base.n_base(); ++k) {
+    const ParameterStatus status = ClassifyParameter(id.beta[k], id.linear.sigma[k]);
+    const char* name = id.base.names[static_cast<size_t>(k)].c_str();
+    if (status == ParameterStatus::kNotIdentifiable) {
+      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14s  %11s  %8s  %-10s  %s\n", k + 1, id.beta_model[k], "-", "-",
+                    "-", "not ident.", name);
+    } else {
+      std::snprintf(line, sizeof(line), "%4d  %14.6g  %14.6g  %11.3g  %8s  %-10s  %s\n", k + 1, id.beta_model[k],
+                    id.beta[k], id.linear.sigma[k], Format("%.3g", RelativeSigmaPercent(id.beta[k], id.linear.sigma[k])).c_str(),
+                    status == ParameterStatus::kIndistinguishableFromZero ? "~0" : ToString(status), name);
+    }
+    out += line;
+  }
+  out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero "
+         "(%sigma '-': sigma itself is what is known)\n";
+  if (options.estimator == "pc") {
+    out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "
+           "%sigma: relative to the value shown\n";
+  }
+  if (id.linear.rank < id.base.n_base()) {
+    const int n = id.base.n_base();
+    const int missing = static_cast<int>(std::count(id.linear.identifiable.begin(), id.linear.identifiable.end(), false));
+    std::snprintf(line, sizeof(line), "This log does not determine every base parameter: W has rank %d of %d (the "
+                  "motion does not excite %d combinations); the %d parameters marked 'not ident.' take part in them "
+                  "and get no value. The physically consistent fit keeps the robot file's values in those "
+                  "directions.\n", id.linear.rank, n, n - id.linear.rank, missing);
+    out += line;
+  }
+  auto joint_row = [&](const char* label, const Eigen::VectorXd& v) {
+    out += label;
+    for (int j = 0; j < v.size(); ++j) {
+      std::snprintf(line, sizeof(line), "  %10.4g", v[j]);
+      out += line;
+    }
+    out += '\n';
+  };
+  out += "\nTorque RMS per joint [N m]\n";
+  joint_row("  fit       ", report.identification.fit.joint_rms);
+  if (report.validation) joint_row("  validation", report.validation->joint_rms);
+  std::string validation;
+  if (report.validation) validation = ", validation " + Format("%.4g", report.validation->relative_error);
+  if (report.validation_whole_file) {
+    validation += " (validate_window " + Shortest(options.validate_window[0]) + "–" +
+                  Shortest(options.validate_window[1]) + " s; whole file " +
+                  Format("%.4g", report.validation_whole_file->relative_error) + ")";
+  }
+  std::snprintf(line, sizeof(line), "Relative torque error: fit %.4g%s\n", report.identification.fit.relative_error,
+                validation.c_str());
+  out += line;
+  const PhysicallyConsistentFit& pc = id.consistent;
+  std::snprintf(line, sizeof(line), "Physically consistent fit (SDP): cost %.6g vs OLS %.6g (the unconstrained "
+                "optimum; +%.3g %%) and robot file %.6g; prior term %.3g; min pseudo-inertia eigenvalue %.3g; %s\n",
+                pc.cost, pc.ols_cost, 100.0 * (pc.cost - pc.ols_cost) / pc.ols_cost, pc.start_cost, pc.prior_cost,
+                pc.min_pseudo_inertia_eigenvalue.minCoeff(), pc.status.c_str());
+  out += line;
+  if (!pc.active_bounds.empty()) {
+    out += "  on its bounds:";
+    for (size_t k = 0; k < pc.active_bounds.size(); ++k) out += (k ? "; " : " ") + pc.active_bounds[k];
+    out += '\n';
+  }
+  const PlausibleFitOptions bounds = MakePlausibleFitOptions(model, options.friction_model(), options.plausibility);
+  for (int l = 0; l < model.n_links(); ++l) {
+    const double outside = bounds.links[static_cast<size_t>(l)].com_outside_geometry;
+    if (outside > 0.0) {
+      out += "  no centre-of-mass bound on link '" + model.link(l).name + "': the file's centre of mass lies " +
+             Format("%.3g", outside) + " m outside the box around its shapes\n";
+    }
+  }
+  out += "Verdict: " + id.verdict.message + "\n";  // why, when refused: the command's one message
+  return out;
+}
+
+}  // namespace idbench
