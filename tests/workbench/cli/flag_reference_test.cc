@@ -43,10 +43,12 @@ std::string LineDiff(const std::string& committed, const std::string& generated)
   while (i < a.size() || j < b.size()) {
     if (i < a.size() && j < b.size() && a[i] == b[j]) {
       ++i, ++j;
-    } else if (j < b.size() && (i == a.size() || common[i][j + 1] >= common[i + 1][j])) {
-      diff << "+" << j + 1 << ": " << b[j++] << "\n";
+    } else if (i < a.size() && (j == b.size() || common[i + 1][j] >= common[i][j + 1])) {
+      diff << "-" << i + 1 << ": " << a[i] << "\n";
+      ++i;
     } else {
-      diff << "-" << i + 1 << ": " << a[i++] << "\n";
+      diff << "+" << j + 1 << ": " << b[j] << "\n";
+      ++j;
     }
   }
   return diff.str();
