@@ -364,7 +364,6 @@ void Session::CollectJobs(bool wait) {
     std::function<void()> apply;
     std::string error;
     if (!(wait ? jobs_[k].Wait(&apply, &error) : jobs_[k].Collect(&apply, &error))) continue;
-    ++finished_[k];
     if (!error.empty()) {
       Error(std::string(kJobNames[k]) + " failed: " + error);
     } else if (apply) {

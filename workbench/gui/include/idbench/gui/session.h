@@ -65,7 +65,6 @@ class Session {
 
   // ---- Robot -------------------------------------------------------------
   const RobotModel& model() const { return *model_; }
-  std::shared_ptr<const RobotModel> model_ptr() const { return model_; }
   const std::string& robot_source() const { return robot_source_; }
   // Loads a built-in robot or a URDF. On failure (unknown name, unreadable or
   // unsupported file) keeps the current robot and posts the error; refused
@@ -104,9 +103,6 @@ class Session {
   void StartReport();
   bool running(JobKind kind) const { return jobs_[static_cast<int>(kind)].running(); }
   bool any_running() const;
-  // How many times each job has finished (successfully or not): a script
-  // waits for this to grow.
-  int finished_count(JobKind kind) const { return finished_[static_cast<int>(kind)]; }
   // On the UI thread, every frame: applies the results of finished jobs.
   void Poll();
   // Blocks until every running job has finished, then Poll (tests, shutdown).
@@ -175,7 +171,6 @@ class Session {
 
   std::vector<SessionMessage> messages_;
   BackgroundJob jobs_[kJobKinds];
-  int finished_[kJobKinds] = {};
 };
 
 }  // namespace idbench::gui

@@ -1,0 +1,76 @@
+// `idbench compare`: the identifiability of motions side by side (cond, log
+// det, %sigma, Monte-Carlo error on Bullet data); its flags fill CompareOptions.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_command.h"
+#include "common_flags.h"
+#include "idbench/workbench/commands/compare_command.h"
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/reports/design_report.h"
+#include "idbench/workbench/reports/report_command.h"
+
+namespace idbench::cli {
+namespace {
+
+struct CompareFlags {
+  CompareOptions options;
+  bool report = false;   // --report
+};
+
+int CompareCommand(const CompareOptions& options, const UrdfLoadOptions& load, bool with_report,
+                   const CliContext& context) {
+  std::string why;
+  if (!options.IsValid(&why)) return context.UsageError(why);
+  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  const CompareReport report = RunCompare(model, options);
+  std::fputs(FormatCompareTable(options, report).c_str(), stdout);
+  const std::filesystem::path dir(options.out_dir);
+  EnsureOutputDirectory(dir);
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "compare.json", FormatCompareJson(options, report)}, {dir / "compare.csv", FormatCompareCsv(report)}};
+  if (with_report) {
+    for (auto& file : FormatReportFiles(MakeCompareReportContent(options, report), dir))
+      files.push_back(std::move(file));
+  }
+  WriteFilesAtomically(files);
+  std::printf("wrote %s and compare.csv%s\n", (dir / "compare.json").c_str(),
+              with_report ? ", report.html and report.pdf" : "");
+  return 0;
+}
+
+}  // namespace
+
+CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
+  auto flags = std::make_shared<CompareFlags>();
+  CompareOptions& compare = flags->options;
+  compare.command_line = context->command_line();
+  CLI::App* command = app->add_subcommand(
+      "compare", "Identifiability of motions side by side: cond, log det, %sigma, Monte-Carlo error on Bullet data");
+  command->add_option("trajectories", compare.trajectories, "Motions: built-in names or .json/.csv files")
+      ->required();
+  AddRobotFlags(command, &compare.robot, context->robot_load(), "Built-in robot or URDF file");
+  command->add_option("--model", compare.model, "torque or per-body")->capture_default_str();
+  AddFrictionFlag(command, &compare.friction, "Friction terms of the torque model");
+  command->add_option("--duration", compare.duration, "Length of built-in motions [s]")->capture_default_str();
+  command->add_option("--samples", compare.samples, "Samples per motion")->capture_default_str();
+  command->add_option("--tau-noise,--noise", compare.tau_noise, "Torque noise sigma per joint [N m] (torque model)")
+      ->delimiter(',')->capture_default_str();
+  command->add_option("--wrench-noise", compare.wrench_noise, "Hinge force, moment noise sigma [N, N m] (per-body)")
+      ->delimiter(',')->capture_default_str();
+  command->add_option("--clearance", compare.clearance, "Minimum link clearance in the limits check [m]; -1: off")
+      ->capture_default_str();
+  command->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();
+  AddSeedFlag(command, &compare.seed);
+  AddOutFlag(command, &compare.out_dir, "Output directory for compare.json and compare.csv")->capture_default_str();
+  AddReportFlag(command, &flags->report);
+  return {command, [flags, context] {
+            return CompareCommand(flags->options, *context->robot_load(), flags->report, *context);
+          }};
+}
+
+}  // namespace idbench::cli

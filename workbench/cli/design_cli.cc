@@ -1,0 +1,144 @@
+// `idbench design`: an excitation trajectory (Fourier series) optimised for
+// identification within the joint limits; its flags fill DesignCommandOptions.
+// Ctrl-C stops the search and keeps the best feasible design so far.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_command.h"
+#include "common_flags.h"
+#include "idbench/workbench/commands/design_command.h"
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/workbench/reports/design_report.h"
+#include "idbench/workbench/reports/report_command.h"
+
+namespace idbench::cli {
+namespace {
+
+struct DesignFlags {
+  DesignCommandOptions options;
+  bool report = false;   // --report
+};
+
+// Ctrl-C during a design: stop and keep the best feasible design so far.
+std::atomic<bool> g_stop_requested{false};
+extern "C" void RequestStop(int) { g_stop_requested = true; }
+
+// The search, under Ctrl-C. An infeasible search (not settings that admit no
+// motion) writes design.json with the diagnostics before it is thrown on.
+DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options) {
+  const std::filesystem::path dir(options.out_dir);
+  std::signal(SIGINT, RequestStop);
+  try {
+    DesignCommandReport report = RunDesign(model, options, &g_stop_requested);
+    std::signal(SIGINT, SIG_DFL);
+    return report;
+  } catch (const InfeasibleDesign& e) {  // the search ran: design.json explains it
+    if (!e.before_search()) {
+      EnsureOutputDirectory(dir);
+      WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, options, e));
+    }
+    throw;
+  }
+}
+
+int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& load, bool with_report,
+                  const CliContext& context) {
+  std::string why;
+  if (!options.IsValid(&why)) return context.UsageError(why);
+  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.IsValidFor(model, &why)) return context.UsageError(why);
+  const DesignCommandReport report = SearchDesign(model, options);
+  std::fputs(FormatDesignSummary(options, report).c_str(), stdout);
+  const std::filesystem::path dir(options.out_dir);
+  EnsureOutputDirectory(dir);
+  // What a controller would run only from a usable design (or when asked).
+  const bool usable = report.result.usable();
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "design.json", FormatDesignJson(model, options, report)}};
+  if (usable || options.write_trajectory_anyway) {
+    files.push_back({dir / "trajectory.json", FormatTrajectoryJson(report.result.trajectory)});
+    files.push_back({dir / "trajectory.csv", FormatDesignTrajectoryCsv(model, options, report)});
+  }
+  if (with_report) {
+    for (auto& file : FormatReportFiles(MakeDesignReportContent(model, options, report), dir))
+      files.push_back(std::move(file));
+  }
+  WriteFilesAtomically(files);
+  if (!usable) {
+    std::fprintf(stderr, "idbench: error: the design is not usable: %s; wrote %s with the diagnostics%s\n",
+                 report.result.Rejection().c_str(), (dir / "design.json").c_str(),
+                 options.write_trajectory_anyway ? " and, as asked, trajectory.json and trajectory.csv"
+                                                 : ", no trajectory (--write-trajectory-anyway writes it)");
+    return kExitFailure;
+  }
+  std::printf("wrote %s, trajectory.csv and design.json%s\n", (dir / "trajectory.json").c_str(),
+              with_report ? ", report.html and report.pdf" : "");
+  return 0;
+}
+
+// The flags of the search itself (DesignCommandOptions::design).
+void AddSearchFlags(CLI::App* command, DesignOptions* design) {
+  command->add_option("--harmonics", design->harmonics, "Harmonics H per joint")->capture_default_str();
+  command->add_option("--f0", design->f0, "Base frequency [Hz]")->capture_default_str();
+  command->add_option("--duration", design->duration, "Duration [s]; 0 = one period 1/f0")->capture_default_str();
+  command->add_flag("--rest-to-rest", design->rest_to_rest, "Start and end at rest (adds a quintic)");
+  command->add_option("--samples", design->samples, "Samples per duration in the criterion and limits")
+      ->capture_default_str();
+  command->add_option("--starts", design->starts, "Random starts")->capture_default_str();
+  AddSeedFlag(command, &design->seed, "Seed of the first start (start k uses seed + k)");
+  command->add_option("--threads", design->threads, "Threads running starts")->capture_default_str();
+  command->add_option("--max-evaluations", design->max_evaluations, "Criterion evaluations per start")
+      ->capture_default_str();
+  command->add_option("--max-time", design->max_seconds, "Wall-time limit [s]; 0 = none")->capture_default_str();
+  command->add_option("--margin", design->margin, "Limits tightened by this fraction during the search")
+      ->capture_default_str();
+  command->add_option("--clearance", design->clearance,
+                      "Minimum distance between links no joint connects and to the ground z = 0 [m]; -1: off")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
+  auto flags = std::make_shared<DesignFlags>();
+  DesignCommandOptions& design = flags->options;
+  design.command_line = context->command_line();
+  CLI::App* command = app->add_subcommand(
+      "design", "Optimise an excitation trajectory (Fourier series) for identification, within the joint limits");
+  AddRobotFlags(command, &design.robot, context->robot_load());
+  command->add_option("--model", design.model, "Identification model: torque (base parameters) or per-body")
+      ->capture_default_str();
+  AddFrictionFlag(command, &design.friction, "Friction terms of the torque model");
+  command->add_option("--criterion", design.criterion,
+                      "cond, cond-normalised, logdet or hybrid (default: cond; per-body: logdet)");
+  command->add_option("--algorithm", design.algorithm, "slsqp, mma (gradient), cobyla, sbplx (derivative-free)")
+      ->capture_default_str();
+  AddSearchFlags(command, &design.design);
+  command->add_option("--limits", design.limits,
+                      "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
+  command->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
+  command->add_option("--csv-columns", design.csv_columns, "trajectory.csv columns: q or q,qd,qdd")
+      ->capture_default_str();
+  command->add_option("--ramp", design.design.ramp_seconds,
+                      "Rest-to-rest ramps from and to the home pose in trajectory.csv and the re-check [s]; 0: none")
+      ->capture_default_str();
+  command->add_option("--home", design.home, "Home pose q1,...,qn [rad] the motion oscillates about")->delimiter(',');
+  command->add_flag("--quiet", design.quiet, "No progress on stderr");
+  command->add_flag("--write-trajectory-anyway", design.write_trajectory_anyway,
+                    "Write trajectory.json/.csv even when the design is not usable (infeasible or no progress); "
+                    "still exits 1");
+  AddReportFlag(command, &flags->report);
+  AddOutFlag(command, &design.out_dir)->capture_default_str();
+  return {command, [flags, context] {
+            return DesignCommand(flags->options, *context->robot_load(), flags->report, *context);
+          }};
+}
+
+}  // namespace idbench::cli

@@ -1,0 +1,136 @@
+// `idbench identify`: base parameters (and the physically consistent
+// estimate) from a joint log; its flags fill IdentifyOptions.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_command.h"
+#include "common_flags.h"
+#include "log_reading_flags.h"
+#include "idbench/workbench/commands/identify_command.h"
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/reports/report_command.h"
+
+namespace idbench::cli {
+namespace {
+
+// Fields of IdentifyOptions named in messages.
+constexpr FieldFlag kIdentifySpellings[] = {
+    {"validate_window", "--validate-window"}, {"time_window", "--time-window"}, {"drive_gains", "--drive-gains"}};
+
+struct IdentifyFlags {
+  IdentifyOptions options;
+  std::vector<double> mass_range;     // --mass-range LO,HI: plausibility.mass_factor_min, _max
+  std::string com_bound = "geometry"; // --com-bound: plausibility.com_in_geometry
+  bool report = false;                // --report
+};
+
+int IdentifyCommand(const IdentifyOptions& options, const UrdfLoadOptions& load, bool with_report,
+                    const CliContext& context) {
+  std::string why;
+  if (!options.IsValid(&why)) return context.UsageError(why);
+  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.format.IsValidFor(model.n_dof(), &why)) return context.UsageError(why);
+  if (!options.plausibility.IsValidFor(model, &why)) return context.UsageError(why);
+  const IdentifyReport report = RunIdentify(model, options);
+  context.PrintWarnings(report.warnings);
+  std::fputs(FormatIdentifyTables(model, options, report).c_str(), stdout);
+  const std::filesystem::path dir(options.out_dir);
+  EnsureOutputDirectory(dir);
+  // The robot model (identified.urdf, joints.yaml) only when its verdict is
+  // fit to load, or the user accepts it (--write-unverified); the diagnostics always.
+  const bool model_files = WritesRobotModel(options, report);
+  std::vector<std::pair<std::filesystem::path, std::string>> files{
+      {dir / "identified.json", FormatIdentifiedJson(model, options, report)}};
+  if (model_files) {
+    files.emplace_back(dir / "identified.urdf", FormatIdentifiedUrdf(model, options, report));
+    files.emplace_back(dir / "joints.yaml", FormatJointDynamicsYaml(model, options, report));
+  }
+  if (with_report) {
+    for (auto& file : FormatReportFiles(MakeIdentifyReportContent(model, options, report), dir))
+      files.push_back(std::move(file));
+  }
+  WriteFilesAtomically(files);
+  std::printf("wrote %s%s%s\n", (dir / "identified.json").c_str(),
+              model_files ? (", " + (dir / "identified.urdf").string() + " and joints.yaml").c_str() : "",
+              with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
+  const std::string refused = RefusedModelMessage(options, report, OptionNames::kCommandLine);
+  if (refused.empty()) return 0;
+  if (options.write_unverified) {
+    std::fprintf(stderr, "idbench: warning: %s\n", refused.c_str());
+    return 0;
+  }
+  std::fprintf(stderr, "idbench: error: %s\n", refused.c_str());
+  return kExitFailure;
+}
+
+// The flags of the physically consistent estimate (IdentifyOptions::plausibility).
+void AddPlausibilityFlags(CLI::App* command, IdentifyFlags* flags) {
+  PlausibilitySettings& plausibility = flags->options.plausibility;
+  flags->mass_range = {plausibility.mass_factor_min, plausibility.mass_factor_max};
+  command->add_option("--mass-range", flags->mass_range,
+                      "Physically consistent estimate: each link's mass within LO,HI x the robot file's")
+      ->delimiter(',')->expected(2)->capture_default_str();
+  command->add_option("--total-mass", plausibility.total_mass,
+                      "Total mass of the moving links [kg]; 0: no bound beyond the links'")->capture_default_str();
+  command->add_option("--total-mass-tolerance", plausibility.total_mass_tolerance,
+                      "Fraction the total mass may differ from --total-mass")->capture_default_str();
+  command->add_option("--com-bound", flags->com_bound,
+                      "geometry: each centre of mass inside the box around its link's shapes; none")
+      ->capture_default_str();
+  command->add_option("--prior-weight", plausibility.prior_weight,
+                      "Weight of the robot file's values as a prior (fraction of the OLS residual)")
+      ->capture_default_str();
+  command->add_option("--cost-tolerance", plausibility.cost_tolerance,
+                      "The physically consistent estimate is a robot model only within this fraction above the "
+                      "OLS optimum's cost")->capture_default_str();
+}
+
+}  // namespace
+
+CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kIdentifySpellings);
+  context->AddSpellings(kLogReadingSpellings);
+  auto flags = std::make_shared<IdentifyFlags>();
+  IdentifyOptions& identify = flags->options;
+  identify.command_line = context->command_line();
+  CLI::App* command = app->add_subcommand("identify", "Identify base parameters from a joint log (CSV)");
+  AddRobotFlags(command, &identify.robot, context->robot_load());
+  command->add_option("--data", identify.data, "Joint-log CSV (t, q*, [qd*, qdd*], tau*)")->required();
+  command->add_option("--model", identify.model, "torque (per-body needs hinge wrenches: idbench run)")
+      ->capture_default_str();
+  command->add_option("--estimator", identify.estimator, "ols, wls or pc (physically consistent)")
+      ->capture_default_str();
+  AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
+                     &identify.max_gap_s);
+  command->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
+      ->capture_default_str();
+  command->add_option("--validate", identify.validate, "Held-out joint log to validate on");
+  command->add_option("--validate-window", identify.validate_window,
+                      "Score only T0 <= t <= T1 of --validate: T0,T1 [s] (the whole file's error is shown beside)")
+      ->delimiter(',');
+  // Currents and a part of the log (README "Joint logs").
+  command->add_option("--drive-gains", identify.format.drive_gains,
+                      "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
+  command->add_option("--time-window", identify.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
+      ->delimiter(',');
+  AddPlausibilityFlags(command, flags.get());
+  command->add_flag("--write-unverified", identify.write_unverified,
+                    "Write identified.urdf and joints.yaml even when the estimate is not fit to load (exit 0)");
+  AddOutFlag(command, &identify.out_dir)->capture_default_str();
+  AddReportFlag(command, &flags->report);
+  return {command, [flags, context] {
+            IdentifyOptions& options = flags->options;
+            options.plausibility.mass_factor_min = flags->mass_range[0];
+            options.plausibility.mass_factor_max = flags->mass_range[1];
+            if (flags->com_bound != "geometry" && flags->com_bound != "none")
+              return context->UsageError("--com-bound: expected geometry or none, got '" + flags->com_bound + "'");
+            options.plausibility.com_in_geometry = flags->com_bound == "geometry";
+            return IdentifyCommand(options, *context->robot_load(), flags->report, *context);
+          }};
+}
+
+}  // namespace idbench::cli

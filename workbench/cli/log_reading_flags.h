@@ -1,0 +1,24 @@
+// The flags that say how a joint log is read and conditioned, shared by
+// identify and gains (README "Joint logs"), and their field → flag spellings.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cli_command.h"
+#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/joint_log_format.h"
+
+namespace idbench::cli {
+
+// Fields of JointLogFormat named in messages about reading a log.
+inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"}};
+
+// --columns, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
+// --filter-order, --max-gap, filling these fields of the command's options.
+void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
+                        double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s);
+
+}  // namespace idbench::cli

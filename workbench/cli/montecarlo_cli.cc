@@ -1,0 +1,55 @@
+// `idbench montecarlo`: the identification error under torque noise, seeded
+// trials against the predicted covariance; its flags fill MonteCarloOptions.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli_command.h"
+#include "common_flags.h"
+#include "idbench/workbench/commands/montecarlo_command.h"
+#include "idbench/workbench/formats/atomic_file.h"
+
+namespace idbench::cli {
+namespace {
+
+int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
+  std::string why;
+  if (!options.IsValid(&why)) return context.UsageError(why);
+  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  const MonteCarloReport report = RunMonteCarlo(model, options);
+  std::fputs(FormatMonteCarloTables(options, report).c_str(), stdout);
+  if (!options.out_dir.empty()) {
+    const std::filesystem::path dir(options.out_dir);
+    EnsureOutputDirectory(dir);
+    WriteFileAtomically(dir / "montecarlo.json", FormatMonteCarloJson(options, report));
+    std::printf("wrote %s\n", (dir / "montecarlo.json").c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context) {
+  auto options = std::make_shared<MonteCarloOptions>();
+  MonteCarloOptions& montecarlo = *options;
+  montecarlo.command_line = context->command_line();
+  CLI::App* command = app->add_subcommand(
+      "montecarlo", "Identification error under torque noise: seeded trials against the predicted covariance");
+  AddRobotFlags(command, &montecarlo.robot, context->robot_load(), "Built-in robot or URDF file");
+  command->add_option("--trajectory", montecarlo.trajectory, "Identification motion: built-in or .json/.csv file")
+      ->capture_default_str();
+  command->add_option("--held-out", montecarlo.held_out, "Validation motion: built-in or .json/.csv file")
+      ->capture_default_str();
+  command->add_option("--duration", montecarlo.duration, "Experiment length [s]")->capture_default_str();
+  command->add_option("--samples", montecarlo.samples, "Samples over the duration")->capture_default_str();
+  command->add_option("--tau-noise", montecarlo.tau_noise, "Torque noise sigma per joint [N m]")
+      ->delimiter(',')->capture_default_str();
+  AddFrictionFlag(command, &montecarlo.friction, "Friction terms");
+  command->add_option("--trials", montecarlo.trials, "Number of trials")->capture_default_str();
+  AddSeedFlag(command, &montecarlo.seed);
+  AddOutFlag(command, &montecarlo.out_dir, "Directory for montecarlo.json (optional)");
+  return {command, [options, context] { return MonteCarloCommand(*options, *context->robot_load(), *context); }};
+}
+
+}  // namespace idbench::cli

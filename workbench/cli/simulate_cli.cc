@@ -1,0 +1,69 @@
+// `idbench simulate`: an experiment in Bullet, written as a joint log (CSV);
+// its flags fill SimulateOptions.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "cli_command.h"
+#include "common_flags.h"
+#include "idbench/workbench/commands/simulate_command.h"
+#include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/logs/joint_log_csv_writer.h"
+
+namespace idbench::cli {
+namespace {
+
+struct SimulateFlags {
+  SimulateOptions options;
+  bool no_derivatives = false;  // --no-derivatives: sensors.record_derivatives = false
+};
+
+int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
+  std::string why;
+  if (!options.IsValid(&why)) return context.UsageError(why);
+  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) return context.UsageError(why);
+  const JointLog log = SimulateJointLog(model, options);
+  const std::filesystem::path path(options.out);
+  if (path.has_parent_path()) EnsureOutputDirectory(path.parent_path());
+  WriteFileAtomically(path, FormatJointLogCsv(log));
+  std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz; wrote %s\n", model.name().c_str(),
+              options.trajectory.c_str(), log.n_samples() / options.sensors.rate_hz, log.n_samples(),
+              options.sensors.rate_hz, path.c_str());
+  return 0;
+}
+
+}  // namespace
+
+CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
+  auto flags = std::make_shared<SimulateFlags>();
+  SimulateOptions& simulate = flags->options;
+  CLI::App* command = app->add_subcommand("simulate", "Simulate an experiment in Bullet and write the joint log (CSV)");
+  AddRobotFlags(command, &simulate.robot, context->robot_load());
+  command->add_option("--trajectory", simulate.trajectory,
+                      "Built-in motion (paper, general, general-reversed) or trajectory file (.json, .csv)")
+      ->capture_default_str();
+  command->add_option("--accel", simulate.paper_accel_deg_s2, "Acceleration of the paper motion [deg/s^2]")
+      ->capture_default_str();
+  command->add_option("--duration", simulate.duration, "Simulated time of a built-in motion [s]")
+      ->capture_default_str();
+  command->add_option("--dt", simulate.dt, "Simulation step [s]")->capture_default_str();
+  command->add_option("--rate", simulate.sensors.rate_hz, "Sample rate of the log [Hz]")->capture_default_str();
+  command->add_option("--tau-noise", simulate.sensors.tau_noise,
+                      "Torque noise sigma [N m]: one value, or one per joint")
+      ->delimiter(',');
+  command->add_option("--q-noise", simulate.sensors.q_noise, "Position noise sigma [rad]")->capture_default_str();
+  command->add_option("--encoder-resolution", simulate.sensors.q_resolution, "Encoder quantum [rad]; 0 = none")
+      ->capture_default_str();
+  command->add_flag("--no-derivatives", flags->no_derivatives,
+                    "Log only t, q, tau (as a real robot); identify then filters q for qd, qdd");
+  AddSeedFlag(command, &simulate.sensors.seed);
+  AddOutFlag(command, &simulate.out, "Joint-log CSV to write")->capture_default_str();
+  return {command, [flags, context] {
+            flags->options.sensors.record_derivatives = !flags->no_derivatives;
+            return SimulateCommand(flags->options, *context->robot_load(), *context);
+          }};
+}
+
+}  // namespace idbench::cli

@@ -1,0 +1,56 @@
+// The Python module `idbench` (pybind11), one file per part: robot_bindings.cc
+// (Robot), log_bindings.cc (joint logs in and out: simulate), identify_bindings.cc
+// (base parameters, regressor, identify), design_bindings.cc, render_bindings.cc;
+// idbench_module.cc calls each Bind in turn. What several parts share is here.
+#pragma once
+
+// Every part sees the same type casters (pybind11: include them in every
+// translation unit that converts these types, or the conversions differ).
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "idbench/engine/robot_library.h"
+#include "idbench/workbench/commands/log_preparation.h"
+
+namespace idbench::python {
+
+namespace py = pybind11;
+
+// A robot loaded once and shared, immutable, by every call that takes it.
+struct Robot {
+  std::shared_ptr<const RobotModel> model;
+  std::string source;                 // name or path as given
+  std::vector<std::string> warnings;  // from loading the file
+};
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using ArrayRef = Eigen::Ref<const RowMatrix>;
+
+// An n_samples × n_dof array (a 1-D array is one joint's column) with a name
+// for messages; throws std::invalid_argument otherwise (log_bindings.cc).
+void CheckJointArray(const std::string& name, const Eigen::MatrixXd& x, Eigen::Index n_samples, int n_dof);
+
+// {t, q, [qd, qdd], tau} as numpy arrays (log_bindings.cc).
+py::dict JointLogToDict(JointLog log);
+
+// A log given as a file path (read as `identify` reads it) or as a dict of
+// arrays; `source` names it in messages (log_bindings.cc).
+PreparedLog PrepareLogArgument(const py::object& log, const std::string& source, const RobotModel& model,
+                               const LogPreparationOptions& options);
+
+// Each adds its part of the module to `m`, in this order (the order of help(idbench)).
+void BindRobot(py::module_& m);
+void BindIdentify(py::module_& m);
+void BindLog(py::module_& m);
+void BindDesign(py::module_& m);
+void BindRender(py::module_& m);
+
+}  // namespace idbench::python
