@@ -1,0 +1,20 @@
+// Opens a joint log wherever one is accepted, by what the path is: a CSV file
+// today; log descriptions and rosbag2 bags plug in here (issue 24).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "idbench/engine/robot_model.h"
+#include "idbench/logs/joint_log_format.h"
+#include "idbench/logs/joint_log_source.h"
+
+namespace idbench {
+
+// The log at `path` for `model`, read as `format` and `torques` say. Throws
+// std::invalid_argument naming the path for an unreadable or malformed file
+// (as ReadRecordedJointLog).
+std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const RobotModel& model,
+                                             const JointLogFormat& format, TorqueColumns torques);
+
+}  // namespace idbench
