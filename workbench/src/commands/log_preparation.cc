@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
-#include "idbench/logs/joint_log_csv_reader.h"
+#include "idbench/logs/open_joint_log.h"
+#include "idbench/logs/recorded_joint_log_source.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -61,7 +63,10 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
 }
 
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options) {
-  return PrepareRecordedJointLog(ReadRecordedJointLog(path, model, options.format, options.torques), path, options);
+  // Every log is opened as a source (CSV, description, bag); gathered whole
+  // here until the preparation itself streams.
+  const std::unique_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
+  return PrepareRecordedJointLog(ReadWholeLog(*source), path, options);
 }
 
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,
