@@ -1,7 +1,7 @@
 // idbench: design robot identification experiments, simulate them in Bullet,
 // identify dynamic parameters. This file only dispatches: each subcommand's
 // flags and run are in <command>_cli.cc (the list in idbench_app.cc). Exit
-// codes, one rule for every command (README "Exit codes"): 0 ok; 2 the options
+// codes, one rule for every command (docs/exit-codes.md): 0 ok; 2 the options
 // or an input file are wrong (a usage error, or std::invalid_argument from
 // reading or checking the inputs), nothing written; 1 it ran and failed (any
 // other error), nothing written.
