@@ -38,7 +38,7 @@ std::unique_ptr<JointLogSource> OpenCsvLines(LineReader lines, const RobotModel&
   options.format = format;
   options.torques = torques;
   options.source = lines.source();
-  const ColumnMessages messages{lines.source(), named, named ? 0 : line_number};
+  const ColumnMessages messages{lines.source(), named, named ? 0 : line_number, ""};
   LogPart part(std::move(lines));
   part.columns = internal::TargetsOf(
       internal::FileColumnNames(first_fields, header, model, format, messages, line_number, &options.notes), n_dof,

@@ -12,7 +12,7 @@ void FailAt(const std::string& source, std::int64_t line, const std::string& wha
 }
 
 void ColumnMessages::Fail(const std::string& what) const {
-  if (named) throw std::invalid_argument(source + ": " + field + ": " + what);
+  if (named) throw std::invalid_argument(ListName() + ": " + what);
   FailAt(source, header_line, what);
 }
 
@@ -32,9 +32,9 @@ std::vector<std::string> FileColumnNames(const std::vector<std::string>& first_f
                                 std::to_string(n_dof);
     FailAt(source, line_number,
            "the first line is data (all numbers), not a header naming the columns: " +
-               (messages.field == "--columns"
+               (messages.list.empty()
                     ? "pass --columns with the names in file order, e.g. --columns " + example
-                    : "give " + messages.field + " with the names in file order, e.g. \"" + example + "\"") +
+                    : "give " + messages.list + " with the names in file order, e.g. \"" + example + "\"") +
                " (_ skips a column)");
   }
   std::vector<std::string> header_names;  // idbench names; "" where the header uses others

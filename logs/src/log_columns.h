@@ -21,12 +21,14 @@ namespace idbench::internal {
 // Where a problem with the columns is reported: the columns list when it
 // names them, else the header line.
 struct ColumnMessages {
-  std::string source;
-  bool named;          // a columns list names the columns
+  std::string source;        // the data file
+  bool named;                // a columns list names the columns
   std::int64_t header_line;  // 0 when named
-  std::string field = "--columns";  // the columns list as messages name it
+  std::string list;          // the columns list as messages name it; "": "<source>: --columns"
 
+  // "<list>: what" when named, else "source:header_line: what".
   [[noreturn]] void Fail(const std::string& what) const;
+  std::string ListName() const { return list.empty() ? source + ": --columns" : list; }
 };
 
 // The file's columns: the name of each, where its values go, and the column
@@ -48,7 +50,7 @@ struct ColumnUse {
 // The name of each file column from its first line: the header's (q.<joint
 // name> read as that joint's number), the columns list's (format.columns),
 // or both reconciled. A header-less file needs a columns list (the hint
-// names `messages.field`); a header naming joints the robot does not have,
+// names `messages.list`); a header naming joints the robot does not have,
 // or fewer than it has, is another robot's log. Throws "source:line: ...".
 std::vector<std::string> FileColumnNames(const std::vector<std::string>& first_fields, bool header,
                                          const RobotModel& model, const JointLogFormat& format,

@@ -66,6 +66,7 @@ TableLogSource::TableLogSource(std::vector<LogPart> parts, Options options)
   layout_.torque_from_currents = use.use_i && options_.torques == TorqueColumns::kRequired;
   layout_.tau_is_current = options_.torques == TorqueColumns::kCurrents;
   if (!t_part_) layout_.rate_hz = options_.rate_hz;
+  layout_.time_window = options_.time_window;
   layout_.notes = options_.notes;
   layout_.warnings = options_.warnings;
   Rewind();

@@ -45,6 +45,7 @@ class TableLogSource final : public JointLogSource {
     ColumnUse use;
     std::optional<double> rate_hz;  // t = k / rate_hz when no part has a t column
     std::string source;           // the log as layout().source and its warnings name it
+    std::vector<double> time_window;  // layout().time_window (a description's)
     std::vector<std::string> notes, warnings;
   };
   // The parts' columns must be checked (TargetsOf, ChooseColumns); exactly

@@ -42,8 +42,8 @@ const std::string& LogPath() {
         log.t[s] = t;
         for (int j = 0; j < 6; ++j) {
           const double w = 0.3 + 0.1 * j;
-          log.q(s, j) = 0.8 * std::sin(w * t + j);
-          log.qd(s, j) = 0.8 * w * std::cos(w * t + j);
+          log.q(s, j) = 0.3 + 0.4 * std::sin(w * t + j);
+          log.qd(s, j) = 0.4 * w * std::cos(w * t + j);
           log.tau(s, j) = 10.0 * std::sin(0.7 * t + 2.0 * j) + 0.01 * j;
         }
       }
