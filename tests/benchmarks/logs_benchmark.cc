@@ -12,7 +12,10 @@
 #include <fstream>
 #include <random>
 
+#if __has_include(<fast_float/fast_float.h>)  // libfast-float-dev, for the comparison only
 #include <fast_float/fast_float.h>
+#define IDBENCH_HAVE_FAST_FLOAT 1
+#endif
 
 #include "idbench/engine/puma560.h"
 #include "idbench/logs/joint_log_csv_reader.h"
@@ -111,6 +114,7 @@ void BM_ParseDoubleFromChars(benchmark::State& state) {
 }
 BENCHMARK(BM_ParseDoubleFromChars);
 
+#ifdef IDBENCH_HAVE_FAST_FLOAT
 void BM_ParseDoubleFastFloat(benchmark::State& state) {
   const std::vector<std::string> fields = Fields();
   for (auto _ : state) {
@@ -124,6 +128,7 @@ void BM_ParseDoubleFastFloat(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(fields.size()));
 }
 BENCHMARK(BM_ParseDoubleFastFloat);
+#endif
 
 }  // namespace
 }  // namespace idbench
