@@ -131,7 +131,9 @@ TEST_F(DescribedJointLogTest, Tx40ShapedTwoFilesWithARateReadBackExactly) {
   for (int k = 0; k < n; ++k) {
     ASSERT_EQ(r.log.t[k], k / 5000.0);
     for (int j = 0; j < 6; ++j) {
-      ASSERT_NEAR(r.log.q(k, j), Q(k, j), 1e-15);  // through degrees: one rounding each way
+      // The degrees written round-trip exactly; the reader's conversion is × π/180.
+      ASSERT_EQ(r.log.q(k, j), (Q(k, j) * 180.0 / M_PI) * (M_PI / 180.0));
+      ASSERT_NEAR(r.log.q(k, j), Q(k, j), 1e-15);
       ASSERT_EQ(r.log.tau(k, j), gains[j] * Tau(k, j));
     }
   }
