@@ -7,9 +7,9 @@
 #include <random>
 
 #include "engine/test_util.h"
-#include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/builtin_motions.h"
+#include "ident/single_joint_motion.h"
 #include "ident/synthetic_log.h"
 
 namespace idbench {
@@ -146,27 +146,9 @@ TEST(PayloadEstimatorTest, UnloadedLogCancelsAWrongRobotModel) {
 TEST(PayloadEstimatorTest, MotionOfOneJointReportsTheUnseenTerms) {
   const PayloadExperiment e;
   ASSERT_TRUE(e.model.links().back().axis_J.isApprox(Eigen::Vector3d::UnitZ()));
-  const RobotModel loaded_model = e.Loaded(e.model);
-  const Eigen::VectorXd pose = (Eigen::VectorXd(6) << 0.3, -0.6, 0.4, 0.5, 0.7, 0.0).finished();
-  const int n_samples = 1001;
+  const testing::SingleJointMotion motion((Eigen::VectorXd(6) << 0.3, -0.6, 0.4, 0.5, 0.7, 0.0).finished(), 5, 10.0);
   TorqueLog loaded;
-  JointLog& log = loaded.motion;
-  log.t = Eigen::VectorXd::LinSpaced(n_samples, 0.0, 10.0);
-  log.q = pose.transpose().replicate(n_samples, 1);
-  log.qd = Eigen::MatrixXd::Zero(n_samples, 6);
-  log.qdd = Eigen::MatrixXd::Zero(n_samples, 6);
-  log.tau.resize(n_samples, 6);
-  RobotData data(loaded_model);
-  for (int s = 0; s < n_samples; ++s) {
-    const double w = 2.0 * M_PI * 0.2, t = log.t[s];
-    log.q(s, 5) = 1.5 * std::sin(w * t) + 0.8 * std::sin(3 * w * t);
-    log.qd(s, 5) = 1.5 * w * std::cos(w * t) + 2.4 * w * std::cos(3 * w * t);
-    log.qdd(s, 5) = -1.5 * w * w * std::sin(w * t) - 7.2 * w * w * std::sin(3 * w * t);
-    Eigen::VectorXd tau = InverseDynamics(loaded_model, log.q.row(s).transpose(), log.qd.row(s).transpose(),
-                                          log.qdd.row(s).transpose(), &data);
-    AddJointDynamicsTorque(loaded_model, log.qd.row(s).transpose(), log.qdd.row(s).transpose(), &tau);
-    log.tau.row(s) = tau.transpose();
-  }
+  loaded.motion = testing::SyntheticJointLog(e.Loaded(e.model), motion, Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0));
   const PayloadEstimate estimate = EstimatePayload(e.model, loaded, nullptr, {});
   EXPECT_EQ(estimate.status, PayloadStatus::kNotIdentifiable);
   std::printf("joint 6 only: %s\n", estimate.message.c_str());
