@@ -118,13 +118,19 @@ std::string PayloadSummary::BriefReport() const {
 PayloadSummary RunPayload(const RobotModel& model, const PayloadOptions& options) {
   std::string why;
   if (!options.IsValidFor(model, &why)) throw std::invalid_argument(why);
-  PayloadSummary summary;
-  const PayloadEstimatorOptions estimator = options.estimator(model);
-  summary.link_name = model.links()[static_cast<size_t>(estimator.link)].name;
-  // Read and prepare the logs.
   PreparedLog loaded = PrepareJointLog(options.loaded_log, model, options.preparation(false));
   std::optional<PreparedLog> unloaded;
   if (!options.unloaded_log.empty()) unloaded = PrepareJointLog(options.unloaded_log, model, options.preparation(true));
+  return RunPayloadOnLogs(model, options, std::move(loaded), std::move(unloaded));
+}
+
+PayloadSummary RunPayloadOnLogs(const RobotModel& model, const PayloadOptions& options, PreparedLog loaded,
+                                std::optional<PreparedLog> unloaded) {
+  std::string why;
+  if (!options.IsValidFor(model, &why)) throw std::invalid_argument(why);
+  PayloadSummary summary;
+  const PayloadEstimatorOptions estimator = options.estimator(model);
+  summary.link_name = model.links()[static_cast<size_t>(estimator.link)].name;
   for (PreparedLog* log : {&loaded, unloaded ? &*unloaded : nullptr}) {
     if (!log) continue;
     for (std::string& note : log->notes) summary.notes.push_back(std::move(note));

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,6 +66,10 @@ struct PayloadSummary {
 // line and column of bad data, or an option that does not fit the robot.
 // Parameters the logs do not determine are summary.status, not a throw.
 PayloadSummary RunPayload(const RobotModel& model, const PayloadOptions& options);
+// The same on logs already prepared (e.g. arrays from Python); options'
+// loaded_log and unloaded_log only name them.
+PayloadSummary RunPayloadOnLogs(const RobotModel& model, const PayloadOptions& options, PreparedLog loaded,
+                                std::optional<PreparedLog> unloaded);
 
 // Whether payload.urdf.xml is written: a good verdict, or write_unverified
 // with every quantity determined.
