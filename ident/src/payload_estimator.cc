@@ -99,6 +99,23 @@ InertialParameters ProjectOntoConsistent(const InertialParameters& phi_ls, const
   return solution.u;
 }
 
+// The scale a quantity's σ is judged against: the mass; for the centre of
+// mass max(|c|, radius of gyration √(tr I/2m)); for the inertia tr(I)/2.
+double QuantityScale(const PayloadBody& body, int k) {
+  const double half_trace = 0.5 * (body.I_Pcm_B[0] + body.I_Pcm_B[3] + body.I_Pcm_B[5]);
+  if (k == 0) return body.mass;
+  if (k < 4) return std::max(body.p_BoPcm_B.norm(), std::sqrt(std::max(half_trace, 0.0) / body.mass));
+  return half_trace;
+}
+// The quantity whose σ is largest against its scale.
+int WorstRelativeSigma(const PayloadBody& body, const Eigen::Matrix<double, 10, 1>& sigma) {
+  int worst = 0;
+  for (int k = 1; k < 10; ++k) {
+    if (sigma[k] / QuantityScale(body, k) > sigma[worst] / QuantityScale(body, worst)) worst = k;
+  }
+  return worst;
+}
+
 // "a, b and c".
 std::string JoinNames(const std::vector<std::string>& names) {
   std::string out;
@@ -178,8 +195,8 @@ bool PayloadEstimatorOptions::IsValidFor(const RobotModel& model, std::string* w
   if (link < -1 || link >= model.n_links())
     return fail("link: expected -1 (the last link) or an index in [0, " + std::to_string(model.n_links()) + "), got " +
                 std::to_string(link));
-  if (!(max_relative_mass_sigma > 0.0) || !std::isfinite(max_relative_mass_sigma))
-    return fail("max_relative_mass_sigma: expected a positive number, got " + std::to_string(max_relative_mass_sigma));
+  if (!(max_relative_sigma > 0.0) || !std::isfinite(max_relative_sigma))
+    return fail("max_relative_sigma: expected a positive number, got " + std::to_string(max_relative_sigma));
   if (!(max_projection_distance > 0.0) || !std::isfinite(max_projection_distance))
     return fail("max_projection_distance: expected a positive number, got " + std::to_string(max_projection_distance));
   return true;
@@ -318,15 +335,6 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
                   "' (" + out.not_identifiable_reason[static_cast<size_t>(std::find(out.identifiable.begin(),
                   out.identifiable.end(), false) - out.identifiable.begin())] +
                   "); record a motion that turns the payload about three axes and moves it against gravity";
-  } else if (!(phi_filled[0] > 0.0) || !(out.sigma[0] <= options.max_relative_mass_sigma * phi_filled[0])) {
-    std::snprintf(text, sizeof(text),
-                  "the payload's mass on link '%s' is %.4g kg with sigma %.3g kg (at most %g of the mass expected): "
-                  "the payload's torques are too small against the noise (signal/noise %.3g); record a longer or "
-                  "faster motion",
-                  link_name.c_str(), phi_filled[0], out.sigma[0], options.max_relative_mass_sigma,
-                  out.payload_signal_to_noise);
-    out.status = PayloadStatus::kPoorlyDetermined;
-    out.message = text;
   } else if (out.projection_distance > options.max_projection_distance) {
     std::snprintf(text, sizeof(text),
                   "the least-squares payload on link '%s' is not a physical body (smallest pseudo-inertia eigenvalue "
@@ -336,6 +344,17 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
                   link_name.c_str(), out.min_pseudo_inertia_eigenvalue, out.projection_distance,
                   options.max_projection_distance);
     out.status = PayloadStatus::kNotPhysical;
+    out.message = text;
+  } else if (const int worst = WorstRelativeSigma(out.body, out.sigma);
+             !(out.body.mass > 0.0) || !(out.sigma[worst] <= options.max_relative_sigma * QuantityScale(out.body, worst))) {
+    std::snprintf(text, sizeof(text),
+                  "the payload's %s on link '%s' is %.4g with sigma %.3g (at most %g of %.3g expected): the payload's "
+                  "torques are too small against the noise (signal/noise %.3g) or the motion hardly turns it; record "
+                  "a longer or richer motion",
+                  PayloadQuantityNames()[worst].c_str(), link_name.c_str(), PayloadQuantities(out.body)[worst],
+                  out.sigma[worst], options.max_relative_sigma, QuantityScale(out.body, worst),
+                  out.payload_signal_to_noise);
+    out.status = PayloadStatus::kPoorlyDetermined;
     out.message = text;
   }
   return out;

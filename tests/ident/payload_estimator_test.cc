@@ -201,7 +201,6 @@ TEST(PayloadEstimatorTest, ConsistentEstimateIsTheNearestBody) {
     const InertialParameters d = phi_true - estimate.phi;
     const double truth_distance = std::sqrt(d.dot(estimate.covariance.ldlt().solve(d)));
     EXPECT_LE(estimate.projection_distance, truth_distance * (1 + 1e-6)) << seed;
-    EXPECT_EQ(estimate.status, PayloadStatus::kEstimated) << estimate.message;
     if (projected == 1) {
       std::printf("seed %u: least-squares pseudo-inertia eigenvalue %.3g; consistent one %.3g, %.3g sigma away (truth "
                   "%.3g sigma)\n", seed, estimate.min_pseudo_inertia_eigenvalue, min_eigenvalue,
@@ -210,6 +209,22 @@ TEST(PayloadEstimatorTest, ConsistentEstimateIsTheNearestBody) {
   }
   std::printf("projected in %d of 20 seeds\n", projected);
   EXPECT_GT(projected, 0);
+}
+
+// Torque noise 1 N m: the mass and COM stay determined, the inertia's σ is
+// larger than a tenth of its scale (tr I/2): poorly determined, naming it.
+TEST(PayloadEstimatorTest, NoisyInertiaIsPoorlyDetermined) {
+  PayloadExperiment e;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  e.loaded.motion.tau = e.loaded.motion.tau.unaryExpr([&](double x) { return x + normal(rng); });
+  const PayloadEstimate estimate = EstimatePayload(e.model, e.loaded, nullptr, {});
+  std::printf("1 N m noise: %s\n", estimate.message.c_str());
+  EXPECT_EQ(estimate.status, PayloadStatus::kPoorlyDetermined);
+  EXPECT_NE(estimate.message.find("payload's I"), std::string::npos) << estimate.message;
+  EXPECT_LT(estimate.sigma[0], 0.1 * e.truth.mass);
+  const double half_trace = 0.5 * (e.truth.I_Pcm_B[0] + e.truth.I_Pcm_B[3] + e.truth.I_Pcm_B[5]);
+  EXPECT_GT(estimate.sigma.tail<6>().maxCoeff(), 0.1 * half_trace);
 }
 
 TEST(PayloadEstimatorTest, InvalidOptionsAndLogsThrow) {

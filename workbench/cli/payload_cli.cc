@@ -20,7 +20,7 @@ constexpr FieldFlag kPayloadSpellings[] = {{"unloaded_time_window", "--unloaded-
                                            {"loaded_log", "--data"},
                                            {"unloaded_log", "--unloaded"},
                                            {"payload_link", "--link"},
-                                           {"max_relative_mass_sigma", "--max-mass-sigma"},
+                                           {"max_relative_sigma", "--max-relative-sigma"},
                                            {"max_projection_distance", "--max-projection-distance"},
                                            {"write_unverified", "--write-unverified"},
                                            {"out_dir", "--out"}};
@@ -77,8 +77,8 @@ CliCommand AddPayloadCommand(CLI::App* app, CliContext* context) {
       ->delimiter(',');
   command->add_option("--unloaded-time-window", payload.unloaded_time_window,
                       "Use only T0 <= t <= T1 of --unloaded: T0,T1 [s]")->delimiter(',');
-  command->add_option("--max-mass-sigma", payload.max_relative_mass_sigma,
-                      "Verdict: sigma(mass)/mass at most this")->capture_default_str();
+  command->add_option("--max-relative-sigma", payload.max_relative_sigma,
+                      "Verdict: each sigma at most this fraction of its scale (mass; |com| or radius of gyration; tr(I)/2)")->capture_default_str();
   command->add_option("--max-projection-distance", payload.max_projection_distance,
                       "Verdict: the physically consistent payload within this many sigma of the least-squares one")
       ->capture_default_str();

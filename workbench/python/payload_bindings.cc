@@ -13,7 +13,7 @@ void BindPayload(py::module_& m) {
          const std::vector<std::string>& columns, const std::string& angle_unit,
          const std::vector<double>& time_window, const std::vector<double>& unloaded_time_window,
          const std::vector<std::string>& friction, double coulomb_smoothing, double max_gap, double filter_cutoff,
-         int filter_order, double max_mass_sigma, double max_projection_distance, bool write_unverified) {
+         int filter_order, double max_relative_sigma, double max_projection_distance, bool write_unverified) {
         PayloadOptions options;
         options.robot = robot.source;
         const auto name = [](const py::object& log, const char* arrays) {
@@ -31,7 +31,7 @@ void BindPayload(py::module_& m) {
         options.max_gap_s = max_gap;
         options.filter.cutoff_hz = filter_cutoff;
         options.filter.order = filter_order;
-        options.max_relative_mass_sigma = max_mass_sigma;
+        options.max_relative_sigma = max_relative_sigma;
         options.max_projection_distance = max_projection_distance;
         options.write_unverified = write_unverified;
         options.out_dir = ".";  // nothing is written: the files are returned
@@ -62,7 +62,7 @@ void BindPayload(py::module_& m) {
       py::arg("unloaded_time_window") = std::vector<double>{}, py::arg("friction") = defaults.friction,
       py::arg("coulomb_smoothing") = defaults.coulomb_smoothing, py::arg("max_gap") = defaults.max_gap_s,
       py::arg("filter_cutoff") = defaults.filter.cutoff_hz, py::arg("filter_order") = defaults.filter.order,
-      py::arg("max_mass_sigma") = defaults.max_relative_mass_sigma,
+      py::arg("max_relative_sigma") = defaults.max_relative_sigma,
       py::arg("max_projection_distance") = defaults.max_projection_distance, py::arg("write_unverified") = false,
       "The payload on `link` (default: the last) from a log with it (a CSV path or a dict of arrays {t, q, [qd, qdd], "
       "tau}) and, optionally, an unloaded log of the same motion. Options as `idbench payload`'s. Returns payload.json "

@@ -76,8 +76,8 @@ bool PayloadOptions::IsValid(std::string* why) const {
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("coulomb_smoothing: expected >= 0 rad/s, got " + Shortest(coulomb_smoothing));
-  if (!(max_relative_mass_sigma > 0.0) || !std::isfinite(max_relative_mass_sigma))
-    return fail("max_relative_mass_sigma: expected a fraction > 0, got " + Shortest(max_relative_mass_sigma));
+  if (!(max_relative_sigma > 0.0) || !std::isfinite(max_relative_sigma))
+    return fail("max_relative_sigma: expected a fraction > 0, got " + Shortest(max_relative_sigma));
   if (!(max_projection_distance > 0.0) || !std::isfinite(max_projection_distance))
     return fail("max_projection_distance: expected a number of sigma > 0, got " + Shortest(max_projection_distance));
   if (!preparation(false).IsValid(why) || !preparation(true).IsValid(why)) return false;
@@ -101,7 +101,7 @@ PayloadEstimatorOptions PayloadOptions::estimator(const RobotModel& model) const
   PayloadEstimatorOptions out;
   out.link = payload_link.empty() ? model.n_links() - 1 : FindLink(model, payload_link);
   out.friction = friction_model();
-  out.max_relative_mass_sigma = max_relative_mass_sigma;
+  out.max_relative_sigma = max_relative_sigma;
   out.max_projection_distance = max_projection_distance;
   return out;
 }

@@ -41,10 +41,12 @@ struct PayloadEstimatorOptions {
   // robot file's friction and rotor inertia are subtracted).
   FrictionModel friction{.viscous = true, .coulomb = true, .rotor_inertia = true};
   BaseParameterOptions base;
-  // The verdict's bounds (PayloadStatus): σ(m)/m at most this, and the
-  // consistent estimate within this Mahalanobis distance of the least-squares
-  // one (√χ² of 10 parameters; 5 is beyond the 99.9 % quantile, 5.4).
-  double max_relative_mass_sigma = 0.1;
+  // The verdict's bounds (PayloadStatus): the consistent estimate within
+  // this Mahalanobis distance of the least-squares one (√χ² of 10
+  // parameters: 5 is about its 99.5 % quantile), and each
+  // quantity's σ at most max_relative_sigma of its scale: the mass; for the
+  // centre of mass max(|c|, radius of gyration); for the inertia tr(I)/2.
+  double max_relative_sigma = 0.1;
   double max_projection_distance = 5.0;
 
   // Checks the options for `model`; *why names the field.
@@ -60,9 +62,9 @@ struct TorqueLog {
 };
 
 enum class PayloadStatus {
-  kEstimated,         // every parameter determined, σ(m)/m small, the estimate a physical body
+  kEstimated,         // every parameter determined, σ small against each quantity's scale, a physical body
   kNotIdentifiable,   // the motion does not determine some parameters (not_identifiable says which and why)
-  kPoorlyDetermined,  // determined, but σ(m)/m above the bound, or the mass not positive
+  kPoorlyDetermined,  // determined, but some σ above the bound against its scale
   kNotPhysical,       // the physically consistent estimate is far (in σ) from what the data say
 };
 

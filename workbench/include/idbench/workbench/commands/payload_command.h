@@ -30,7 +30,7 @@ struct PayloadOptions {
   double coulomb_smoothing = 0.0;   // [rad/s]; 0 = sign(qd)
   LogFilterOptions filter{.trim_s = -1.0};
   double max_gap_s = 0.0;           // [s]; 0: 10 median steps
-  double max_relative_mass_sigma = PayloadEstimatorOptions{}.max_relative_mass_sigma;  // verdict: σ(m)/m at most
+  double max_relative_sigma = PayloadEstimatorOptions{}.max_relative_sigma;  // verdict: σ / scale at most (payload_estimator.h)
   double max_projection_distance = PayloadEstimatorOptions{}.max_projection_distance;  // verdict: [σ]
   bool write_unverified = false;    // write payload.urdf.xml even when the verdict is not good (all identifiable)
   std::string out_dir = "out/payload";
@@ -56,7 +56,7 @@ struct PayloadSummary {
   std::vector<std::string> notes;     // how the logs were read, for stdout
   std::vector<std::string> warnings;  // for stderr
 
-  // Every quantity determined, σ(m)/m small, a physical body.
+  // Every quantity determined, σ small, a physical body.
   bool good() const { return status == PayloadStatus::kEstimated; }
   // One line: the mass, COM and the verdict.
   std::string BriefReport() const;
