@@ -81,6 +81,7 @@ CliCommand AddRunCommand(CLI::App* app, CliContext* context);
 CliCommand AddSimulateCommand(CLI::App* app, CliContext* context);
 CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context);
 CliCommand AddGainsCommand(CLI::App* app, CliContext* context);
+CliCommand AddPayloadCommand(CLI::App* app, CliContext* context);
 CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context);
 CliCommand AddRenderCommand(CLI::App* app, CliContext* context);
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context);

@@ -28,6 +28,7 @@ PYBIND11_MODULE(idbench, m) {
   });
   python::BindRobot(m);
   python::BindIdentify(m);
+  python::BindPayload(m);
   python::BindLog(m);
   python::BindDesign(m);
   python::BindRender(m);
