@@ -28,10 +28,9 @@ void CheckLog(const RobotModel& model, const JointLog& log) {
   }
 }
 
-// Base columns that can be non-zero in joint j's row: the inertial parameters
-// of link j and its descendants (the joints a link's wrench passes are its
-// ancestors), and joint j's own friction terms (ascending, as base columns).
-std::vector<std::vector<int>> JointColumns(const RobotModel& model, const FrictionModel& friction,
+}  // namespace
+
+std::vector<std::vector<int>> JointFactorColumns(const RobotModel& model, const FrictionModel& friction,
                                            const BaseParameters& base) {
   const int n_inertial = model.n_links() * kInertialParametersPerLink;
   std::vector<std::vector<int>> columns(static_cast<size_t>(model.n_dof()));
@@ -47,6 +46,8 @@ std::vector<std::vector<int>> JointColumns(const RobotModel& model, const Fricti
   }
   return columns;
 }
+
+namespace {
 
 // Factors of samples [s_begin, s_end) of the log, from zero. `data`, `Y`,
 // and `rows` (per joint) are the caller's workspace.
@@ -163,7 +164,7 @@ Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel&
 StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
                                       const BaseParameters& base, const JointLog& log, int n_threads) {
   CheckLog(model, log);
-  const StackedFactors empty(base.n_base(), JointColumns(model, friction, base));
+  const StackedFactors empty(base.n_base(), JointFactorColumns(model, friction, base));
   const int n_samples = log.n_samples();
   const int n_parts = std::max(1, (n_samples + kSamplesPerFactorPart - 1) / kSamplesPerFactorPart);
   if (n_threads <= 0) n_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

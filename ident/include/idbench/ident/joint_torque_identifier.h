@@ -148,6 +148,13 @@ inline constexpr int kSamplesPerFactorPart = 2048;
 StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
                                       const BaseParameters& base, const JointLog& log, int n_threads = 0);
 
+// Base columns that can be non-zero in joint j's rows (per joint, ascending):
+// the inertial parameters of link j and its descendants (the joints a link's
+// wrench passes are its ancestors) and joint j's own friction terms; the
+// column sets of the factors FactorStackedEquations returns.
+std::vector<std::vector<int>> JointFactorColumns(const RobotModel& model, const FrictionModel& friction,
+                                                 const BaseParameters& base);
+
 // Torques stacked the same way.
 Eigen::VectorXd StackTorques(const JointLog& log);
 
