@@ -52,11 +52,19 @@ class StreamedJointEquationsTest : public ::testing::Test {
     StackEquations(model_, friction_, base_, prepared, filter_, &W, &tau);
     return SolveOls(W, tau, 6);
   }
+  // StreamedLogFilter, then the equations, in blocks of `block` samples fed
+  // `push` samples at a time.
   StackedFactors Streamed(const JointLog& log, Eigen::Index block, Eigen::Index push) const {
-    StreamedEquationsSettings settings{.filter = filter_, .has_qd = log.qd.size() > 0, .n_samples = log.n_samples()};
+    const Eigen::Index n = log.n_samples();
+    StreamedLogFilter prepare(filter_.filter, filter_.sample_rate_hz, log.qd.size() > 0, false, 6, n, block);
+    StreamedEquationsSettings settings{.filter = filter_, .n_samples = n};
     settings.block = block;
     StreamedJointEquations equations(model_, friction_, base_, settings);
-    for (Eigen::Index s = 0; s < log.n_samples(); s += push) equations.Push(Rows(log, s, std::min<Eigen::Index>(push, log.n_samples() - s)));
+    for (Eigen::Index s = 0; s < n; s += push) {
+      prepare.Push(Rows(log, s, std::min<Eigen::Index>(push, n - s)),
+                   [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); });
+    }
+    EXPECT_TRUE(prepare.done());
     EXPECT_TRUE(equations.done());
     return equations.factors();
   }
@@ -104,15 +112,13 @@ TEST_F(StreamedJointEquationsTest, WithoutFilterFoldsEverySampleAndKeepsBoundedS
   JointLog log = testing::SyntheticJointLog(model_, *motion, Eigen::VectorXd::LinSpaced(3001, 0.0, 3.0));
   log.tau += 0.5 * Eigen::MatrixXd::Random(3001, 6);  // residuals well above rounding
   const Eigen::VectorXd beta = Eigen::VectorXd::LinSpaced(base_.n_base(), 0.5, 1.5);
-  StreamedEquationsSettings settings{.n_samples = 3001, .prepared_stride = 10, .series_beta = beta, .series_stride = 7};
+  StreamedEquationsSettings settings{.n_samples = 3001, .series_beta = beta, .series_stride = 7};
   StreamedJointEquations equations(model_, friction_, base_, settings);
   for (Eigen::Index s = 0; s < 3001; s += 1000) equations.Push(Rows(log, s, std::min<Eigen::Index>(1000, 3001 - s)));
   Eigen::MatrixXd W;
   Eigen::VectorXd tau;
   StackEquations(model_, friction_, base_, log, std::nullopt, &W, &tau);
   ExpectSameFit(SolveOls(equations.factors()), SolveOls(W, tau, 6));
-  ASSERT_EQ(equations.prepared().n_samples(), 301);
-  EXPECT_EQ(equations.prepared().q.row(300), log.q.row(3000));
   const TorqueSeries& series = equations.series();
   ASSERT_EQ(series.t.size(), 429);  // ⌈3001/7⌉
   const Eigen::VectorXd predicted = W.middleRows(6 * 7 * 428, 6) * beta;
@@ -122,9 +128,12 @@ TEST_F(StreamedJointEquationsTest, WithoutFilterFoldsEverySampleAndKeepsBoundedS
 }
 
 TEST_F(StreamedJointEquationsTest, RejectsTooManySamplesAndTooShortLogs) {
-  StreamedJointEquations equations(model_, friction_, base_, {.filter = filter_, .has_qd = true, .n_samples = 2000});
-  EXPECT_THROW(equations.Push(Rows(recorded_, 0, 2001)), std::invalid_argument);
-  EXPECT_THROW(StreamedJointEquations(model_, friction_, base_, {.filter = filter_, .has_qd = true, .n_samples = 1000}),
+  StreamedJointEquations equations(model_, friction_, base_, {.filter = filter_, .n_samples = 2000});
+  JointLog prepared = Rows(recorded_, 0, 2001);
+  prepared.qdd = prepared.qd;
+  EXPECT_THROW(equations.Push(prepared), std::invalid_argument);
+  EXPECT_THROW(equations.Push(Rows(recorded_, 0, 10)), std::invalid_argument);  // no qdd
+  EXPECT_THROW(StreamedJointEquations(model_, friction_, base_, {.filter = filter_, .n_samples = 1000}),
                std::invalid_argument);  // 2 × 500 samples trimmed
 }
 

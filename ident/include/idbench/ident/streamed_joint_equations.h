@@ -1,12 +1,13 @@
-// Joint-torque equations of a long log folded as its samples arrive
-// (issue 24): the zero-phase filter that estimates qd and qdd
-// (ProcessJointLog), the base regressor, the parallel filter of W and τ
-// (ParallelFilterStackedRows) with its trimming and decimation, and the fold
-// into per-joint triangular factors (StackedFactors), each filter run in
-// overlapping windows (OverlapWindows, FiltFiltWindow). Memory is
-// O(n_base² + kStreamBlockSamples · n_base), independent of the log's length;
-// the factors equal those of the whole-log path (StackEquations +
-// FactorStackedRows) to rounding and the filters' 1e-12 settling.
+// Joint-torque equations of a long log folded as its prepared samples arrive
+// (issue 24): the base regressor, the parallel filter of W and τ
+// (ParallelFilterStackedRows) with its trimming and decimation run in
+// overlapping windows (OverlapWindows, FiltFiltWindow), and the fold into
+// per-joint triangular factors (StackedFactors). With StreamedLogFilter in
+// front, a log's qd, qdd estimated the same way: memory is
+// O(n_base² + kStreamBlockSamples · n_base), independent of the log's length,
+// and the factors equal those of the whole-log path (ProcessJointLog,
+// StackEquations, FactorStackedRows) to rounding and the filters' 1e-12
+// settling.
 #pragma once
 
 #include <optional>
@@ -19,27 +20,20 @@
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/overlap_windows.h"
 #include "idbench/ident/signal_filter.h"
+#include "idbench/ident/streamed_log_filter.h"
 
 namespace idbench {
 
-// Samples per processing block: the bound on what a stage holds beyond its
-// two filter margins (≈1400 samples each at the defaults). 8192 samples of a
-// 7-joint arm's per-joint regressor columns (~200 doubles a sample) are 13 MB.
-inline constexpr Eigen::Index kStreamBlockSamples = 8192;
-
 struct StreamedEquationsSettings {
-  // The filter estimating qd, qdd and filtering W, τ in parallel, and the
-  // log's uniform rate; nullopt: the log carries qd and qdd, no filter.
+  // The parallel filter of W and τ at the log's uniform rate; nullopt: every
+  // sample's equations are folded as they are.
   std::optional<ParallelFilter> filter;
-  bool has_qd = false, has_qdd = false;  // recorded columns of the pushed samples
   Eigen::Index n_samples = 0;            // samples that will be pushed
   int n_threads = 0;                     // regressor threads; 0: the hardware's
   Eigen::Index block = kStreamBlockSamples;
-  // Optional outputs, bounded: every prepared_stride-th prepared sample
-  // (t, q, qd, qdd, τ unfiltered) and, with series_beta, every
-  // series_stride-th kept equation's t, τ and W β (both parallel-filtered).
-  Eigen::Index prepared_stride = 0;  // 0: none
-  Eigen::VectorXd series_beta;       // empty: no series
+  // Optional, bounded: with series_beta, every series_stride-th kept
+  // equation's t, τ and W β (both parallel-filtered when filtered).
+  Eigen::VectorXd series_beta;  // empty: no series
   Eigen::Index series_stride = 1;
 };
 
@@ -50,22 +44,20 @@ class StreamedJointEquations {
   StreamedJointEquations(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
                          const StreamedEquationsSettings& settings);
 
-  // The log's next samples, in order (t uniform at the filter's rate when
-  // filtered; q, tau and the recorded qd/qdd n_dof columns). Throws
+  // The log's next prepared samples, in order (t uniform at the filter's rate
+  // when filtered; q, qd, qdd, tau of n_dof columns). Throws
   // std::invalid_argument on a shape mismatch or more samples than announced.
   void Push(const JointLog& samples);
 
   bool done() const { return n_pushed_ == settings_.n_samples; }
   // The folded equations; complete once done().
   const StackedFactors& factors() const { return factors_; }
-  const JointLog& prepared() const { return prepared_; }
   const TorqueSeries& series() const { return series_; }
 
  private:
-  void PrepareWindow(Eigen::Ref<const Eigen::MatrixXd> window, Eigen::Index w0, Eigen::Index o0, Eigen::Index o1);
-  void Equations(const Eigen::MatrixXd& prepared, Eigen::Index s0);
+  void Equations(const JointLog& prepared);
   void FoldWindow(Eigen::Ref<const Eigen::MatrixXd> window, Eigen::Index w0, Eigen::Index o0, Eigen::Index o1);
-  void FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& rows, Eigen::Index s0);
+  void FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& rows);
 
   const RobotModel* model_;
   FrictionModel friction_;
@@ -77,13 +69,12 @@ class StreamedJointEquations {
   Eigen::Index width_ = 0;                  // Σ (c_j + 1)
   SosMatrix sos_;
   Eigen::Index trim_ = 0;
-  std::optional<OverlapWindows> raw_, rows_;  // the two filtered stages
+  std::optional<OverlapWindows> rows_;  // the parallel filter's windows
   Eigen::Index n_pushed_ = 0;
-  Eigen::MatrixXd input_, filtered_, regressor_;  // workspace
-  std::vector<Eigen::MatrixXd> fold_;             // per joint
+  Eigen::MatrixXd filtered_, regressor_;  // workspace
+  std::vector<Eigen::MatrixXd> fold_;     // per joint
   StackedFactors factors_;
-  JointLog prepared_;
-  Eigen::Index n_prepared_kept_ = 0, n_series_kept_ = 0;
+  Eigen::Index n_series_kept_ = 0;
   TorqueSeries series_;
 };
 
