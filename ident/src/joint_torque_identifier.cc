@@ -401,12 +401,24 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
 
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
+  const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
+  return IdentifyJointTorque(model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter),
+                             options);
+}
+
+JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
+                                              const StackedFactors& factors, const JointTorqueOptions& options) {
   JointTorqueIdentification out;
-  out.base = ComputeBaseParameters(model, options.friction, options.base);
+  out.base = base;
+  if (factors.n_parameters != base.n_base() || factors.n_dof() != model.n_dof()) {
+    throw std::invalid_argument("joint torque identification: expected factors of " + std::to_string(base.n_base()) +
+                                " parameters and " + std::to_string(model.n_dof()) + " joints, got " +
+                                std::to_string(factors.n_parameters) + " and " + std::to_string(factors.n_dof()));
+  }
+  CheckEnoughEquations(factors.n_samples(), model.n_dof(), base.n_base());
   out.standard_names = StandardParameterNames(model, options.friction);
   const Eigen::VectorXd pi_model = StandardParameters(model, options.friction);
   out.beta_model = out.base.combination * pi_model;
-  const StackedFactors factors = FactorEquations(model, options.friction, out.base, log, options.parallel_filter);
   out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(factors) : SolveOls(factors);
   out.beta = out.linear.beta;
   // The plausible fit keeps the robot file's values in the directions the
@@ -428,6 +440,10 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
   return Predict(FactorEquations(model, options.friction, base, log, options.parallel_filter), beta);
+}
+
+TorquePrediction PredictTorques(const StackedFactors& factors, const Eigen::VectorXd& beta) {
+  return Predict(factors, beta);
 }
 
 TorqueSeries PredictTorqueSeries(const RobotModel& model, const JointTorqueOptions& options,

@@ -53,6 +53,10 @@ StreamedJointEquations::StreamedJointEquations(const RobotModel& model, const Fr
       throw std::invalid_argument("streamed equations: expected series_beta of " + std::to_string(base.n_base()) +
                                   " entries and series_stride >= 1");
     }
+    if (settings_.series_max_points > 0) {
+      settings_.series_stride =
+          std::max(settings_.series_stride, (n_kept + settings_.series_max_points - 1) / settings_.series_max_points);
+    }
     const Eigen::Index m = (n_kept + settings_.series_stride - 1) / settings_.series_stride;
     series_.t.resize(m);
     series_.measured.resize(m, n_dof_);

@@ -178,9 +178,20 @@ std::vector<Eigen::Index> StackedSamples(const JointLog& log, const std::optiona
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options);
 
+// The same from the log's folded equations for `base` (FactorStackedEquations,
+// StreamedJointEquations: a streamed log); options.parallel_filter is not
+// used (the factors are filtered or not). Throws std::invalid_argument for
+// factors of another size or too few equations.
+JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
+                                              const StackedFactors& factors, const JointTorqueOptions& options);
+
 // How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
+
+// The same from the log's folded equations. Throws std::invalid_argument
+// unless β has factors.n_parameters entries.
+TorquePrediction PredictTorques(const StackedFactors& factors, const Eigen::VectorXd& beta);
 
 // Measured and predicted torques of a log over time, on the equations
 // PredictTorques scores: W and τ of StackEquations (with

@@ -35,6 +35,7 @@ struct StreamedEquationsSettings {
   // equation's t, τ and W β (both parallel-filtered when filtered).
   Eigen::VectorXd series_beta;  // empty: no series
   Eigen::Index series_stride = 1;
+  Eigen::Index series_max_points = 0;  // > 0: the stride raised to keep at most this many
 };
 
 class StreamedJointEquations {
