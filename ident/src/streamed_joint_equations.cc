@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "idbench/ident/joint_torque_regressor.h"
 
@@ -128,7 +129,16 @@ void StreamedJointEquations::FoldWindow(Eigen::Ref<const Eigen::MatrixXd> window
   const Eigen::Index end = std::min(o1, n - trim_);
   if (first >= end) return;
   filtered_ = window;
-  FiltFiltWindow(sos_, n, w0 == 0, w0 + rows == n, filtered_.leftCols(width_));
+  // Columns split over the threads (each filtered on its own: the same result).
+  {
+    const Eigen::Index n_threads = settings_.n_threads;
+    auto filter = [&](Eigen::Index c0, Eigen::Index c1) {
+      FiltFiltWindow(sos_, n, w0 == 0, w0 + rows == n, filtered_.middleCols(c0, c1 - c0));
+    };
+    std::vector<std::jthread> threads;
+    for (Eigen::Index p = 1; p < n_threads; ++p) threads.emplace_back(filter, p * width_ / n_threads, (p + 1) * width_ / n_threads);
+    filter(0, width_ / n_threads);
+  }
   const Eigen::Index m = (end - first + k - 1) / k;
   Eigen::MatrixXd kept(m, width_ + 1);
   for (Eigen::Index i = 0; i < m; ++i) kept.row(i) = filtered_.row(first + i * k - w0);
@@ -156,13 +166,19 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
     }
     n_series_kept_ += m;
   }
-  for (int j = 0; j < n_dof_; ++j) {
-    const Eigen::Index o = offset_[static_cast<size_t>(j)];
-    const Eigen::Index c = static_cast<Eigen::Index>(standard_[static_cast<size_t>(j)].size());
-    Eigen::MatrixXd& f = fold_[static_cast<size_t>(j)];
-    f = rows.middleCols(o, c + 1);
-    FoldJointRows(f, &factors_.joints[static_cast<size_t>(j)]);
-  }
+  // Each joint's factor on its own, the joints dealt round the threads.
+  auto fold = [&](int first) {
+    for (int j = first; j < n_dof_; j += settings_.n_threads) {
+      const Eigen::Index o = offset_[static_cast<size_t>(j)];
+      const Eigen::Index c = static_cast<Eigen::Index>(standard_[static_cast<size_t>(j)].size());
+      Eigen::MatrixXd& f = fold_[static_cast<size_t>(j)];
+      f = rows.middleCols(o, c + 1);
+      FoldJointRows(f, &factors_.joints[static_cast<size_t>(j)]);
+    }
+  };
+  std::vector<std::jthread> threads;
+  for (int t = 1; t < std::min(settings_.n_threads, n_dof_); ++t) threads.emplace_back(fold, t);
+  fold(0);
 }
 
 }  // namespace idbench
