@@ -28,10 +28,9 @@ void CheckLog(const RobotModel& model, const JointLog& log) {
   }
 }
 
-// Base columns that can be non-zero in joint j's row: the inertial parameters
-// of link j and its descendants (the joints a link's wrench passes are its
-// ancestors), and joint j's own friction terms (ascending, as base columns).
-std::vector<std::vector<int>> JointColumns(const RobotModel& model, const FrictionModel& friction,
+}  // namespace
+
+std::vector<std::vector<int>> JointFactorColumns(const RobotModel& model, const FrictionModel& friction,
                                            const BaseParameters& base) {
   const int n_inertial = model.n_links() * kInertialParametersPerLink;
   std::vector<std::vector<int>> columns(static_cast<size_t>(model.n_dof()));
@@ -47,6 +46,8 @@ std::vector<std::vector<int>> JointColumns(const RobotModel& model, const Fricti
   }
   return columns;
 }
+
+namespace {
 
 // Factors of samples [s_begin, s_end) of the log, from zero. `data`, `Y`,
 // and `rows` (per joint) are the caller's workspace.
@@ -163,7 +164,7 @@ Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel&
 StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
                                       const BaseParameters& base, const JointLog& log, int n_threads) {
   CheckLog(model, log);
-  const StackedFactors empty(base.n_base(), JointColumns(model, friction, base));
+  const StackedFactors empty(base.n_base(), JointFactorColumns(model, friction, base));
   const int n_samples = log.n_samples();
   const int n_parts = std::max(1, (n_samples + kSamplesPerFactorPart - 1) / kSamplesPerFactorPart);
   if (n_threads <= 0) n_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -400,12 +401,24 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
 
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
+  const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
+  return IdentifyJointTorque(model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter),
+                             options);
+}
+
+JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
+                                              const StackedFactors& factors, const JointTorqueOptions& options) {
   JointTorqueIdentification out;
-  out.base = ComputeBaseParameters(model, options.friction, options.base);
+  out.base = base;
+  if (factors.n_parameters != base.n_base() || factors.n_dof() != model.n_dof()) {
+    throw std::invalid_argument("joint torque identification: expected factors of " + std::to_string(base.n_base()) +
+                                " parameters and " + std::to_string(model.n_dof()) + " joints, got " +
+                                std::to_string(factors.n_parameters) + " and " + std::to_string(factors.n_dof()));
+  }
+  CheckEnoughEquations(factors.n_samples(), model.n_dof(), base.n_base());
   out.standard_names = StandardParameterNames(model, options.friction);
   const Eigen::VectorXd pi_model = StandardParameters(model, options.friction);
   out.beta_model = out.base.combination * pi_model;
-  const StackedFactors factors = FactorEquations(model, options.friction, out.base, log, options.parallel_filter);
   out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(factors) : SolveOls(factors);
   out.beta = out.linear.beta;
   // The plausible fit keeps the robot file's values in the directions the
@@ -427,6 +440,10 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log) {
   return Predict(FactorEquations(model, options.friction, base, log, options.parallel_filter), beta);
+}
+
+TorquePrediction PredictTorques(const StackedFactors& factors, const Eigen::VectorXd& beta) {
+  return Predict(factors, beta);
 }
 
 TorqueSeries PredictTorqueSeries(const RobotModel& model, const JointTorqueOptions& options,

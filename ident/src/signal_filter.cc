@@ -79,24 +79,29 @@ void CheckDerivativeInput(Eigen::Index n, double dt, Eigen::Index min_samples, c
   }
 }
 
-// Zero-phase filtering of one channel (FiltFilt's steps 1–3).
-Eigen::VectorXd FiltFiltChannel(const SosMatrix& sos, const Eigen::VectorXd& x, Eigen::Index pad) {
+// Zero-phase filtering of one channel (FiltFilt's steps 1–3), with
+// pad_start and pad_end samples of odd extension at the two ends (0: none,
+// the pass starts in the steady state of the end sample). `y` is scratch.
+void FiltFiltChannel(const SosMatrix& sos, Eigen::Ref<Eigen::VectorXd> x, Eigen::Index pad_start,
+                     Eigen::Index pad_end, Eigen::VectorXd* y) {
   const Eigen::Index n = x.size();
 
   // Odd extension: the reflection of x through (0, x[0]) and (n−1, x[n−1]).
-  Eigen::VectorXd y(n + 2 * pad);
-  y.segment(pad, n) = x;
-  for (Eigen::Index i = 1; i <= pad; ++i) {
-    y(pad - i) = 2.0 * x(0) - x(i);
-    y(pad + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
-  }
+  y->resize(n + pad_start + pad_end);
+  y->segment(pad_start, n) = x;
+  for (Eigen::Index i = 1; i <= pad_start; ++i) (*y)(pad_start - i) = 2.0 * x(0) - x(i);
+  for (Eigen::Index i = 1; i <= pad_end; ++i) (*y)(pad_start + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
 
   // Forward pass, then backward pass on the reversed output.
-  FilterSteadyStart(sos, &y);
-  y.reverseInPlace();
-  FilterSteadyStart(sos, &y);
-  y.reverseInPlace();
-  return y.segment(pad, n);
+  FilterSteadyStart(sos, y);
+  y->reverseInPlace();
+  FilterSteadyStart(sos, y);
+  y->reverseInPlace();
+  x = y->segment(pad_start, n);
+}
+
+Eigen::Index FiltFiltPad(const SosMatrix& sos, Eigen::Index n) {
+  return std::min<Eigen::Index>(3 * (FiltFiltMinSamples(sos) - 1), n - 1);
 }
 
 }  // namespace
@@ -169,11 +174,54 @@ Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x) {
     throw std::invalid_argument("filtfilt: expected at least " + std::to_string(min_samples) + " samples for " +
                                 std::to_string(sos.rows()) + " sections, got " + std::to_string(n));
   }
-  const Eigen::Index ntaps = min_samples - 1;
-  const Eigen::Index pad = std::min<Eigen::Index>(3 * ntaps, n - 1);
-  Eigen::MatrixXd y(n, x.cols());
-  for (Eigen::Index j = 0; j < x.cols(); ++j) y.col(j) = FiltFiltChannel(sos, x.col(j), pad);
+  const Eigen::Index pad = FiltFiltPad(sos, n);
+  Eigen::MatrixXd y = x;
+  Eigen::VectorXd scratch;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) FiltFiltChannel(sos, y.col(j), pad, pad, &scratch);
   return y;
+}
+
+int FiltFiltSettlingSamples(const SosMatrix& sos, double tolerance) {
+  CheckSos(sos);
+  if (!(tolerance > 0.0 && tolerance < 1.0)) {
+    throw std::invalid_argument("filter settling: expected a tolerance in (0, 1), got " + Str(tolerance));
+  }
+  // The largest pole radius: √a2 for a complex pair (a1² < 4 a2), else the
+  // larger root of z² + a1 z + a2.
+  double radius = 0.0;
+  for (Eigen::Index i = 0; i < sos.rows(); ++i) {
+    const double a1 = sos(i, 4), a2 = sos(i, 5);
+    const double discriminant = a1 * a1 - 4.0 * a2;
+    const double r = discriminant < 0.0 ? std::sqrt(a2) : 0.5 * (std::abs(a1) + std::sqrt(discriminant));
+    radius = std::max(radius, r);
+  }
+  // The sections in cascade multiply the slowest mode by a polynomial in k of
+  // degree n_sections − 1 and by the ratio of the pole spacings; 1e-3 more of
+  // decay covers both for the Butterworths of DesignButterworthLowPass.
+  const double decay = radius > 0.0 ? std::log(1e-3 * tolerance) / std::log(radius) : 0.0;
+  const int pad = 3 * (FiltFiltMinSamples(sos) - 1);
+  return std::max(pad + 2, static_cast<int>(std::ceil(decay)) + 2);
+}
+
+void FiltFiltWindow(const SosMatrix& sos, Eigen::Index n_total, bool at_start, bool at_end,
+                    Eigen::Ref<Eigen::MatrixXd> x) {
+  CheckSos(sos);
+  const Eigen::Index n = x.rows();
+  const int min_samples = FiltFiltMinSamples(sos);
+  if (n_total < min_samples || n > n_total || n < 2) {
+    throw std::invalid_argument("filtfilt window: expected 2 <= " + std::to_string(n) + " rows <= " +
+                                std::to_string(n_total) + " samples of a signal of at least " +
+                                std::to_string(min_samples));
+  }
+  const Eigen::Index pad = FiltFiltPad(sos, n_total);
+  if ((at_start || at_end) && n < pad + 1) {
+    throw std::invalid_argument("filtfilt window: expected at least " + std::to_string(pad + 1) +
+                                " rows at an end of the signal, got " + std::to_string(n));
+  }
+  Eigen::VectorXd scratch;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    FiltFiltChannel(sos, x.col(j), at_start ? pad : 0, at_end ? pad : 0, &scratch);
+  }
 }
 
 Eigen::MatrixXd FirstDerivative(const Eigen::MatrixXd& x, double dt) {
@@ -343,12 +391,16 @@ void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_ra
   *rows = std::move(out);
 }
 
+Eigen::Index ParallelFilterTrimSamples(const LogFilterOptions& options, double sample_rate_hz) {
+  const double trim_s = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;
+  return static_cast<Eigen::Index>(std::ceil(trim_s * sample_rate_hz - 1e-9));
+}
+
 std::vector<Eigen::Index> ParallelFilterKeptSamples(const LogFilterOptions& options, double sample_rate_hz,
                                                     Eigen::Index n_samples) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("parallel filter options: " + why);
-  const double trim_s = options.trim_s < 0.0 ? 5.0 / options.cutoff_hz : options.trim_s;
-  const Eigen::Index trim = static_cast<Eigen::Index>(std::ceil(trim_s * sample_rate_hz - 1e-9));
+  const Eigen::Index trim = ParallelFilterTrimSamples(options, sample_rate_hz);
   if (n_samples - 2 * trim < 1) {
     throw std::invalid_argument("joint log: " + std::to_string(n_samples) + " samples are too few to drop " +
                                 std::to_string(trim) + " filter-transient samples at both ends");

@@ -2,6 +2,9 @@
 // plus OLS over a long log.
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
+
+#include <cmath>
 #include <random>
 
 #include "idbench/engine/paper6r.h"
@@ -10,6 +13,8 @@
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/plausible_fit.h"
+#include "idbench/ident/streamed_joint_equations.h"
+#include "idbench/ident/streamed_log_filter.h"
 
 namespace idbench {
 namespace {
@@ -126,6 +131,51 @@ void BM_PlausibleFitPuma560(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PlausibleFitPuma560)->Unit(benchmark::kMillisecond);
+
+// The streamed core of `identify` on a controller's log (t, q, measured qd,
+// τ at 1 kHz; no qdd), generated chunk by chunk so that nothing but the
+// pipeline holds memory: StreamedLogFilter (zero-phase filter, qdd from qd),
+// StreamedJointEquations (regressor, parallel filter, fold), then OLS. puma560
+// with Fv, Fc (48 base parameters), default filter (order 4, 10 Hz, 5/fc
+// trimmed). The counter peak_rss_mb is the process's peak so far.
+void BM_StreamedIdentifyPuma560(benchmark::State& state) {
+  const Eigen::Index n = state.range(0);
+  const RobotModel model = MakePuma560();
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = true;
+  const BaseParameters base = ComputeBaseParameters(model, friction);
+  const ParallelFilter filter{.filter = {.trim_s = -1.0}, .sample_rate_hz = 1000.0};
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (auto _ : state) {
+    StreamedLogFilter prepare(filter.filter, filter.sample_rate_hz, true, false, 6, n);
+    StreamedJointEquations equations(model, friction, base, {.filter = filter, .n_samples = n});
+    JointLog chunk;
+    for (Eigen::Index s0 = 0; s0 < n; s0 += kStreamBlockSamples) {
+      const Eigen::Index m = std::min(kStreamBlockSamples, n - s0);
+      chunk.t.resize(m);
+      chunk.q.resize(m, 6);
+      chunk.qd.resize(m, 6);
+      chunk.tau.resize(m, 6);
+      for (Eigen::Index s = 0; s < m; ++s) {
+        const double t = 1e-3 * static_cast<double>(s0 + s);
+        chunk.t[s] = t;
+        for (int j = 0; j < 6; ++j) {
+          const double w = 0.3 + 0.2 * j;
+          chunk.q(s, j) = std::sin(w * t + j);
+          chunk.qd(s, j) = w * std::cos(w * t + j) + 1e-3 * noise(rng);
+          chunk.tau(s, j) = 10.0 * std::sin(w * t) + noise(rng);
+        }
+      }
+      prepare.Push(chunk, [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); });
+    }
+    benchmark::DoNotOptimize(SolveOls(equations.factors()).beta.data());
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_mb"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+BENCHMARK(BM_StreamedIdentifyPuma560)->Arg(100000)->Arg(1200000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace idbench

@@ -1,5 +1,7 @@
 #include "idbench/ident/signal_filter.h"
 
+#include "idbench/ident/overlap_windows.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
@@ -566,6 +568,68 @@ TEST(ProcessJointLogTest, RejectsNonUniformSamplingAndBadShapes) {
   EXPECT_NE(ThrownMessage([&] { ProcessJointLog(log.t, log.q, log.tau, {.cutoff_hz = 60.0, .decimation = 10}); })
                 .find("expected cutoff_hz < fs/(2·decimation) = 50"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace idbench
+
+namespace idbench {
+namespace {
+
+// The slowest pole of the default filter (order 4, 10 Hz at 1 kHz) decays by
+// e per ~42 samples: 1e-15 takes ~1440.
+TEST(FiltFiltWindowTest, SettlingFollowsTheSlowestPole) {
+  const SosMatrix sos = DesignButterworthLowPass(4, 10.0, 1000.0);
+  const double r = std::sqrt(sos(sos.rows() - 1, 5));
+  EXPECT_NEAR(r, 0.97625, 1e-5);
+  const int settling = FiltFiltSettlingSamples(sos);
+  EXPECT_EQ(settling, static_cast<int>(std::ceil(std::log(1e-15) / std::log(r))) + 2);
+  EXPECT_GT(FiltFiltSettlingSamples(DesignButterworthLowPass(4, 10.0, 2000.0)), settling);  // slower at a higher rate
+  EXPECT_THROW(FiltFiltSettlingSamples(sos, 0.0), std::invalid_argument);
+}
+
+// A window covering the whole signal is FiltFilt exactly; overlapping windows
+// with the settling margin give FiltFilt of the whole signal to 1e-12 of its
+// range, at the ends too, whatever the block and push sizes (a block smaller
+// than the margin, a last push of 1 sample).
+TEST(FiltFiltWindowTest, OverlappingWindowsEqualTheWholeSignalsFiltFilt) {
+  const Eigen::Index n = 9001;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  Eigen::MatrixXd x(n, 2);
+  for (Eigen::Index s = 0; s < n; ++s) {
+    const double t = 1e-3 * static_cast<double>(s);
+    x.row(s) << std::sin(2.0 * t) + 0.3 * t + noise(rng), (s % 1500 < 700 ? 1.0 : -1.0) + noise(rng);
+  }
+  const SosMatrix sos = DesignButterworthLowPass(4, 10.0, 1000.0);
+  const Eigen::MatrixXd whole = FiltFilt(sos, x);
+  Eigen::MatrixXd same = x;
+  FiltFiltWindow(sos, n, true, true, same);
+  EXPECT_EQ(same, whole);
+
+  const Eigen::Index margin = FiltFiltSettlingSamples(sos);
+  const double range = x.cwiseAbs().maxCoeff();
+  for (Eigen::Index block : {300, 2048, 9000}) {
+    for (Eigen::Index push : {1000, 4500, 9000}) {
+      OverlapWindows windows(n, 2, margin, block);
+      Eigen::MatrixXd streamed(n, 2);
+      auto filter = [&](Eigen::Ref<const Eigen::MatrixXd> window, Eigen::Index w0, Eigen::Index o0, Eigen::Index o1) {
+        Eigen::MatrixXd y = window;
+        FiltFiltWindow(sos, n, w0 == 0, w0 + y.rows() == n, y);
+        streamed.middleRows(o0, o1 - o0) = y.middleRows(o0 - w0, o1 - o0);
+      };
+      for (Eigen::Index s = 0; s < n; s += push) windows.Push(x.middleRows(s, std::min(push, n - s)), filter);
+      EXPECT_LT((streamed - whole).cwiseAbs().maxCoeff(), 1e-12 * range) << "block " << block << ", push " << push;
+    }
+  }
+}
+
+TEST(FiltFiltWindowTest, RejectsAWindowTooShortAtAnEnd) {
+  const SosMatrix sos = DesignButterworthLowPass(4, 10.0, 1000.0);
+  Eigen::MatrixXd x = Eigen::MatrixXd::Ones(10, 1);
+  EXPECT_THROW(FiltFiltWindow(sos, 1000, true, false, x), std::invalid_argument);  // padlen 27
+  EXPECT_THROW(FiltFiltWindow(sos, 5, true, true, x), std::invalid_argument);      // more rows than the signal
+  EXPECT_NO_THROW(FiltFiltWindow(sos, 1000, false, false, x));
 }
 
 }  // namespace

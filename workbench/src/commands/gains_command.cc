@@ -40,6 +40,7 @@ LogPreparationOptions GainsOptions::preparation(bool loaded_log) const {
   out.torques = TorqueColumns::kCurrents;
   out.filter = filter;
   out.max_gap_s = max_gap_s;
+  out.max_held_samples = 0;  // EstimateDriveGains takes the prepared logs whole (not streamed)
   return out;
 }
 

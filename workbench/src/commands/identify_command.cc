@@ -83,34 +83,34 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
   id_options.estimator = *ParseTorqueEstimator(options.estimator);
   id_options.plausibility = options.plausibility;
   report.log = std::move(data.log);
+  report.n_samples = data.n_samples;
   id_options.parallel_filter = data.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
   report.parallel_filter = id_options.parallel_filter;
   report.derivatives = data.derivatives;
   report.notes = data.notes;
   report.warnings = data.warnings;
+  // The equations streamed into factors, then solved.
+  const BaseParameters base = ComputeBaseParameters(model, id_options.friction, id_options.base);
   try {
-    report.identification = IdentifyJointTorque(model, report.log, id_options);
+    report.identification =
+        IdentifyJointTorque(model, base, FoldPreparedLog(data, model, id_options.friction, base), id_options);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(options.data + ": " + e.what());
+    const std::string what = e.what();
+    throw std::invalid_argument(what.rfind(options.data + ":", 0) == 0 ? what : options.data + ": " + what);
   }
+  report.prepared = std::make_shared<PreparedLog>(std::move(data));
   if (held_out) {
-    JointTorqueOptions held_options = id_options;
-    held_options.parallel_filter = held_out->parallel_filter;
     for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));
     for (std::string& warning : held_out->warnings) report.warnings.push_back(std::move(warning));
-    try {
-      report.validation = PredictTorques(model, held_options, report.identification.base,
-                                         report.identification.beta, held_out->log);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(options.validate + ": " + e.what());
-    }
+    report.validation = PredictTorques(FoldPreparedLog(*held_out, model, id_options.friction, base),
+                                       report.identification.beta);
     report.held_out_log = std::move(held_out->log);
     report.held_out_filter = held_out->parallel_filter;
+    report.held_out_prepared = std::make_shared<PreparedLog>(std::move(*held_out));
     if (held_out_whole) {  // the whole file, beside the window
-      held_options.parallel_filter = held_out_whole->parallel_filter;
-      report.validation_whole_file = PredictTorques(model, held_options, report.identification.base,
-                                                    report.identification.beta, held_out_whole->log);
+      report.validation_whole_file = PredictTorques(FoldPreparedLog(*held_out_whole, model, id_options.friction, base),
+                                                    report.identification.beta);
     }
   }
   return report;
@@ -118,12 +118,12 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
 
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
                                       const IdentifyReport& report, bool held_out) {
-  JointTorqueOptions prediction;
-  prediction.friction = options.friction_model();
-  prediction.parallel_filter = held_out ? report.held_out_filter : report.parallel_filter;
   const JointTorqueIdentification& id = report.identification;
-  if (held_out && !report.held_out_log) throw std::invalid_argument("no held-out log was identified with");
-  return PredictTorqueSeries(model, prediction, id.base, id.beta, held_out ? *report.held_out_log : report.log);
+  if (held_out && !report.held_out_prepared) throw std::invalid_argument("no held-out log was identified with");
+  const PreparedLog& log = held_out ? *report.held_out_prepared : *report.prepared;
+  TorqueSeries series;
+  FoldPreparedLog(log, model, options.friction_model(), id.base, id.beta, &series);
+  return series;
 }
 
 }  // namespace idbench

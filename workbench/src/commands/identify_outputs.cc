@@ -146,7 +146,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"verdict", verdict},
       {"robot", model.name()},
       {"data", options.data},
-      {"n_samples", report.log.n_samples()},
+      {"n_samples", report.n_samples},
       {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences (" + report.derivatives + ")"
                                       : "from the log"},
       {"log_preparation", report.notes},

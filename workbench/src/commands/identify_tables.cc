@@ -20,7 +20,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   for (const std::string& note : report.notes) out += note + "\n";
   char line[512];
   std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
-                "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), report.log.n_samples(),
+                "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), static_cast<int>(report.n_samples),
                 report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), options.estimator.c_str(),
                 id.linear.cond);
   out += line;

@@ -1,6 +1,8 @@
 #include "idbench/workbench/commands/log_preparation.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -10,35 +12,6 @@
 #include "number_format.h"
 
 namespace idbench {
-namespace {
-
-// Keeps the samples with T0 <= t <= T1 (and their line numbers).
-void KeepTimeWindow(const std::string& path, const std::vector<double>& window, const std::string& field,
-                    RecordedJointLog* recorded) {
-  JointLog& log = recorded->log;
-  const double t_first = log.t[0], t_last = log.t[log.n_samples() - 1];
-  const std::string option = field + " " + Shortest(window[0]) + "," + Shortest(window[1]);
-  if (window[0] < t_first || window[1] > t_last) {
-    throw std::invalid_argument(path + ": " + option + " is not inside the log, which covers t = " + Shortest(t_first) +
-                                " to " + Shortest(t_last) + " s");
-  }
-  Eigen::Index first = 0, last = log.n_samples() - 1;
-  while (log.t[first] < window[0]) ++first;
-  while (log.t[last] > window[1]) --last;
-  const Eigen::Index n = last - first + 1;
-  constexpr Eigen::Index kMinSamples = 4;
-  if (n < kMinSamples) {
-    throw std::invalid_argument(path + ": " + option + " keeps " + std::to_string(n) + " samples, expected at least " +
-                                std::to_string(kMinSamples));
-  }
-  log.t = log.t.segment(first, n).eval();
-  for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) {
-    if (x->size() > 0) *x = x->middleRows(first, n).eval();
-  }
-  recorded->lines = std::vector<int>(recorded->lines.begin() + first, recorded->lines.begin() + first + n);
-}
-
-}  // namespace
 
 bool LogPreparationOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
@@ -62,13 +35,95 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
   return true;
 }
 
+namespace {
+
+// A line on stderr, at most every 2 s, once the work has taken 3 s.
+class ProgressLine {
+ public:
+  explicit ProgressLine(std::string what) : what_(std::move(what)) {}
+  ~ProgressLine() {
+    if (shown_) std::fprintf(stderr, "\r%s: done%30s\n", what_.c_str(), "");
+  }
+  void Update(Eigen::Index done, Eigen::Index total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::seconds(3) || now - last_ < std::chrono::seconds(2)) return;
+    last_ = now;
+    shown_ = true;
+    std::fprintf(stderr, "\r%s: %.0f %% of %lld samples", what_.c_str(),
+                 100.0 * static_cast<double>(done) / static_cast<double>(std::max<Eigen::Index>(total, 1)),
+                 static_cast<long long>(total));
+    std::fflush(stderr);
+  }
+
+ private:
+  std::string what_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_;
+  bool shown_ = false;
+};
+
+// Streams the prepared samples of `log` to `sink`, in order: the source's
+// samples [first, first + n_raw) filtered (StreamedLogFilter) or, used as
+// recorded, every decimation-th.
+void StreamPreparedSamples(const PreparedLog& log, const StreamedLogFilter::Sink& sink, ProgressLine* progress) {
+  JointLogSource& source = *log.source;
+  source.Rewind();
+  const int n_dof = source.layout().n_dof;
+  std::optional<StreamedLogFilter> filter;
+  if (log.parallel_filter) {
+    filter.emplace(log.parallel_filter->filter, log.parallel_filter->sample_rate_hz, log.has_qd, log.has_qdd, n_dof,
+                   log.n_raw);
+  }
+  JointLogChunk chunk;
+  Eigen::Index read = 0;           // source samples read
+  const Eigen::Index end = log.first + log.n_raw;
+  while (read < end && source.Next(std::min(kStreamBlockSamples, end - read), &chunk)) {
+    JointLog& samples = chunk.samples;
+    const Eigen::Index m = samples.t.size();
+    const Eigen::Index skip = std::max<Eigen::Index>(0, log.first - read);  // before the window
+    read += m;
+    if (skip >= m) continue;
+    auto rows = [&](Eigen::MatrixXd* x, Eigen::Index from, Eigen::Index count) {
+      if (x->size() > 0) *x = x->middleRows(from, count).eval();
+    };
+    if (skip > 0) {
+      samples.t = samples.t.segment(skip, m - skip).eval();
+      for (Eigen::MatrixXd* x : {&samples.q, &samples.qd, &samples.qdd, &samples.tau}) rows(x, skip, m - skip);
+    }
+    if (filter) {
+      filter->Push(samples, sink);
+    } else {
+      // Every decimation-th sample of the window, counted from its first.
+      const Eigen::Index k = log.decimation, s0 = read - m + skip - log.first, count = samples.t.size();
+      const Eigen::Index offset = (k - s0 % k) % k;
+      if (k > 1) {
+        const Eigen::Index kept = offset < count ? (count - offset + k - 1) / k : 0;
+        JointLog out;
+        out.t.resize(kept);
+        for (Eigen::MatrixXd* x : {&out.q, &out.qd, &out.qdd, &out.tau}) x->resize(kept, n_dof);
+        for (Eigen::Index i = 0; i < kept; ++i) {
+          const Eigen::Index r = offset + i * k;
+          out.t[i] = samples.t[r];
+          out.q.row(i) = samples.q.row(r);
+          out.qd.row(i) = samples.qd.row(r);
+          out.qdd.row(i) = samples.qdd.row(r);
+          out.tau.row(i) = samples.tau.row(r);
+        }
+        if (kept > 0) sink(out, (s0 + offset) / k);
+      } else {
+        sink(samples, s0);
+      }
+    }
+    if (progress) progress->Update(read - log.first, log.n_raw);
+  }
+}
+
+}  // namespace
+
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options) {
-  // Every log is opened as a source (CSV, description, bag); gathered whole
-  // here until the preparation itself streams.
-  const std::unique_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
+  std::shared_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
   // A log description's time window, unless an option gives one too.
-  const std::vector<double>& described = source->layout().time_window;
-  if (described.empty()) return PrepareRecordedJointLog(ReadWholeLog(*source), path, options);
+  const std::vector<double> described = source->layout().time_window;
+  if (described.empty()) return PrepareJointLogSource(std::move(source), path, options);
   if (!options.time_window.empty()) {
     throw std::invalid_argument(path + ": .time_window (" + Shortest(described[0]) + "," + Shortest(described[1]) +
                                 ") and the option " + options.window_field + " (" + Shortest(options.time_window[0]) +
@@ -78,71 +133,133 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
   LogPreparationOptions windowed = options;
   windowed.time_window = described;
   windowed.window_field = ".time_window";
-  return PrepareRecordedJointLog(ReadWholeLog(*source), path, windowed);
+  return PrepareJointLogSource(std::move(source), path, windowed);
 }
 
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,
                                     const LogPreparationOptions& options) {
+  return PrepareJointLogSource(
+      std::make_shared<RecordedJointLogSource>(std::move(recorded), path, options.torques == TorqueColumns::kCurrents),
+      path, options);
+}
+
+PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,
+                                  const LogPreparationOptions& options) {
   PreparedLog out;
-  out.warnings = recorded.warnings;
-  out.notes = recorded.notes;
-  if (recorded.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
+  const JointLogLayout& layout = source->layout();
+  out.warnings = layout.warnings;
+  out.notes = layout.notes;
+  out.path = path;
+  if (layout.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
+
+  // First pass: the samples in the time window, its ends, and whether the
+  // steps are uniform (all within 1e-6 of the shortest: what ResampleJointLog
+  // calls uniform, without the median).
+  const bool windowed = !options.time_window.empty();
+  const double t0 = windowed ? options.time_window[0] : -INFINITY, t1 = windowed ? options.time_window[1] : INFINITY;
+  Eigen::Index n_total = 0, n = 0;
+  double t_first = 0.0, t_last = 0.0, w_first = 0.0, w_last = 0.0, min_step = INFINITY, max_step = 0.0;
+  {
+    JointLogChunk chunk;
+    source->Rewind();
+    double previous = 0.0;
+    while (source->Next(kStreamBlockSamples, &chunk)) {
+      for (double t : chunk.samples.t) {
+        if (n_total == 0) t_first = t;
+        t_last = t;
+        ++n_total;
+        if (t < t0 || t > t1) continue;
+        if (n == 0) {
+          out.first = n_total - 1;
+          w_first = t;
+        } else {
+          min_step = std::min(min_step, t - previous);
+          max_step = std::max(max_step, t - previous);
+        }
+        previous = w_last = t;
+        ++n;
+      }
+    }
+  }
+  if (n_total == 0) throw std::invalid_argument(path + ": no samples");
+  out.n_raw = n;
+  out.source = source;
+  out.has_qd = layout.has_qd;
+  out.has_qdd = layout.has_qdd;
 
   // The time window.
-  if (!options.time_window.empty()) {
-    const int before = recorded.log.n_samples();
-    KeepTimeWindow(path, options.time_window, options.window_field, &recorded);
+  if (windowed) {
+    const std::string option = options.window_field + " " + Shortest(t0) + "," + Shortest(t1);
+    if (t0 < t_first || t1 > t_last) {
+      throw std::invalid_argument(path + ": " + option + " is not inside the log, which covers t = " +
+                                  Shortest(t_first) + " to " + Shortest(t_last) + " s");
+    }
+    constexpr Eigen::Index kMinSamples = 4;
+    if (n < kMinSamples) {
+      throw std::invalid_argument(path + ": " + option + " keeps " + std::to_string(n) + " samples, expected at least " +
+                                  std::to_string(kMinSamples));
+    }
     std::string label = options.window_field;  // time_window → "time window"
     std::replace(label.begin(), label.end(), '_', ' ');
-    out.notes.push_back(path + ": " + label + " " + Shortest(options.time_window[0]) + "–" +
-                        Shortest(options.time_window[1]) + " s: " + std::to_string(recorded.log.n_samples()) + " of " +
-                        std::to_string(before) + " samples");
+    out.notes.push_back(path + ": " + label + " " + Shortest(t0) + "–" + Shortest(t1) + " s: " + std::to_string(n) +
+                        " of " + std::to_string(n_total) + " samples");
   }
-  JointLog& log = recorded.log;
-  const bool has_qd = log.qd.size() > 0, has_qdd = log.qdd.size() > 0;
-  if (has_qd && has_qdd) {
+  auto hold = [&](Eigen::Index n_prepared) {
+    out.n_samples = n_prepared;
+    const Eigen::Index max = options.max_held_samples;
+    out.log_stride = max > 0 ? std::max<Eigen::Index>(1, (n_prepared + max - 1) / max) : 1;
+  };
+
+  if (out.has_qd && out.has_qdd) {
     out.derivatives = "qd, qdd from the log";
     // Decimation keeps every k-th sample, as it does after filtering (no
     // filter here: the recorded signals are used as they are).
     const int k = options.filter.decimation;
+    out.decimation = k;
+    hold((n + k - 1) / k);
     if (k > 1) {
-      const Eigen::Index n = (log.n_samples() + k - 1) / k;
-      auto keep = [&](Eigen::MatrixXd* x) {
-        if (x->size() == 0) return;
-        Eigen::MatrixXd kept(n, x->cols());
-        for (Eigen::Index s = 0; s < n; ++s) kept.row(s) = x->row(s * k);
-        *x = std::move(kept);
-      };
-      Eigen::VectorXd t(n);
-      for (Eigen::Index s = 0; s < n; ++s) t[s] = log.t[s * k];
       out.notes.push_back(path + ": decimation " + std::to_string(k) + ": one sample in " + std::to_string(k) +
-                          " kept, " + std::to_string(n) + " of " + std::to_string(log.n_samples()));
-      log.t = std::move(t);
-      for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) keep(x);
+                          " kept, " + std::to_string(out.n_samples) + " of " + std::to_string(n));
     }
-    out.log = std::move(log);
-    return out;
-  }
+  } else {
+    // A uniform grid for the filter: irregular steps are resampled (the log
+    // held whole for it), a gap is an error.
+    if (n < 3) {
+      throw std::invalid_argument(path + ": " + std::to_string(n) +
+                                  " samples, too few to estimate qd, qdd by filtering");
+    }
+    if (!(max_step - min_step <= ResamplingOptions{}.uniform_tolerance * min_step)) {
+      source->Rewind();
+      RecordedJointLog recorded = ReadWholeLog(*source);
+      const Eigen::Index last = out.first + n;
+      JointLog& log = recorded.log;
+      log.t = log.t.segment(out.first, n).eval();
+      for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) {
+        if (x->size() > 0) *x = x->middleRows(out.first, n).eval();
+      }
+      recorded.lines = std::vector<int>(recorded.lines.begin() + out.first, recorded.lines.begin() + last);
+      RecordedJointLog uniform;
+      const ResamplingSummary resampling = ResampleJointLog(log, {.max_gap_s = options.max_gap_s}, &uniform.log);
+      if (resampling.status == ResamplingStatus::kGap) {
+        const int line = recorded.lines[static_cast<size_t>(resampling.gap_sample)];
+        throw std::invalid_argument(path + ":" + std::to_string(line) + ": column 't': " + resampling.BriefReport() +
+                                    "; split the log there or choose a --time-window without it (--max-gap sets the "
+                                    "bound)");
+      }
+      if (resampling.status == ResamplingStatus::kResampled) out.notes.push_back(path + ": " + resampling.BriefReport());
+      n = uniform.log.n_samples();
+      w_first = uniform.log.t[0];
+      w_last = uniform.log.t[n - 1];
+      uniform.lines.resize(static_cast<size_t>(n));
+      for (Eigen::Index s = 0; s < n; ++s) uniform.lines[static_cast<size_t>(s)] = static_cast<int>(s);
+      out.source = std::make_shared<RecordedJointLogSource>(std::move(uniform), path, layout.tau_is_current);
+      out.first = 0;
+      out.n_raw = n;
+    }
+    const double rate_hz = static_cast<double>(n - 1) / (w_last - w_first);
 
-  // A uniform grid for the filter: irregular steps are resampled, a gap is an error.
-  if (log.n_samples() < 3) {
-    throw std::invalid_argument(path + ": " + std::to_string(log.n_samples()) +
-                                " samples, too few to estimate qd, qdd by filtering");
-  }
-  JointLog uniform;
-  const ResamplingSummary resampling = ResampleJointLog(log, {.max_gap_s = options.max_gap_s}, &uniform);
-  if (resampling.status == ResamplingStatus::kGap) {
-    const int line = recorded.lines[static_cast<size_t>(resampling.gap_sample)];
-    throw std::invalid_argument(path + ":" + std::to_string(line) + ": column 't': " + resampling.BriefReport() +
-                                "; split the log there or choose a --time-window without it (--max-gap sets the bound)");
-  }
-  if (resampling.status == ResamplingStatus::kResampled) out.notes.push_back(path + ": " + resampling.BriefReport());
-
-  // Enough samples for the zero-phase filter (it runs forward and backward
-  // over the whole log), said in the user's terms.
-  {
-    const Eigen::Index n = uniform.n_samples();
-    const double rate_hz = static_cast<double>(n - 1) / (uniform.t[n - 1] - uniform.t[0]);
+    // Enough samples for the zero-phase filter, a cutoff the kept samples do
+    // not alias, said in the user's terms.
     if (options.filter.cutoff_hz > 0.0 && options.filter.cutoff_hz < 0.5 * rate_hz) {
       const int needed =
           FiltFiltMinSamples(DesignButterworthLowPass(options.filter.order, options.filter.cutoff_hz, rate_hz));
@@ -153,25 +270,66 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
                                     "time window, or a log that records qd and qdd");
       }
     }
+    if (!(options.filter.cutoff_hz < 0.5 * rate_hz)) {
+      throw std::invalid_argument(path + ": joint log: expected cutoff_hz < fs/(2·decimation) = " +
+                                  Shortest(0.5 * rate_hz) + " Hz, got " + Shortest(options.filter.cutoff_hz) +
+                                  " Hz (fs = " + Shortest(rate_hz) + " Hz)");
+    }
+    out.parallel_filter = ParallelFilter{options.filter, rate_hz};
+    hold(n);
+    out.derivatives = out.has_qd ? "qd from the log (filtered), qdd from the filtered qd"
+                    : out.has_qdd ? "qd from the filtered q, qdd from the log (filtered)"
+                                  : "qd, qdd from the filtered q";
   }
 
-  // qd, qdd by the zero-phase filter: from q, or from the recorded qd (qdd).
-  LogFilterOptions derivatives = options.filter;
-  derivatives.decimation = 1;
-  derivatives.trim_s = 0.0;
-  derivatives.filter_tau = false;
-  try {
-    out.log = ProcessJointLog(uniform, derivatives);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(path + ": " + e.what());
-  }
-  // tau is left unfiltered: it is filtered with the regressor (parallel filter).
-  const Eigen::Index n = out.log.n_samples();
-  out.parallel_filter = ParallelFilter{options.filter, static_cast<double>(n - 1) / (out.log.t[n - 1] - out.log.t[0])};
-  out.derivatives = has_qd ? "qd from the log (filtered), qdd from the filtered qd"
-                  : has_qdd ? "qd from the filtered q, qdd from the log (filtered)"
-                            : "qd, qdd from the filtered q";
+  // Second pass: the prepared log as held (every log_stride-th sample).
+  const Eigen::Index k = out.log_stride, m = (out.n_samples + k - 1) / k;
+  JointLog& held = out.log;
+  held.t.resize(m);
+  for (Eigen::MatrixXd* x : {&held.q, &held.qd, &held.qdd, &held.tau}) x->resize(m, layout.n_dof);
+  ProgressLine progress(path + ": filtering");
+  StreamPreparedSamples(out, [&](const JointLog& prepared, Eigen::Index s0) {
+    for (Eigen::Index s = (s0 + k - 1) / k * k; s < s0 + prepared.n_samples(); s += k) {
+      const Eigen::Index r = s - s0;
+      held.t[s / k] = prepared.t[r];
+      held.q.row(s / k) = prepared.q.row(r);
+      held.qd.row(s / k) = prepared.qd.row(r);
+      held.qdd.row(s / k) = prepared.qdd.row(r);
+      held.tau.row(s / k) = prepared.tau.row(r);
+    }
+  }, out.n_raw > kStreamBlockSamples ? &progress : nullptr);
   return out;
+}
+
+StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
+                               const BaseParameters& base, const Eigen::VectorXd& series_beta, TorqueSeries* series,
+                               Eigen::Index max_series_points) {
+  StreamedEquationsSettings settings;
+  settings.filter = log.parallel_filter;
+  settings.n_samples = log.n_samples;
+  if (series) {
+    settings.series_beta = series_beta;
+    settings.series_max_points = max_series_points;
+  }
+  try {
+    StreamedJointEquations equations(model, friction, base, settings);
+    ProgressLine progress(log.path + ": identifying");
+    StreamPreparedSamples(log, [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); },
+                          log.n_raw > kStreamBlockSamples ? &progress : nullptr);
+    if (!equations.done()) throw std::logic_error(log.path + ": the log ended early");
+    if (equations.factors().n_samples() * model.n_dof() <= base.n_base()) {
+      throw std::invalid_argument("joint log has " + std::to_string(equations.factors().n_samples()) +
+                                  " usable samples (" + std::to_string(equations.factors().n_samples() * model.n_dof()) +
+                                  " equations) for " + std::to_string(base.n_base()) +
+                                  " base parameters; record more samples");
+    }
+    if (series) *series = equations.series();
+    return equations.factors();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    if (what.rfind(log.path + ":", 0) == 0) throw;
+    throw std::invalid_argument(log.path + ": " + what);
+  }
 }
 
 }  // namespace idbench

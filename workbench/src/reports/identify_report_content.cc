@@ -19,7 +19,7 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   std::string friction;
   for (const std::string& f : options.friction) friction += (friction.empty() ? "" : ",") + f;
   content.experiment = {{"robot", model.name()},
-                        {"data", options.data + " (" + std::to_string(report.log.n_samples()) + " samples" +
+                        {"data", options.data + " (" + std::to_string(report.n_samples) + " samples" +
                                      (report.filtered ? ", qd and qdd estimated by zero-phase filtering" : "") + ")"},
                         {"estimator", options.estimator},
                         {"friction", friction},

@@ -148,6 +148,13 @@ inline constexpr int kSamplesPerFactorPart = 2048;
 StackedFactors FactorStackedEquations(const RobotModel& model, const FrictionModel& friction,
                                       const BaseParameters& base, const JointLog& log, int n_threads = 0);
 
+// Base columns that can be non-zero in joint j's rows (per joint, ascending):
+// the inertial parameters of link j and its descendants (the joints a link's
+// wrench passes are its ancestors) and joint j's own friction terms; the
+// column sets of the factors FactorStackedEquations returns.
+std::vector<std::vector<int>> JointFactorColumns(const RobotModel& model, const FrictionModel& friction,
+                                                 const BaseParameters& base);
+
 // Torques stacked the same way.
 Eigen::VectorXd StackTorques(const JointLog& log);
 
@@ -171,9 +178,20 @@ std::vector<Eigen::Index> StackedSamples(const JointLog& log, const std::optiona
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options);
 
+// The same from the log's folded equations for `base` (FactorStackedEquations,
+// StreamedJointEquations: a streamed log); options.parallel_filter is not
+// used (the factors are filtered or not). Throws std::invalid_argument for
+// factors of another size or too few equations.
+JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
+                                              const StackedFactors& factors, const JointTorqueOptions& options);
+
 // How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
+
+// The same from the log's folded equations. Throws std::invalid_argument
+// unless β has factors.n_parameters entries.
+TorquePrediction PredictTorques(const StackedFactors& factors, const Eigen::VectorXd& beta);
 
 // Measured and predicted torques of a log over time, on the equations
 // PredictTorques scores: W and τ of StackEquations (with

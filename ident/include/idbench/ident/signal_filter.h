@@ -74,6 +74,28 @@ int FiltFiltMinSamples(const SosMatrix& sos);
 // FiltFiltMinSamples(sos) rows.
 Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x);
 
+// FiltFilt of a long signal in overlapping windows (streamed logs). A window
+// x holds rows [w0, w0 + x.rows()) of a signal of n_total samples; at_start:
+// w0 = 0, at_end: the window reaches the last sample. At a true end the
+// window is padded exactly as FiltFilt pads the whole signal (the same
+// padlen, from n_total); at an inner edge each pass starts in the steady
+// state of the edge sample, an error that decays with the slowest pole. So
+// the rows more than FiltFiltSettlingSamples(sos) inside the inner edges
+// equal FiltFilt of the whole signal to ~tolerance × the signal's range (a
+// window covering the whole signal equals it exactly). x is filtered in
+// place. Throws std::invalid_argument for a malformed sos, n_total shorter
+// than FiltFilt accepts, or a window at an end shorter than padlen + 1.
+void FiltFiltWindow(const SosMatrix& sos, Eigen::Index n_total, bool at_start, bool at_end,
+                    Eigen::Ref<Eigen::MatrixXd> x);
+
+// Samples for the start-up error of one pass of sos to fall below
+// `tolerance` of the step at the edge: ln(10⁻³·tolerance)/ln(r) for the
+// largest pole radius r (1e-3 of margin for the cascade's polynomial
+// factors), at least padlen + 2. Order 4, 10 Hz at 1 kHz: r = 0.97625, 1440
+// samples. Throws std::invalid_argument for a malformed sos or tolerance
+// outside (0, 1).
+int FiltFiltSettlingSamples(const SosMatrix& sos, double tolerance = 1e-12);
+
 // Derivatives of uniformly sampled columns with step dt [s], O(dt²) at every
 // sample: central differences inside,
 //   x'_i = (x_{i+1} − x_{i−1}) / (2 dt),    x''_i = (x_{i+1} − 2 x_i + x_{i−1}) / dt²,
@@ -151,6 +173,10 @@ JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options);
 // n_channels, or too few samples to trim.
 void ParallelFilterStackedRows(const LogFilterOptions& options, double sample_rate_hz, int n_channels,
                                Eigen::MatrixXd* rows);
+
+// Samples dropped at each end by the parallel filter: ⌈trim_s · sample_rate_hz⌉
+// (trim_s < 0: 5/cutoff_hz).
+Eigen::Index ParallelFilterTrimSamples(const LogFilterOptions& options, double sample_rate_hz);
 
 // The samples of an n_samples record that ParallelFilterStackedRows keeps, in
 // order: s = trim, trim + decimation, … < n_samples − trim, with trim =

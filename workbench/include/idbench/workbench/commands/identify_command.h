@@ -2,6 +2,7 @@
 // (simulated or recorded), with an optional held-out log for validation.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,7 +48,10 @@ struct IdentifyOptions {
 };
 
 struct IdentifyReport {
-  JointLog log;                      // as identified (after filtering, if any)
+  // As identified (after filtering, if any): every sample up to
+  // LogPreparationOptions::kMaxHeldSamples, else every k-th (plots, playback).
+  JointLog log;
+  Eigen::Index n_samples = 0;        // of the prepared log, all identified from
   bool filtered = false;             // qd/qdd were estimated by filtering
   std::string derivatives;           // where the identification log's qd, qdd come from
   std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout
@@ -57,8 +61,10 @@ struct IdentifyReport {
   std::optional<TorquePrediction> validation_whole_file;  // on the whole held-out log, when validate_window is set
   // What predicts the torques again (PredictTorqueSeries, the report's plots):
   std::optional<ParallelFilter> parallel_filter;   // on log's equations; set when filtered
-  std::optional<JointLog> held_out_log;            // --validate, prepared as validation scored it
+  std::optional<JointLog> held_out_log;            // --validate, prepared as validation scored it (held as `log`)
   std::optional<ParallelFilter> held_out_filter;   // on held_out_log's equations, if any
+  // The prepared logs, streamed again for the predicted torques.
+  std::shared_ptr<const PreparedLog> prepared, held_out_prepared;
 };
 
 // Reads the logs and identifies. Throws std::invalid_argument naming the file,
@@ -75,7 +81,8 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
 
 // Measured and predicted torque (τ̂ = W β of the chosen estimator) on the
 // identification log or the held-out one, parallel-filtered as the RMS
-// numbers score them (PredictTorqueSeries).
+// numbers score them (PredictTorqueSeries), streamed (FoldPreparedLog): every
+// kept equation up to LogPreparationOptions::kMaxHeldSamples, else every k-th.
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
                                       const IdentifyReport& report, bool held_out);
 

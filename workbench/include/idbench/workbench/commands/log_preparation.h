@@ -2,9 +2,13 @@
 // logs"): read it in its format, keep the time window, bring irregular time
 // stamps onto a uniform grid, and estimate what the log did not record
 // (qd, qdd) with the zero-phase filter, whose regressor and torques are then
-// filtered in parallel.
+// filtered in parallel. Streamed (issue 24): a first pass over the source
+// counts and checks, FoldPreparedLog streams it again through the filter, the
+// regressor and the fold, so memory does not grow with the log's length.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +18,8 @@
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/log_resampling.h"
 #include "idbench/ident/signal_filter.h"
+#include "idbench/ident/streamed_joint_equations.h"
+#include "idbench/logs/joint_log_source.h"
 #include "idbench/logs/recorded_joint_log.h"
 
 namespace idbench {
@@ -25,6 +31,12 @@ struct LogPreparationOptions {
   std::string window_field = "time_window";  // the option field time_window came from, for messages
   LogFilterOptions filter{.trim_s = -1.0};  // for logs missing qd or qdd
   double max_gap_s = 0.0;            // [s] a longer step is an error; 0: 10 median steps
+  // PreparedLog::log holds at most this many samples (every k-th beyond it);
+  // 0: all of them (what needs the whole log, e.g. drive-gain estimation).
+  Eigen::Index max_held_samples = kMaxHeldSamples;
+
+  // 200 000 prepared samples of a 7-joint arm (t, q, qd, qdd, τ) are 46 MB.
+  static constexpr Eigen::Index kMaxHeldSamples = 200000;
 
   static constexpr double kMaxGapS = 3600.0;
   // Checks the options alone; *why names the CLI option.
@@ -32,18 +44,32 @@ struct LogPreparationOptions {
 };
 
 struct PreparedLog {
-  JointLog log;                                  // t, q, qd, qdd, tau (or currents)
+  // The prepared log (t, q, qd, qdd, τ or currents): every log_stride-th of
+  // its n_samples samples, all of them up to max_held_samples (plots,
+  // playback, Python). Identification streams every sample (FoldPreparedLog).
+  JointLog log;
+  Eigen::Index n_samples = 0;
+  Eigen::Index log_stride = 1;
   std::optional<ParallelFilter> parallel_filter;  // set when qd or qdd were estimated
   std::string derivatives;  // where qd and qdd come from, for the user
   std::vector<std::string> notes;     // one line per step done (window, resampling), for stdout
   std::vector<std::string> warnings;  // for stderr
+
+  // How to stream it again: the source's samples [first, first + n_raw)
+  // (the time window), filtered (parallel_filter set; the recorded qd/qdd as
+  // has_qd/has_qdd) or used as recorded, every `decimation`-th kept.
+  std::shared_ptr<JointLogSource> source;
+  std::string path;  // for messages
+  Eigen::Index first = 0, n_raw = 0;
+  bool has_qd = false, has_qdd = false;
+  int decimation = 1;
 };
 
 // Reads `path` and prepares it. A log with both qd and qdd is used as read
 // (no filter, so its time stamps need not be uniform); otherwise the log is
-// resampled if its steps are not uniform (ResampleJointLog) and then
-// filtered (ProcessJointLog, its end transients kept for the parallel
-// filter to drop). Throws std::invalid_argument naming the file (and line
+// resampled if its steps are not uniform (ResampleJointLog, on the log held
+// whole: not streamed yet) and then filtered (StreamedLogFilter, as
+// ProcessJointLog; its end transients kept for the parallel filter to drop). Throws std::invalid_argument naming the file (and line
 // and column where there is one): the parser's errors, a time window outside
 // the log or leaving fewer than 4 samples, a gap longer than the bound, or a
 // log too short for the filter. A log with qd and qdd is decimated by
@@ -54,5 +80,22 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
 // row numbers); `source` names it in messages. options.format is not used.
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& source,
                                     const LogPreparationOptions& options);
+
+// The same for a log opened as a source; `path` names it in messages.
+PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,
+                                  const LogPreparationOptions& options);
+
+// Streams a prepared log's equations for `base` into factors: the source
+// read again in chunks of kStreamBlockSamples, filtered, the regressor
+// stacked, parallel-filtered and folded (StreamedJointEquations). With
+// series_beta (n_base), *series gets the measured and predicted torques of
+// at most max_series_points kept equations (every k-th; all when fewer).
+// A progress line goes to stderr when the work takes more than a few
+// seconds. Throws std::invalid_argument naming the path for too few
+// equations and the source's errors.
+StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
+                               const BaseParameters& base, const Eigen::VectorXd& series_beta = {},
+                               TorqueSeries* series = nullptr,
+                               Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples);
 
 }  // namespace idbench

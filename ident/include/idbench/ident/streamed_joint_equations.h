@@ -1,0 +1,82 @@
+// Joint-torque equations of a long log folded as its prepared samples arrive
+// (issue 24): the base regressor, the parallel filter of W and τ
+// (ParallelFilterStackedRows) with its trimming and decimation run in
+// overlapping windows (OverlapWindows, FiltFiltWindow), and the fold into
+// per-joint triangular factors (StackedFactors). With StreamedLogFilter in
+// front, a log's qd, qdd estimated the same way: memory is
+// O(n_base² + kStreamBlockSamples · n_base), independent of the log's length,
+// and the factors equal those of the whole-log path (ProcessJointLog,
+// StackEquations, FactorStackedRows) to rounding and the filters' 1e-12
+// settling.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "idbench/engine/measurements.h"
+#include "idbench/engine/robot_model.h"
+#include "idbench/ident/base_parameters.h"
+#include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/linear_estimator.h"
+#include "idbench/ident/overlap_windows.h"
+#include "idbench/ident/signal_filter.h"
+#include "idbench/ident/streamed_log_filter.h"
+
+namespace idbench {
+
+struct StreamedEquationsSettings {
+  // The parallel filter of W and τ at the log's uniform rate; nullopt: every
+  // sample's equations are folded as they are.
+  std::optional<ParallelFilter> filter;
+  Eigen::Index n_samples = 0;            // samples that will be pushed
+  int n_threads = 0;                     // regressor threads; 0: the hardware's
+  Eigen::Index block = kStreamBlockSamples;
+  // Optional, bounded: with series_beta, every series_stride-th kept
+  // equation's t, τ and W β (both parallel-filtered when filtered).
+  Eigen::VectorXd series_beta;  // empty: no series
+  Eigen::Index series_stride = 1;
+  Eigen::Index series_max_points = 0;  // > 0: the stride raised to keep at most this many
+};
+
+class StreamedJointEquations {
+ public:
+  // Throws std::invalid_argument for a filter the log is too short for
+  // (FiltFiltMinSamples), too few samples to trim, or n_samples < 1.
+  StreamedJointEquations(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                         const StreamedEquationsSettings& settings);
+
+  // The log's next prepared samples, in order (t uniform at the filter's rate
+  // when filtered; q, qd, qdd, tau of n_dof columns). Throws
+  // std::invalid_argument on a shape mismatch or more samples than announced.
+  void Push(const JointLog& samples);
+
+  bool done() const { return n_pushed_ == settings_.n_samples; }
+  // The folded equations; complete once done().
+  const StackedFactors& factors() const { return factors_; }
+  const TorqueSeries& series() const { return series_; }
+
+ private:
+  void Equations(const JointLog& prepared);
+  void FoldWindow(Eigen::Ref<const Eigen::MatrixXd> window, Eigen::Index w0, Eigen::Index o0, Eigen::Index o1);
+  void FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& rows);
+
+  const RobotModel* model_;
+  FrictionModel friction_;
+  const BaseParameters* base_;
+  StreamedEquationsSettings settings_;
+  int n_dof_;
+  std::vector<std::vector<int>> standard_;  // per joint: standard column of each factor column
+  std::vector<Eigen::Index> offset_;        // per joint: first column of its [W_j τ_j] in a regressor row
+  Eigen::Index width_ = 0;                  // Σ (c_j + 1)
+  SosMatrix sos_;
+  Eigen::Index trim_ = 0;
+  std::optional<OverlapWindows> rows_;  // the parallel filter's windows
+  Eigen::Index n_pushed_ = 0;
+  Eigen::MatrixXd filtered_, regressor_;  // workspace
+  std::vector<Eigen::MatrixXd> fold_;     // per joint
+  StackedFactors factors_;
+  Eigen::Index n_series_kept_ = 0;
+  TorqueSeries series_;
+};
+
+}  // namespace idbench
