@@ -70,7 +70,7 @@ Rosbag2JointLogSource::Rosbag2JointLogSource(const std::string& path, const Robo
     last_receive = sample_.t_receive;
   }
   n_messages_ = message_index_ + 1;
-  if (n_messages_ == 0) throw std::invalid_argument(path + ": topic " + topic_ + " has no messages");
+  if (n_messages_ == 0) throw std::invalid_argument(path + ": " + topic_ + " has no messages");
   if (torques == TorqueColumns::kRequired && no_effort >= 0) {
     message_index_ = no_effort;
     Fail("effort is empty, and identification needs the joint torques");
@@ -89,7 +89,7 @@ Rosbag2JointLogSource::Rosbag2JointLogSource(const std::string& path, const Robo
   layout_.has_qd = no_velocity < 0;
   layout_.has_tau = no_effort < 0;
   layout_.record_name = "message";
-  layout_.notes.push_back(path + ": topic " + topic_ + " (" + kJointStateType + "), " +
+  layout_.notes.push_back(path + ": " + topic_ + " (" + kJointStateType + "), " +
                           std::to_string(n_messages_) + " messages; joints matched by name");
   if (!ignored_names_.empty()) {
     layout_.notes.push_back(path + ": ignored joints that the robot does not have: " + Join(ignored_names_));
@@ -124,24 +124,24 @@ std::string Rosbag2JointLogSource::ChooseTopic(const std::string& requested) con
   if (!requested.empty()) {
     const auto found = std::find_if(topics.begin(), topics.end(), [&](const BagTopic& t) { return t.name == requested; });
     if (found == topics.end()) {
-      throw std::invalid_argument(path_ + ": topic " + requested + " is not in the bag (topics: " + Join(all) + ")");
+      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' is not in the bag (topics: " + Join(all) + ")");
     }
     if (found->type != kJointStateType) {
-      throw std::invalid_argument(path_ + ": topic " + requested + " has type " + found->type + ", expected " +
+      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' has type " + found->type + ", expected " +
                                   kJointStateType);
     }
     if (!found->serialization.empty() && found->serialization != "cdr") {
-      throw std::invalid_argument(path_ + ": topic " + requested + " is serialized as " + found->serialization +
+      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' is serialized as " + found->serialization +
                                   ", expected cdr");
     }
     return requested;
   }
   if (joint_states.empty()) {
-    throw std::invalid_argument(path_ + ": no topic of type " + kJointStateType + " (topics: " + Join(all) + ")");
+    throw std::invalid_argument(path_ + ": no " + kJointStateType + " in the bag (topics: " + Join(all) + ")");
   }
   if (joint_states.size() > 1) {
     throw std::invalid_argument(path_ + ": several " + kJointStateType + " topics: " + Join(joint_states) +
-                                "; name one as the log format's topic");
+                                "; choose one with the log format's topic");
   }
   return ChooseTopic(joint_states.front());
 }
@@ -241,8 +241,8 @@ void Rosbag2JointLogSource::ToSample(Sample* sample) {
 void Rosbag2JointLogSource::Fail(const std::string& what) const {
   const std::string file = file_index_ < files_.paths.size() ? files_.paths[file_index_] : path_;
   const std::string record = reader_ != nullptr && raw_.data != nullptr ? ", " + reader_->LastRecord() : "";
-  throw std::invalid_argument(file + ": message " + std::to_string(message_index_) + ": " + what + " (topic " +
-                              topic_ + record + ")");
+  throw std::invalid_argument(file + ": message " + std::to_string(message_index_) + ": " + what + " (on " + topic_ +
+                              record + ")");
 }
 
 bool Rosbag2JointLogSource::Next(Eigen::Index max_samples, JointLogChunk* chunk) {

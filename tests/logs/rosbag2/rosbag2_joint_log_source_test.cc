@@ -156,7 +156,7 @@ TEST(Rosbag2JointLogSourceTest, NamesTheFileTheMessageAndTheFault) {
   ExpectMentions(Error(Bag("truncated.mcap")),
                  {"truncated.mcap: message 22: ", "unexpected end of file in Chunk record at offset 4642"});
   ExpectMentions(Error(Bag("wrong_type.mcap")),
-                 {"wrong_type.mcap: ", "no topic of type sensor_msgs/msg/JointState",
+                 {"wrong_type.mcap: ", "no sensor_msgs/msg/JointState in the bag",
                   "/joint_states (std_msgs/msg/String)"});
   ExpectMentions(Error(Bag("ragged.mcap")),
                  {"ragged.mcap: message 57: ", "position has 5 entries, name has 7", "/joint_states"});
