@@ -1,5 +1,6 @@
 #include "cdr_reader.h"
 
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 
@@ -45,7 +46,11 @@ std::uint32_t CdrReader::Uint32At(const std::uint8_t* p) const {
 
 double CdrReader::Float64At(const std::uint8_t* p) const {
   std::uint64_t bits = 0;
-  for (int i = 0; i < 8; ++i) bits |= std::uint64_t{p[big_endian_ ? 7 - i : i]} << (8 * i);
+  if (std::endian::native == std::endian::little && !big_endian_) {
+    std::memcpy(&bits, p, sizeof bits);  // the common case: one load
+  } else {
+    for (int i = 0; i < 8; ++i) bits |= std::uint64_t{p[big_endian_ ? 7 - i : i]} << (8 * i);
+  }
   double value;
   std::memcpy(&value, &bits, sizeof value);
   return value;

@@ -37,10 +37,10 @@ std::uint64_t Le(const std::uint8_t* p, int bytes) {
 
 // The fields of one record, little endian, each checked against the record's
 // length; `where` names the record in messages.
+template <typename Where>
 class Fields {
  public:
-  Fields(const std::uint8_t* data, std::uint64_t size, const std::string& where)
-      : data_(data), size_(size), where_(where) {}
+  Fields(const std::uint8_t* data, std::uint64_t size, const Where& where) : data_(data), size_(size), where_(where) {}
   std::uint64_t Uint(int bytes, const char* field) { return Le(Take(static_cast<std::uint64_t>(bytes), field), bytes); }
   std::string String(const char* field) {
     const std::uint64_t n = Uint(4, field);
@@ -60,7 +60,7 @@ class Fields {
  private:
   const std::uint8_t* Take(std::uint64_t n, const char* field) {
     if (n > size_ - pos_) {
-      throw std::invalid_argument(where_ + ": field " + field + " (" + std::to_string(n) + " bytes at byte " +
+      throw std::invalid_argument(Text(where_) + ": field " + field + " (" + std::to_string(n) + " bytes at byte " +
                                   std::to_string(pos_) + ") overruns the record of " + std::to_string(size_) +
                                   " bytes");
     }
@@ -70,7 +70,10 @@ class Fields {
   const std::uint8_t* data_;
   std::uint64_t size_;
   std::uint64_t pos_ = 0;
-  const std::string& where_;
+  static std::string Text(const std::string& where) { return where; }
+  template <typename Place>
+  static std::string Text(const Place& place) { return place.Describe(); }
+  const Where& where_;
 };
 
 // Decompresses an LZ4 frame (not a raw block) of exactly out.size() bytes.
@@ -168,7 +171,7 @@ void McapReader::Select(const std::string& topic) {
   offset_ = 8;
   in_chunk_ = false;
   done_ = false;
-  last_record_.clear();
+  last_record_ = RecordPlace();
 }
 
 bool McapReader::Next(BagMessage* message) {
@@ -176,18 +179,18 @@ bool McapReader::Next(BagMessage* message) {
     // The records of the chunk being read.
     if (in_chunk_) {
       if (chunk_pos_ < chunk_.size()) {
-        const std::string where = "record at byte " + std::to_string(chunk_pos_) + " of the Chunk record at offset " +
-                                  std::to_string(chunk_offset_);
-        if (chunk_.size() - chunk_pos_ < kRecordHeaderBytes) throw std::invalid_argument(where + ": cut short");
-        const std::uint8_t opcode = chunk_[chunk_pos_];
+        const RecordPlace place{chunk_.size() - chunk_pos_ >= 1 ? chunk_[chunk_pos_] : std::uint8_t{0}, chunk_offset_,
+                                static_cast<std::int64_t>(chunk_pos_)};
+        if (chunk_.size() - chunk_pos_ < kRecordHeaderBytes) {
+          throw std::invalid_argument(place.Describe() + ": cut short");
+        }
         const std::uint64_t length = Le(&chunk_[chunk_pos_ + 1], 8);
         if (length > chunk_.size() - chunk_pos_ - kRecordHeaderBytes) {
-          throw std::invalid_argument(RecordName(opcode) + " " + where + ": " + std::to_string(length) +
-                                      " bytes overrun the chunk");
+          throw std::invalid_argument(place.Describe() + ": " + std::to_string(length) + " bytes overrun the chunk");
         }
         const std::uint8_t* content = &chunk_[chunk_pos_ + kRecordHeaderBytes];
         chunk_pos_ += kRecordHeaderBytes + length;
-        if (HandleRecord(opcode, content, length, RecordName(opcode) + " " + where, message)) return true;
+        if (HandleRecord(place, content, length, message)) return true;
         continue;
       }
       in_chunk_ = false;
@@ -204,9 +207,9 @@ bool McapReader::Next(BagMessage* message) {
     const std::uint8_t opcode = header[0];
     const std::uint64_t length = Le(header + 1, 8);
     const std::uint64_t offset = offset_;
-    const std::string where = RecordName(opcode) + " record at offset " + std::to_string(offset);
+    const RecordPlace place{opcode, offset};
     if (length > data_end_ - offset - kRecordHeaderBytes) {
-      throw std::invalid_argument("unexpected end of file in " + where + " (a record of " +
+      throw std::invalid_argument("unexpected end of file in " + place.Describe() + " (a record of " +
                                   std::to_string(kRecordHeaderBytes + length) + " bytes, the file ends at " + std::to_string(data_end_) + ": truncated)");
     }
     offset_ = offset + kRecordHeaderBytes + length;
@@ -225,7 +228,7 @@ bool McapReader::Next(BagMessage* message) {
       case kMessage:
         record_.resize(length);
         ReadAt(offset + kRecordHeaderBytes, length, record_.data());
-        if (HandleRecord(opcode, record_.data(), length, where, message)) return true;
+        if (HandleRecord(place, record_.data(), length, message)) return true;
         break;
       default:  // indexes, attachments, metadata, statistics: not needed
         break;
@@ -285,9 +288,16 @@ void McapReader::OpenChunk(std::uint64_t offset) {
   in_chunk_ = true;
 }
 
-bool McapReader::HandleRecord(std::uint8_t opcode, const std::uint8_t* content, std::uint64_t length,
-                              const std::string& where, BagMessage* message) {
-  Fields fields(content, length, where);
+std::string McapReader::RecordPlace::Describe() const {
+  return chunk_byte < 0 ? RecordName(opcode) + " record at offset " + std::to_string(offset)
+                        : RecordName(opcode) + " record at byte " + std::to_string(chunk_byte) +
+                              " of the Chunk record at offset " + std::to_string(offset);
+}
+
+bool McapReader::HandleRecord(const RecordPlace& place, const std::uint8_t* content, std::uint64_t length,
+                              BagMessage* message) {
+  const std::uint8_t opcode = place.opcode;
+  Fields fields(content, length, place);
   if (opcode == kSchema) {
     const auto id = static_cast<std::uint16_t>(fields.Uint(2, "id"));
     schema_names_[id] = fields.String("name");
@@ -316,7 +326,7 @@ bool McapReader::HandleRecord(std::uint8_t opcode, const std::uint8_t* content, 
   fields.Uint(8, "publish_time");
   const auto channel = channels_.find(channel_id);
   if (channel == channels_.end()) {
-    throw std::invalid_argument(where + ": channel " + std::to_string(channel_id) +
+    throw std::invalid_argument(place.Describe() + ": channel " + std::to_string(channel_id) +
                                 ", which no Channel record before it defines");
   }
   if (channel->second.topic != selected_) return false;
@@ -324,7 +334,7 @@ bool McapReader::HandleRecord(std::uint8_t opcode, const std::uint8_t* content, 
   message->data = fields.Rest(&size);
   message->size = size;
   message->log_time_ns = static_cast<std::int64_t>(log_time);
-  last_record_ = where;
+  last_record_ = place;
   return true;
 }
 

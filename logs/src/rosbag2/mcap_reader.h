@@ -34,11 +34,18 @@ class McapReader final : public BagMessageReader {
   // ...", a chunk's CRC mismatch, an unknown compression, a record that
   // overruns its chunk, a Message on a channel no Channel record defined.
   bool Next(BagMessage* message) override;
-  std::string LastRecord() const override { return last_record_; }
+  std::string LastRecord() const override { return last_record_.Describe(); }
 
   static constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 31;  // a chunk's decompressed size
 
  private:
+  // Where a record is, described only for a message (not per record read).
+  struct RecordPlace {
+    std::uint8_t opcode = 0;
+    std::uint64_t offset = 0;      // of the record in the file, or of its Chunk record
+    std::int64_t chunk_byte = -1;  // of the record in its chunk's records; -1: a top-level record
+    std::string Describe() const;  // "Message record at byte 3864 of the Chunk record at offset 17768"
+  };
   struct Channel {
     std::string topic;
     std::uint16_t schema_id = 0;
@@ -53,7 +60,7 @@ class McapReader final : public BagMessageReader {
   void OpenChunk(std::uint64_t offset);
   // A Schema, Channel or Message record; true when it is a message to hand
   // out (then *message is filled).
-  bool HandleRecord(std::uint8_t opcode, const std::uint8_t* content, std::uint64_t length, const std::string& where,
+  bool HandleRecord(const RecordPlace& place, const std::uint8_t* content, std::uint64_t length,
                     BagMessage* message);
 
   std::string path_;
@@ -71,7 +78,7 @@ class McapReader final : public BagMessageReader {
   std::map<std::uint16_t, std::string> schema_names_;
   std::map<std::uint16_t, Channel> channels_;
   std::vector<BagTopic> topics_;
-  std::string last_record_;
+  RecordPlace last_record_;
 };
 
 }  // namespace idbench::internal
