@@ -252,12 +252,12 @@ void McapReader::OpenChunk(std::uint64_t offset) {
   }
 
   // Decompress: "" (stored), "lz4" (an LZ4 frame), "zstd" (Zstandard frames).
+  if (compression.empty() && compressed_size != uncompressed_size) {
+    throw std::invalid_argument(where + ": uncompressed chunk of " + std::to_string(compressed_size) +
+                                " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
+  }
   chunk_.resize(uncompressed_size);
   if (compression.empty()) {
-    if (compressed_size != uncompressed_size) {
-      throw std::invalid_argument(where + ": uncompressed chunk of " + std::to_string(compressed_size) +
-                                  " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
-    }
     std::copy(records, records + compressed_size, chunk_.begin());
   } else if (compression == "lz4") {
     DecompressLz4Frame(records, compressed_size, chunk_, where);
