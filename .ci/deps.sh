@@ -2,11 +2,11 @@
 # Installs idbench's build and test dependencies from Debian 12 packages.
 set -euo pipefail
 packages=(build-essential cmake pkg-config
-          libbullet-dev libeigen3-dev nlohmann-json3-dev libcli11-dev
+          libbullet-dev libeigen3-dev nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
           liburdfdom-dev libtinyxml-dev libassimp-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
-          libsqlite3-dev liblz4-dev libzstd-dev zlib1g-dev libyaml-cpp-dev  # rosbag2 bags (.db3, .mcap)
+          libsqlite3-dev liblz4-dev libzstd-dev zlib1g-dev  # rosbag2 bags (.db3, .mcap)
           libdsdp-dev                 # the tests' second SDP solver
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           libgtest-dev libbenchmark-dev

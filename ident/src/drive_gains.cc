@@ -9,9 +9,13 @@
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/ident/least_squares.h"
 #include "idbench/ident/linear_estimator.h"
+#include "link_equations.h"
 
 namespace idbench {
 namespace {
+
+using internal::MinNormSolution;
+using internal::SolveMinNorm;
 
 // Columns of one log's equations, rows interleaved by joint (s·n + j):
 // the base regressor (n_base), the last link's 10 standard columns
@@ -20,39 +24,18 @@ namespace {
 Eigen::MatrixXd StackGainEquations(const RobotModel& model, const FrictionModel& friction,
                                    const BaseParameters& base, const CurrentLog& log, const char* which) {
   const int n = model.n_dof();
-  const JointLog& m = log.motion;
-  const int n_samples = m.n_samples();
-  const auto fail = [&](const std::string& what) { throw std::invalid_argument(std::string(which) + " log: " + what); };
-  if (m.n_dof() != n || m.qd.rows() != n_samples || m.qdd.rows() != n_samples || m.qd.cols() != n ||
-      m.qdd.cols() != n) {
-    fail("expected q, qd, qdd of " + std::to_string(n) + " joints for " + std::to_string(n_samples) +
-         " samples (robot '" + model.name() + "')");
-  }
+  const int n_samples = log.motion.n_samples();
   if (log.current.rows() != n_samples || log.current.cols() != n) {
-    fail("expected currents of " + std::to_string(n_samples) + "x" + std::to_string(n) + ", got " +
-         std::to_string(log.current.rows()) + "x" + std::to_string(log.current.cols()));
+    throw std::invalid_argument(std::string(which) + " log: expected currents of " + std::to_string(n_samples) + "x" +
+                                std::to_string(n) + ", got " + std::to_string(log.current.rows()) + "x" +
+                                std::to_string(log.current.cols()));
   }
-  const int n_base = base.n_base();
-  const int payload_first = (model.n_links() - 1) * kInertialParametersPerLink;
-  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_samples) * n,
-                                               n_base + kInertialParametersPerLink + n);
-  RobotData data(model);
-  Eigen::MatrixXd Y;
-  Eigen::VectorXd q(n), qd(n), qdd(n);
+  Eigen::MatrixXd currents = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_samples) * n, n);
   for (int s = 0; s < n_samples; ++s) {
-    q = m.q.row(s).transpose();
-    qd = m.qd.row(s).transpose();
-    qdd = m.qdd.row(s).transpose();
-    ComputeJointTorqueRegressor(model, friction, q, qd, qdd, &data, &Y);
-    const Eigen::Index r0 = static_cast<Eigen::Index>(s) * n;
-    for (int k = 0; k < n_base; ++k) rows.block(r0, k, n, 1) = Y.col(base.independent[static_cast<size_t>(k)]);
-    rows.block(r0, n_base, n, kInertialParametersPerLink) = Y.middleCols(payload_first, kInertialParametersPerLink);
-    for (int j = 0; j < n; ++j) rows(r0 + j, n_base + kInertialParametersPerLink + j) = log.current(s, j);
+    for (int j = 0; j < n; ++j) currents(static_cast<Eigen::Index>(s) * n + j, j) = log.current(s, j);
   }
-  if (log.parallel_filter) {
-    ParallelFilterStackedRows(log.parallel_filter->filter, log.parallel_filter->sample_rate_hz, n, &rows);
-  }
-  return rows;
+  return internal::StackLinkEquations(model, friction, &base, model.n_links() - 1, log.motion, currents,
+                                      log.parallel_filter, which);
 }
 
 // Per-joint RMS of a stacked residual, and ‖r‖/‖ref‖.
@@ -61,37 +44,6 @@ void ResidualStatistics(const Eigen::VectorXd& r, const Eigen::VectorXd& referen
   *rms = JointRms(r, n_dof);
   const double ref = reference.norm();
   *relative = ref > 0.0 ? r.norm() / ref : std::numeric_limits<double>::infinity();
-}
-
-// Minimum-norm least squares of A x = b with the unknowns' identifiability
-// (least_squares.h), through the R factor of [A b] (same row space, p + 1
-// rows instead of m), and diag((AᵀA)⁺) for the variances.
-struct MinNormSolution {
-  LeastSquaresSolution ls;   // rank, identifiable, reasons
-  Eigen::VectorXd x;         // minimum-norm solution, every entry finite (p)
-  Eigen::VectorXd variance;  // diag((AᵀA)⁺) in the determined directions (p)
-  double residual2 = 0.0;    // ‖A x − b‖²
-};
-
-MinNormSolution SolveMinNorm(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const std::vector<std::string>& names) {
-  const Eigen::Index p = A.cols();
-  const Eigen::MatrixXd factor = CombinedFactor(A, b);
-  const Eigen::MatrixXd R = factor.topLeftCorner(p, p);
-  const Eigen::VectorXd z = factor.col(p).head(p);
-  MinNormSolution out;
-  out.ls = SolveLeastSquares(R, z, names);
-  // SVD of the column-normalised R, truncated at the rank decided above.
-  Eigen::VectorXd norms = R.colwise().norm();
-  for (Eigen::Index c = 0; c < p; ++c) norms[c] = norms[c] > 0.0 ? norms[c] : 1.0;
-  const Eigen::MatrixXd Rn = R * norms.cwiseInverse().asDiagonal();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Rn, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const int rank = out.ls.rank;
-  const Eigen::VectorXd inverse_sv = svd.singularValues().head(rank).cwiseInverse();
-  const Eigen::MatrixXd Vr = svd.matrixV().leftCols(rank);
-  out.x = (Vr * inverse_sv.asDiagonal() * (svd.matrixU().leftCols(rank).transpose() * z)).cwiseQuotient(norms);
-  out.variance = (Vr * inverse_sv.asDiagonal()).rowwise().squaredNorm().cwiseQuotient(norms.cwiseAbs2());
-  out.residual2 = (R * out.x - z).squaredNorm() + factor(p, p) * factor(p, p);
-  return out;
 }
 
 // Both logs' equations stacked, [W, payload columns, −diag(i)] x = b for the

@@ -1,6 +1,7 @@
 // A check of a recorded log against its format's angle unit.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,5 +18,9 @@ namespace idbench::internal {
 // naming `source`, goes to *warnings.
 void WarnIfRadiansReadAsDegrees(const JointLogFormat& format, const std::string& source, const Eigen::MatrixXd& q,
                                 std::vector<std::string>* warnings);
+// The same from each joint's range over the log [rad] (a running min and
+// max kept while streaming) and the number of samples.
+void WarnIfRadiansReadAsDegrees(const JointLogFormat& format, const std::string& source, const Eigen::VectorXd& q_min,
+                                const Eigen::VectorXd& q_max, std::int64_t n_samples, std::vector<std::string>* warnings);
 
 }  // namespace idbench::internal

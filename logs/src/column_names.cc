@@ -11,6 +11,25 @@ std::string ColumnLabel(size_t c, const std::string& name) {
   return "column " + std::to_string(c + 1) + " ('" + PrintableText(name) + "')";
 }
 
+int ActuatorPrefix(const std::string& prefix) {
+  for (int k = 0; k < 4; ++k) {
+    if (prefix == kActuatorPrefix[k]) return k;
+  }
+  return -1;
+}
+
+const char* ActuatorColumn(const std::string& name) {
+  static constexpr const char* kWhat[] = {"motor position", "motor velocity", "motor torque", "motor current"};
+  const size_t digits = name.find_first_of("0123456789");
+  if (digits == std::string::npos || digits == 0) return nullptr;
+  const int kind = ActuatorPrefix(name.substr(0, digits));
+  int joint = 0;
+  const char* end = name.data() + name.size();
+  const auto [ptr, ec] = std::from_chars(name.data() + digits, end, joint);
+  if (kind < 0 || ec != std::errc() || ptr != end || joint < 1) return nullptr;
+  return kWhat[kind];
+}
+
 bool ParseColumnName(const std::string& name, ColumnTarget* target) {
   if (name == "_") {
     *target = {-1, 0};

@@ -23,6 +23,14 @@ constexpr int kKinds = 6;
 // Returns false for anything else.
 bool ParseColumnName(const std::string& name, ColumnTarget* target);
 
+// For an actuator-side column name (qm<j> motor position, qdm<j> motor
+// velocity, taum<j> motor torque, im<j> motor current), what it is ("motor
+// position"); nullptr for any other name.
+const char* ActuatorColumn(const std::string& name);
+// Its prefix's kind for ranges (qm1..qm6): 0..3 in kActuatorPrefix, or -1.
+int ActuatorPrefix(const std::string& prefix);
+constexpr const char* kActuatorPrefix[] = {"qm", "qdm", "taum", "im"};
+
 // "column C ('name')" for messages, C counted from 1, the name escaped and cut.
 std::string ColumnLabel(size_t c, const std::string& name);
 

@@ -18,6 +18,20 @@ std::vector<std::string> SplitFields(const std::string& line) {
   }
 }
 
+void SplitFieldViews(std::string_view line, std::vector<std::string_view>* fields) {
+  fields->clear();
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    std::string_view field = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    while (!field.empty() && (field.back() == ' ' || field.back() == '\r' || field.back() == '\t')) field.remove_suffix(1);
+    while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
+    fields->push_back(field);
+    if (comma == std::string_view::npos) return;
+    start = comma + 1;
+  }
+}
+
 bool AllNumbers(const std::vector<std::string>& fields) {
   for (const std::string& f : fields) {
     double v = 0.0;

@@ -52,6 +52,7 @@ bool JointLogFormat::IsValid(std::string* why) const {
       return fail("--columns: column " + std::to_string(c + 1) + " is empty (two commas in a row, or a comma at an "
                   "end?); name every column, \"_\" skips one");
     }
+    if (internal::ActuatorColumn(names[c])) continue;  // refused by name when the log is read (needs a transmission)
     if (!ParseColumnName(names[c], &target)) {
       return fail(where + ": unknown; expected t, q<j>, qd<j>, qdd<j>, tau<j>, i<j>, a range such as q1..q6, or _");
     }
@@ -100,6 +101,15 @@ std::vector<std::string> ExpandColumnNames(const std::vector<std::string>& items
     // A range: <prefix><a>..<prefix><b>, a <= b.
     ColumnTarget first{}, last{};
     const std::string a = item.substr(0, dots), b = item.substr(dots + 2);
+    // Actuator-side names (qm1..qm6) expand too, to be refused by name.
+    if (internal::ActuatorColumn(a) && internal::ActuatorColumn(b)) {
+      const size_t da = a.find_first_of("0123456789"), db = b.find_first_of("0123456789");
+      const int ja = std::stoi(a.substr(da)), jb = std::stoi(b.substr(db));
+      if (a.substr(0, da) == b.substr(0, db) && ja <= jb && jb - ja < JointLogFormat::kMaxColumns) {
+        for (int j = ja; j <= jb; ++j) add(a.substr(0, da) + std::to_string(j));
+        continue;
+      }
+    }
     if (!ParseColumnName(a, &first) || !ParseColumnName(b, &last) || first.kind <= 0 || first.kind != last.kind ||
         last.joint < first.joint) {
       throw std::invalid_argument("--columns: '" + item + "': expected a range such as q1..q6 (same prefix, first <= last)");

@@ -1,7 +1,7 @@
 #include "idbench/logs/open_joint_log.h"
 
 #include "idbench/logs/joint_log_csv_reader.h"
-#include "idbench/logs/recorded_joint_log_source.h"
+#include "idbench/logs/joint_log_description.h"
 #include "idbench/logs/rosbag2_joint_log.h"
 
 #include <stdexcept>
@@ -13,9 +13,12 @@ std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const Robo
   // A rosbag2 bag: a directory with metadata.yaml, a .db3 or an .mcap file.
   if (IsRosbag2Path(path)) return OpenRosbag2JointLog(path, model, format, torques);
   if (!format.topic.empty()) throw std::invalid_argument(path + ": topic '" + format.topic + "': only a bag has topics");
-  // A CSV file, read whole for now; the streaming CSV reader replaces this.
-  return std::make_unique<RecordedJointLogSource>(ReadRecordedJointLog(path, model, format, torques), path,
-                                                  torques == TorqueColumns::kCurrents);
+  // A log description (.json, .yaml, .yml): the files it describes.
+  if (IsJointLogDescriptionPath(path)) {
+    return OpenDescribedJointLog(ReadJointLogDescription(path), model, format, torques);
+  }
+  // A CSV file, streamed.
+  return OpenJointLogCsv(path, model, format, torques);
 }
 
 }  // namespace idbench

@@ -52,8 +52,6 @@ bool RecordedJointLogSource::Next(Eigen::Index max_samples, JointLogChunk* chunk
 RecordedJointLog ReadWholeLog(JointLogSource& source, Eigen::Index chunk_samples) {
   const JointLogLayout& layout = source.layout();
   RecordedJointLog out;
-  out.notes = layout.notes;
-  out.warnings = layout.warnings;
   out.torque_from_currents = layout.torque_from_currents;
   JointLog& log = out.log;
   Eigen::Index filled = 0;
@@ -79,6 +77,9 @@ RecordedJointLog ReadWholeLog(JointLogSource& source, Eigen::Index chunk_samples
   trim(log.qdd);
   trim(log.tau);
   if (log.q.size() == 0) log.q.resize(filled, layout.n_dof);
+  // After the last chunk: what needed the whole log (e.g. the degree check).
+  out.notes = layout.notes;
+  out.warnings = layout.warnings;
   return out;
 }
 

@@ -16,7 +16,7 @@
 
 namespace idbench::cli {
 
-// One rule for every command (README "Exit codes"): 0 ok; kExitUsage the
+// One rule for every command (docs/exit-codes.md): 0 ok; kExitUsage the
 // options or an input file are wrong (a usage error, or std::invalid_argument
 // from reading or checking the inputs), nothing written; kExitFailure it ran
 // and failed (any other error), nothing written.
@@ -81,6 +81,7 @@ CliCommand AddRunCommand(CLI::App* app, CliContext* context);
 CliCommand AddSimulateCommand(CLI::App* app, CliContext* context);
 CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context);
 CliCommand AddGainsCommand(CLI::App* app, CliContext* context);
+CliCommand AddPayloadCommand(CLI::App* app, CliContext* context);
 CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context);
 CliCommand AddRenderCommand(CLI::App* app, CliContext* context);
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context);

@@ -1,7 +1,7 @@
 // idbench: design robot identification experiments, simulate them in Bullet,
 // identify dynamic parameters. This file only dispatches: each subcommand's
 // flags and run are in <command>_cli.cc (the list in idbench_app.cc). Exit
-// codes, one rule for every command (README "Exit codes"): 0 ok; 2 the options
+// codes, one rule for every command (docs/exit-codes.md): 0 ok; 2 the options
 // or an input file are wrong (a usage error, or std::invalid_argument from
 // reading or checking the inputs), nothing written; 1 it ran and failed (any
 // other error), nothing written.
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   // CLI11 parses a line naming several subcommands (`idbench design run`);
   // the first parsed in this order runs.
   const CliCommand* parsed = nullptr;
-  for (const char* name : {"run", "simulate", "identify", "gains", "montecarlo", "render", "report", "design",
+  for (const char* name : {"run", "simulate", "identify", "gains", "payload", "montecarlo", "render", "report", "design",
                            "compare", "gui"}) {
     const auto command = std::find_if(commands.begin(), commands.end(),
                                       [name](const CliCommand& c) { return c.app->get_name() == name; });
@@ -54,5 +54,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "idbench: error: %s\n", e.what());
     return idbench::cli::kExitFailure;
   }
-  return context.UsageError("a subcommand is required (run, simulate, identify, gains, montecarlo, design, compare, render, report, gui); see idbench --help");
+  return context.UsageError("a subcommand is required (run, simulate, identify, gains, payload, montecarlo, design, compare, render, report, gui); see idbench --help");
 }

@@ -1,6 +1,6 @@
 // The Python module `idbench` (pybind11), one file per part: robot_bindings.cc
 // (Robot), log_bindings.cc (joint logs in and out: simulate), identify_bindings.cc
-// (base parameters, regressor, identify), design_bindings.cc, render_bindings.cc;
+// (base parameters, regressor, identify), payload_bindings.cc, design_bindings.cc, render_bindings.cc;
 // idbench_module.cc calls each Bind in turn. What several parts share is here.
 #pragma once
 
@@ -49,6 +49,7 @@ PreparedLog PrepareLogArgument(const py::object& log, const std::string& source,
 // Each adds its part of the module to `m`, in this order (the order of help(idbench)).
 void BindRobot(py::module_& m);
 void BindIdentify(py::module_& m);
+void BindPayload(py::module_& m);
 void BindLog(py::module_& m);
 void BindDesign(py::module_& m);
 void BindRender(py::module_& m);

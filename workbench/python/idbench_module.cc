@@ -2,7 +2,7 @@
 // makes, on numpy arrays. Options are keyword arguments named as the command
 // line's (--total-mass → total_mass); errors are raised with the command
 // line's messages (ValueError: bad input or options; RuntimeError: it ran and
-// failed). README.md, "Python". Each part is bound in its own file (bindings.h).
+// failed). docs/python.md. Each part is bound in its own file (bindings.h).
 #include <exception>
 
 #include "bindings.h"
@@ -28,6 +28,7 @@ PYBIND11_MODULE(idbench, m) {
   });
   python::BindRobot(m);
   python::BindIdentify(m);
+  python::BindPayload(m);
   python::BindLog(m);
   python::BindDesign(m);
   python::BindRender(m);

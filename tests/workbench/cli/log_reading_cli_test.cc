@@ -356,3 +356,55 @@ TEST_F(LogReadingCliTest, LogTooShortForTheFilterIsSaidPlainly) {
 
 }  // namespace
 }  // namespace idbench
+
+namespace idbench {
+namespace {
+
+// A log description (two files, no time column, vendor headers renamed,
+// currents with the drive gains and a time window in the description)
+// identifies to what the equivalent CSV with the same options identifies;
+// an option given both in the description and on the command line is refused
+// naming both.
+TEST_F(LogReadingCliTest, LogDescriptionIdentifiesAsTheEquivalentCsv) {
+  JointLog log = Motion(model_);
+  for (int k = 0; k < log.n_samples(); ++k) log.t[k] = k / 100.0;
+  std::string pos = "J1,J2,J3,J4,J5,J6,V1,V2,V3,V4,V5,V6,A1,A2,A3,A4,A5,A6\n";
+  pos += testing::JointLogCsvText(log, {"q", "qd", "qdd"}, false, gains_);
+  std::ofstream(dir_ / "pos.csv") << pos;
+  std::ofstream(dir_ / "cur.csv") << testing::JointLogCsvText(log, {"i"}, false, gains_);
+  const fs::path desc = dir_ / "log.json";
+  std::ofstream(desc) << R"({"rate": 100,
+    "files": [{"path": "pos.csv", "columns": "q1..q6,qd1..qd6,qdd1..qdd6"}, {"path": "cur.csv", "columns": "i1..i6"}],
+    "drive_gains": [31.5, 55.0, 28.0, 7.5, -6.2, 4.1], "time_window": [1, 9]})";
+  const fs::path csv = Write("log.csv", log, {"t", "q", "qd", "qdd", "i"}, true);
+  const Result d = Run("identify --robot puma560 --data " + desc.string() + " --validate " + desc.string() + " --out " +
+                       (dir_ / "d").string());
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(d.out.find("log.json: 2 files joined sample by sample, t = k/100 Hz"), std::string::npos) << d.out;
+  const Result c = Run("identify --robot puma560 --data " + csv.string() + " --drive-gains 31.5,55,28,7.5,-6.2,4.1 "
+                       "--time-window 1,9 --out " + (dir_ / "c").string());
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const nlohmann::json jd = Json(dir_ / "d" / "identified.json"), jc = Json(dir_ / "c" / "identified.json");
+  EXPECT_EQ(jd["n_samples"].get<int>(), 801);
+  EXPECT_EQ(jd["n_samples"], jc["n_samples"]);
+  ASSERT_EQ(jd["base_parameters"].size(), jc["base_parameters"].size());
+  for (size_t p = 0; p < jd["base_parameters"].size(); ++p) {
+    const double a = jd["base_parameters"][p]["value"], b = jc["base_parameters"][p]["value"];
+    EXPECT_NEAR(a, b, 1e-12 * (1.0 + std::abs(b))) << p;
+  }
+  EXPECT_LT(jd["fit"]["relative_error"].get<double>(), 1e-8);
+
+  const Result twice = Run("identify --robot puma560 --data " + desc.string() + " --time-window 2,8 --out " +
+                           (dir_ / "t").string());
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("log.json: .time_window (1,9) and the option --time-window (2,8) both give a time window"),
+            std::string::npos) << twice.err;
+  const Result gains = Run("identify --robot puma560 --data " + desc.string() + " --drive-gains 1,1,1,1,1,1 --out " +
+                           (dir_ / "g").string());
+  EXPECT_EQ(gains.exit_code, 2);
+  EXPECT_NE(gains.err.find(".drive_gains (31.5,55,28,7.5,-6.2,4.1) and the option --drive-gains (1,1,1,1,1,1)"),
+            std::string::npos) << gains.err;
+}
+
+}  // namespace
+}  // namespace idbench

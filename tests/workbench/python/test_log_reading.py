@@ -88,3 +88,25 @@ def test_validate_window_scores_part_of_the_held_out_log(puma, exact):
     assert validation["window"] == [0.0, 1.5]
     with pytest.raises(ValueError, match="validate_window: given without a held-out log"):
         idbench.identify(puma, log, validate_window=[0.0, 1.5])
+
+
+def test_log_description_is_read_where_a_log_is(puma, exact, tmp_path):
+    # A description of two files (one number per line for q, a CSV for the
+    # rest, no time column: a rate) identifies as the arrays do.
+    log, reference = exact
+    n = len(log["t"])
+    (tmp_path / "q.txt").write_text("".join(f"{v!r}\n" for v in log["q"].reshape(-1)))
+    rows = np.hstack([log["qd"], log["qdd"], log["tau"]])
+    (tmp_path / "rest.csv").write_text("".join(",".join(repr(v) for v in row) + "\n" for row in rows))
+    description = {"rate": 200.0,
+                   "files": [{"path": "q.txt", "layout": "one-value-per-line", "stride": 6, "columns": "q1..q6"},
+                             {"path": "rest.csv", "columns": ["qd1..qd6", "qdd1..qdd6", "tau1..tau6"]}]}
+    path = tmp_path / "log.json"
+    path.write_text(json.dumps(description))
+    result = idbench.identify(puma, str(path))
+    assert json.loads(result.json)["n_samples"] == n
+    np.testing.assert_allclose(result.standard, reference.standard, rtol=1e-9, atol=1e-12)
+    description["stide"] = 6
+    path.write_text(json.dumps(description))
+    with pytest.raises(ValueError, match=r"log.json: .stide: unknown key"):
+        idbench.identify(puma, str(path))

@@ -27,7 +27,7 @@ bool GuiCommandOptions::IsValid(std::string* why) const {
   return true;
 }
 
-// Exit codes as the command line's (README "Exit codes"): 2 for a script or
+// Exit codes as the command line's (docs/exit-codes.md): 2 for a script or
 // option that is wrong (nothing ran), 1 when a step, a job or an export failed.
 int RunGuiCommand(const GuiCommandOptions& options) {
   if (!options.headless) return RunGuiWindow(options);

@@ -66,7 +66,19 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
   // Every log is opened as a source (CSV, description, bag); gathered whole
   // here until the preparation itself streams.
   const std::unique_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
-  return PrepareRecordedJointLog(ReadWholeLog(*source), path, options);
+  // A log description's time window, unless an option gives one too.
+  const std::vector<double>& described = source->layout().time_window;
+  if (described.empty()) return PrepareRecordedJointLog(ReadWholeLog(*source), path, options);
+  if (!options.time_window.empty()) {
+    throw std::invalid_argument(path + ": .time_window (" + Shortest(described[0]) + "," + Shortest(described[1]) +
+                                ") and the option " + options.window_field + " (" + Shortest(options.time_window[0]) +
+                                "," + Shortest(options.time_window[1]) + ") both give a time window: give it in one "
+                                "place");
+  }
+  LogPreparationOptions windowed = options;
+  windowed.time_window = described;
+  windowed.window_field = ".time_window";
+  return PrepareRecordedJointLog(ReadWholeLog(*source), path, windowed);
 }
 
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,

@@ -5,11 +5,13 @@
 // A trajectory file (trajectory_file.h) is the same format with tau optional.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/logs/joint_log_format.h"
+#include "idbench/logs/joint_log_source.h"
 #include "idbench/logs/recorded_joint_log.h"
 
 namespace idbench {
@@ -29,6 +31,13 @@ namespace idbench {
 // currents.
 RecordedJointLog ParseRecordedJointLog(const std::string& text, const RobotModel& model, const std::string& source,
                                        const JointLogFormat& format, TorqueColumns torques);
+// The same file streamed: read in blocks (never whole), its header and
+// columns checked when opened, each chunk's lines as they are handed out
+// (Next throws the same messages). The degree warning is in layout().warnings
+// after the last chunk. ParseRecordedJointLog and ReadRecordedJointLog are
+// this source read whole.
+std::unique_ptr<JointLogSource> OpenJointLogCsv(const std::string& path, const RobotModel& model,
+                                                const JointLogFormat& format, TorqueColumns torques);
 // Reads and parses a file; an unreadable file throws naming the path.
 RecordedJointLog ReadRecordedJointLog(const std::string& path, const RobotModel& model, const JointLogFormat& format,
                                       TorqueColumns torques);

@@ -25,6 +25,7 @@ struct JointLogLayout {
   bool tau_is_current = false;        // TorqueColumns::kCurrents: tau holds the currents [A]
   std::optional<double> rate_hz;      // set when t comes from a rate (no time column)
   std::string record_name = "line";   // what JointLogChunk::records counts: "line", "row", "message", "sample"
+  std::vector<double> time_window;    // {T0, T1} [s] a log description asks for (the reader keeps T0 <= t <= T1)
   std::vector<std::string> notes;     // how columns/joints were mapped, for stdout
   std::vector<std::string> warnings;  // for stderr
 };

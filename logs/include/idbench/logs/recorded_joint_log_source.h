@@ -23,7 +23,8 @@ class RecordedJointLogSource final : public JointLogSource {
 };
 
 // Every remaining sample of `source` (from where it stands) in one log, read
-// in chunks of chunk_samples; lines are the chunks' records.
+// in chunks of chunk_samples; lines are the chunks' records; notes and
+// warnings are the layout's after the last chunk.
 RecordedJointLog ReadWholeLog(JointLogSource& source, Eigen::Index chunk_samples = 65536);
 
 }  // namespace idbench

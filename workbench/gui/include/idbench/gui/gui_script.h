@@ -9,7 +9,7 @@
 //   screenshot FILE          write the window as a PNG
 //
 // Widget names are dotted: tab.design, design.harmonics, design.run,
-// limits.2.qd_max, experiment.simulate, ... (README.md lists them).
+// limits.2.qd_max, experiment.simulate, ... (docs/commands/gui.md lists them).
 #pragma once
 
 #include <string>

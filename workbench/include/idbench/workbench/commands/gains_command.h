@@ -48,7 +48,7 @@ GainsReport RunGains(const RobotModel& model, const GainsOptions& options);
 
 // The gains with σ, and the fit of both logs.
 std::string FormatGainsTable(const RobotModel& model, const GainsOptions& options, const GainsReport& report);
-// gains.json: {"drive_gains": [...], "sigma": [...], ...} (README.md).
+// gains.json: {"drive_gains": [...], "sigma": [...], ...} (docs/commands/gains.md).
 std::string FormatGainsJson(const RobotModel& model, const GainsOptions& options, const GainsReport& report);
 
 }  // namespace idbench

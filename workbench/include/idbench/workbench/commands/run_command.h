@@ -53,7 +53,7 @@ RunReport RunExperiment(const RobotModel& model, const RunOptions& options);
 // The analogue of the paper's Tables 1–3 as plain text.
 std::string FormatRunTables(const RunOptions& options, const RunReport& report);
 
-// results.json (see README.md).
+// results.json (see docs/commands/run.md).
 std::string FormatRunResultsJson(const RunOptions& options, const RunReport& report);
 
 }  // namespace idbench

@@ -2,7 +2,7 @@
 // directory, then renamed over the target, so a reader (or a crash) never sees
 // a partial file and nothing else in the directory is touched.
 //
-// What an output path may be (README "Output files"):
+// What an output path may be (docs/exit-codes.md, "Output files"):
 // - missing: it is created (mode 0666 less the umask);
 // - a regular file: replaced; its permission bits (and, for root, its owner)
 //   are kept;

@@ -1,4 +1,4 @@
-// Trajectory files (README.md, "Trajectories"), and --trajectory as a
+// Trajectory files (docs/formats/trajectories.md), and --trajectory as a
 // built-in name or a file.
 //
 // JSON, one motion family with its coefficients:
