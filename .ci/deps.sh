@@ -6,6 +6,7 @@ packages=(build-essential cmake pkg-config
           liburdfdom-dev libtinyxml-dev libassimp-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core
           libimgui-dev libstb-dev libglfw3-dev
+          libsqlite3-dev liblz4-dev libzstd-dev zlib1g-dev  # rosbag2 bags (.db3, .mcap)
           libdsdp-dev                 # the tests' second SDP solver
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           libgtest-dev libbenchmark-dev

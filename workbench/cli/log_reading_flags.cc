@@ -20,6 +20,9 @@ void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<s
                       "Column names in file order: t,q1..q6,qd1..qd6,i1..i6,_ ... (with a header of idbench's names: agree with "
                       "it, or name a subset, matched by name; other header names are renamed in order)")
       ->type_name("NAMES");
+  command->add_option("--topic", format->topic,
+                      "For a ROS 2 bag: the sensor_msgs/msg/JointState topic to read (default: the bag's only one)")
+      ->type_name("TOPIC");
   command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
       ->capture_default_str();
   AddFrictionFlag(command, friction, "Friction terms: none or viscous,coulomb,offset,rotor");

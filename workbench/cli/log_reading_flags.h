@@ -14,9 +14,9 @@
 namespace idbench::cli {
 
 // Fields of JointLogFormat named in messages about reading a log.
-inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"}};
+inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"}, {"topic", "--topic"}};
 
-// --columns, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
+// --columns, --topic, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
 // --filter-order, --max-gap, filling these fields of the command's options.
 void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
                         double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s);

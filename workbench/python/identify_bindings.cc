@@ -222,7 +222,7 @@ void BindIdentify(py::module_& m) {
          const std::vector<double>& validate_window, double max_gap,
          double filter_cutoff, int filter_order, int decimate, const std::vector<double>& mass_range,
          double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight,
-         double cost_tolerance, bool write_unverified) {
+         double cost_tolerance, bool write_unverified, const std::string& topic) {
         IdentifyOptions options;
         options.robot = robot.source;
         options.data = py::isinstance<py::dict>(data) ? "<data arrays>" : py::str(data).cast<std::string>();
@@ -234,6 +234,7 @@ void BindIdentify(py::module_& m) {
         options.coulomb_smoothing = coulomb_smoothing;
         options.format.columns = columns;
         options.format.angle_unit = angle_unit;
+        options.format.topic = topic;
         options.format.drive_gains = drive_gains;
         options.time_window = time_window;
         options.validate_window = validate_window;
@@ -270,7 +271,9 @@ void BindIdentify(py::module_& m) {
       py::arg("total_mass_tolerance") = id_defaults.plausibility.total_mass_tolerance,
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
       py::arg("cost_tolerance") = id_defaults.plausibility.cost_tolerance, py::arg("write_unverified") = false,
-      "Identifies the robot from a joint log: a CSV path (read as `idbench identify --data`) or a dict of arrays "
+      py::arg("topic") = std::string(),
+      "Identifies the robot from a joint log: a CSV path or a ROS 2 bag (a directory with metadata.yaml, a .db3 or "
+      ".mcap file; topic= names its JointState topic when it has several), read as `idbench identify --data`, or a dict of arrays "
       "{t, q, [qd, qdd], tau} or with i (motor currents) for drive_gains (n_samples × n_dof, angles in angle_unit; "
       "without qd/qdd they are estimated by filtering). validate_window=(T0, T1) scores only that part of the held-out "
       "log. Options as `idbench identify`'s. The result's verdict says whether the physically consistent estimate is "

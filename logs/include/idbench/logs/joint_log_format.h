@@ -26,6 +26,9 @@ struct JointLogFormat {
   // says so): the option is explicit, a column may be the controller's own
   // target torque.
   std::vector<double> drive_gains;
+  // For a rosbag2 bag: the sensor_msgs/msg/JointState topic to read;
+  // empty: the bag's only one.
+  std::string topic;
 
   static constexpr int kMaxColumns = 1024;  // named columns, ranges expanded
   // Bounds on |K| [N m/A]: a joint-side gain (motor constant × gear ratio)
