@@ -12,6 +12,14 @@ namespace idbench {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kClearanceScale = 0.1;  // [m]: a clearance constraint value of 1 is 10 cm
+
+// The indices 0..n−1 ordered by at[i] (stable).
+std::vector<size_t> SortedByInstant(const std::vector<size_t>& at) {
+  std::vector<size_t> order(at.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return at[a] < at[b]; });
+  return order;
+}
 }  // namespace
 
 DesignProblem::Workspace::Workspace(const DesignProblem& p)
@@ -262,11 +270,19 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
   for (size_t i = 0; i < n_pairs; ++i) {
     const ClearancePair& pair = clearance_->pairs()[i];
     result[i] = (pair.minimum + clearance_slack_[i] - worst[i]) / kScale;
-    if (!grad) continue;
-    const JointState x = StateAt(*instants[at[i]], theta);
-    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
-    clearance_->Compute(k, &ws->clearances);
-    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], ws->clearances[i]);
+  }
+  if (!grad) return;
+  // The gradients from the witness points at each pair's closest instant:
+  // the kinematics once per instant, GJK for that pair alone.
+  size_t done_at = instants.size();
+  for (size_t i : SortedByInstant(at)) {
+    if (at[i] != done_at) {
+      const JointState x = StateAt(*instants[at[i]], theta);
+      ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
+      done_at = at[i];
+    }
+    const Clearance c = clearance_->ComputePair(k, static_cast<int>(i));
+    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], c);
     ws->gx.setZero();
     ws->gx.head(n_) = -dd_dq / kScale;
     double* g = grad + i * static_cast<size_t>(n_unknowns());
@@ -337,7 +353,27 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws, std::vec
     const double mid = 0.5 * (lo + hi);
     (feasible(scaled(mid)) ? lo : hi) = mid;
   }
-  return scaled(std::max(0.8 * lo, 1.0 / 1024.0));
+  Eigen::VectorXd start = scaled(std::max(0.8 * lo, 1.0 / 1024.0));
+  if (lo <= 0.0) return start;
+  // Then each joint grows on its own (bisection on its factor up to its
+  // kinematic scale, 0.8 of the largest that stays feasible): the joints
+  // that do not bring links closer need not stay as small as those that do.
+  for (int j = 0; j < n_; ++j) {
+    const Eigen::VectorXd base = start;
+    auto grown = [&](double f) {
+      Eigen::VectorXd t = base;
+      t.segment(j * block_ + 1, 2 * H_) *= f;
+      return t;
+    };
+    double g_lo = 1.0, g_hi = 1.0 / (0.8 * lo);
+    if (feasible(grown(g_hi))) g_lo = g_hi;
+    for (int i = 0; i < 6 && g_lo < g_hi; ++i) {
+      const double mid = std::sqrt(g_lo * g_hi);
+      (feasible(grown(mid)) ? g_lo : g_hi) = mid;
+    }
+    start = grown(std::max(1.0, 0.8 * g_lo));
+  }
+  return start;
 }
 
 void DesignProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {

@@ -2,18 +2,21 @@
 
 #include "design_outcome.h"
 
+#include <cmath>
+
 namespace idbench::internal {
 
 nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                 std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta, int budget) {
-  const nlopt_algorithm algorithm = options->algorithm == DesignAlgorithm::kSlsqp    ? NLOPT_LD_SLSQP
-                                    : options->algorithm == DesignAlgorithm::kMma    ? NLOPT_LD_MMA
-                                    : options->algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
+  const nlopt_algorithm algorithm = this->algorithm == DesignAlgorithm::kSlsqp    ? NLOPT_LD_SLSQP
+                                    : this->algorithm == DesignAlgorithm::kMma    ? NLOPT_LD_MMA
+                                    : this->algorithm == DesignAlgorithm::kCobyla ? NLOPT_LN_COBYLA
                                                                                      : NLOPT_LN_SBPLX;
   const unsigned n_theta = static_cast<unsigned>(problem->n_unknowns());
   nlopt_result result = NLOPT_SUCCESS;
   const int first_evaluation = evaluations;
   for (;;) {
+    if (stall_at > 0) stall_at = std::max(stall_at, evaluations + stall_window);
     opt = nlopt_create(algorithm, n_theta);
     nlopt_set_min_objective(opt, &StartRun::NloptObjective, this);
     nlopt_set_lower_bounds(opt, lower.data());
@@ -68,6 +71,28 @@ nlopt_result StartRun::Optimize(const Eigen::VectorXd& lower, const Eigen::Vecto
   return result;
 }
 
+namespace {
+
+// theta with every joint's coefficients scaled by the largest common factor
+// (≥ 1, at most 1024) that keeps the linear rows met: where a start scaled
+// down for the nonlinear constraints would reach the kinematic limits.
+Eigen::VectorXd GrownToLinearLimits(const DesignProblem& problem, const Eigen::VectorXd& theta) {
+  auto scaled = [&](double s) {
+    Eigen::VectorXd t = theta;
+    for (int j = 0; j < problem.n_dof(); ++j) t.segment(j * problem.block() + 1, 2 * problem.harmonics()) *= s;
+    return t;
+  };
+  double lo = 1.0, hi = 1024.0;
+  if (problem.MaxLinearViolation(scaled(lo).data()) > 0.0) return theta;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (problem.MaxLinearViolation(scaled(mid).data()) <= 0.0 ? lo : hi) = mid;
+  }
+  return scaled(lo);
+}
+
+}  // namespace
+
 void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
               const DesignOptions& options, const DesignControl& control, const DesignProblem& problem,
               const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
@@ -85,6 +110,7 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
   run.options = &options;
   run.control = &control;
   run.index = s;
+  run.algorithm = options.algorithm;
   run.ws.emplace(problem);
   Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws, &run.held_still);
   run.start_theta = theta;
@@ -122,26 +148,49 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
   // COBYLA one max-row per limit. When SLSQP ends outside rows it did
   // not take, they join and it resumes from there. A stall watch stops it
   // early when it gets nowhere; it then resumes from inside the constraints.
-  if (recover) run.stall_at = run.evaluations + kStallEvaluations, run.stall_reference = run.best_value;
-  run.SelectRows(theta.data());
+  if (recover) {
+    run.stall_window = kStallEvaluations;
+    run.stall_at = run.evaluations + kStallEvaluations, run.stall_reference = run.best_value;
+  }
+  // The rows near the start and near it grown to the kinematic limits (a
+  // start scaled down for the clearance or torques grows back: without them
+  // SLSQP restarts for more rows at each step, losing its Hessian).
+  const Eigen::VectorXd grown = GrownToLinearLimits(problem, theta);
+  run.SelectRows(theta.data(), grown.data());
   const Eigen::VectorXd searched_from = theta;
   nlopt_result result = run.Optimize(lower, upper, t_begin, &theta, remaining());
   run.stall_at = 0;
-  if (run.stalled) {
-    // From its best point, or back where it began when it found none.
+  // A stalled start resumes from its best point (or where it began, when it
+  // found none): first moved inside its constraints (the feasibility phase),
+  // and when that does not help (or the point is already inside), with
+  // COBYLA (derivative-free, one row per limit), which SLSQP's stalls do not hold.
+  for (int attempt = 0; run.stalled && attempt < 2; ++attempt) {
     run.stalled = false;
     theta = run.best_theta.size() > 0 ? run.best_theta : searched_from;
-    story += (story.empty() ? "" : "; ") +
-             Format("no progress in %g evaluations (", kStallEvaluations) +
-             (run.best_theta.size() > 0 ? std::string("held on a constraint's edge") : run.WorstConstraint(theta.data())) +
+    story += (story.empty() ? "" : "; ") + Format("no progress in %g evaluations (", kStallEvaluations) +
+             (run.best_theta.size() > 0 ? std::string("feasible, the criterion unchanged") : run.WorstConstraint(theta.data())) +
              ")";
-    const int used = run.Centre(lower, upper, kCentreDepth, std::min(kCentreEvaluations, remaining() / 2), &theta);
-    const bool inside = run.Feasible(theta.data());
-    if (inside) take_if_feasible();
-    story += Format(inside ? " -> moved inside in %g evaluations, resumed" : " -> centring failed in %g evaluations, resumed",
-                    used);
-    run.SelectRows(theta.data());
+    const Eigen::VectorXd stalled_at = theta;
+    bool moved = false;
+    if (attempt == 0) {
+      const int used = run.Centre(lower, upper, kCentreDepth, std::min(kCentreEvaluations, remaining() / 3), &theta);
+      moved = theta != stalled_at;
+      const bool inside = run.Feasible(theta.data());
+      if (inside) take_if_feasible();
+      if (moved) {
+        story += Format(inside ? " -> moved inside in %g evaluations, resumed" : " -> centring failed in %g evaluations, resumed",
+                        used);
+      }
+    }
+    if (!moved) {
+      run.algorithm = DesignAlgorithm::kCobyla;
+      story += " -> resumed with cobyla";
+    } else if (run.algorithm == DesignAlgorithm::kSlsqp) {
+      run.stall_at = run.evaluations + kStallEvaluations, run.stall_reference = run.best_value;
+    }
+    run.SelectRows(theta.data(), grown.data(), true);
     result = run.Optimize(lower, upper, t_begin, &theta, remaining());
+    run.stall_at = 0;
   }
 
   // Clearance is constrained on the grid; where the fine check finds the

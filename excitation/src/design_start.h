@@ -28,6 +28,7 @@ struct StartRun {
   const DesignOptions* options = nullptr;
   const DesignControl* control = nullptr;
   int index = 0;
+  DesignAlgorithm algorithm = DesignAlgorithm::kSlsqp;  // options->algorithm, or what a stalled start switched to
   std::optional<DesignProblem::Workspace> ws;
   nlopt_opt opt = nullptr;
   int evaluations = 0;
@@ -43,7 +44,9 @@ struct StartRun {
 
   // Stall watch: while stall_at > 0, the search stops (stalled) at that
   // evaluation unless it has visited a feasible point below stall_reference.
-  int stall_at = 0;
+  // Each restart of the optimizer (more rows) moves stall_at to stall_window
+  // evaluations after it: SLSQP gets that many uninterrupted.
+  int stall_at = 0, stall_window = 0;
   double stall_reference = kInf;
   bool stalled = false;
 
@@ -61,7 +64,7 @@ struct StartRun {
   // keep: also the rows already taken (a resume within one Optimize, so that
   // two points outside different rows cannot alternate forever).
   void SelectRows(const double* theta, const double* also = nullptr, bool keep = false) {
-    if (options->algorithm != DesignAlgorithm::kSlsqp) return;
+    if (algorithm != DesignAlgorithm::kSlsqp) return;
     const std::vector<LinearRow>& all = problem->rows();
     if (!keep || taken.size() != all.size()) taken.assign(all.size(), 0);
     rows.clear();
@@ -158,7 +161,7 @@ struct StartRun {
       reselect_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
       nlopt_force_stop(opt);
     }
-    const bool sbplx = options->algorithm == DesignAlgorithm::kSbplx;
+    const bool sbplx = algorithm == DesignAlgorithm::kSbplx;
     pending_theta.resize(0);
     bool feasible = linear_ok;
     if (problem->n_nonlinear_constraints() > 0 && sbplx) {
