@@ -94,7 +94,8 @@ struct StartRun {
   nlopt_result Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                         std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta, int budget);
 
-  // The feasibility phase (start_recovery.cc): from *theta, minimises
+  // The feasibility phase (start_recovery.cc): an infeasible *theta first
+  // slides back towards the home pose until feasible; then, from there, minimises
   //   Σ_i max(0, c_i + depth)² + Σ_rows max(0, r)²
   // over the nonlinear constraints c_i (normalised, ≤ 0 met) and the linear
   // rows r, within the box, for at most `budget` evaluations (counted in

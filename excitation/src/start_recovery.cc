@@ -68,6 +68,24 @@ int StartRun::Centre(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                      Eigen::VectorXd* theta) {
   const int first = evaluations;
   if (problem->n_nonlinear_constraints() == 0 || budget < 1) return 0;
+  // An infeasible point first slides back towards the home pose (q0 the
+  // home, no motion: within the limits and clear, ChooseHome), along the
+  // segment home + s (θ − home): 0.8 of the largest s in [0, 1] found
+  // feasible by bisection (12 evaluations), so that what is left of the
+  // motion is kept rather than lost.
+  if (!Feasible(theta->data())) {
+    Eigen::VectorXd home_theta = Eigen::VectorXd::Zero(problem->n_unknowns());
+    for (int j = 0; j < problem->n_dof(); ++j) home_theta[j * problem->block()] = problem->home()[j];
+    const Eigen::VectorXd direction = *theta - home_theta;
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 12 && evaluations - first < budget; ++i, ++evaluations) {
+      const double mid = 0.5 * (lo + hi);
+      const Eigen::VectorXd t = home_theta + mid * direction;
+      (Feasible(t.data()) ? lo : hi) = mid;
+    }
+    const Eigen::VectorXd shrunk = home_theta + 0.8 * lo * direction;
+    if (Feasible(shrunk.data())) *theta = shrunk;
+  }
   CentreRun centre;
   centre.run = this;
   centre.depth = depth;
@@ -78,7 +96,7 @@ int StartRun::Centre(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
   nlopt_set_min_objective(centre.opt, &CentreRun::Nlopt, &centre);
   nlopt_set_lower_bounds(centre.opt, lower.data());
   nlopt_set_upper_bounds(centre.opt, upper.data());
-  nlopt_set_maxeval(centre.opt, budget);
+  nlopt_set_maxeval(centre.opt, std::max(1, budget - (evaluations - first)));
   nlopt_set_ftol_rel(centre.opt, 1e-6);
   nlopt_set_stopval(centre.opt, 0.0);  // every constraint depth inside: done
   double value = 0.0;
