@@ -155,7 +155,7 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
   // The rows near the start and near it grown to the kinematic limits (a
   // start scaled down for the clearance or torques grows back: without them
   // SLSQP restarts for more rows at each step, losing its Hessian).
-  const Eigen::VectorXd grown = GrownToLinearLimits(problem, theta);
+  const Eigen::VectorXd grown = recover ? GrownToLinearLimits(problem, theta) : theta;
   run.SelectRows(theta.data(), grown.data());
   const Eigen::VectorXd searched_from = theta;
   nlopt_result result = run.Optimize(lower, upper, t_begin, &theta, remaining());
