@@ -75,7 +75,8 @@ namespace {
 
 // theta with every joint's coefficients scaled by the largest common factor
 // (≥ 1, at most 1024) that keeps the linear rows met: where a start scaled
-// down for the nonlinear constraints would reach the kinematic limits.
+// down for the nonlinear constraints would reach the kinematic limits
+// (theta itself when that factor is under 2: a start hardly scaled down).
 Eigen::VectorXd GrownToLinearLimits(const DesignProblem& problem, const Eigen::VectorXd& theta) {
   auto scaled = [&](double s) {
     Eigen::VectorXd t = theta;
@@ -88,7 +89,8 @@ Eigen::VectorXd GrownToLinearLimits(const DesignProblem& problem, const Eigen::V
     const double mid = std::sqrt(lo * hi);
     (problem.MaxLinearViolation(scaled(mid).data()) <= 0.0 ? lo : hi) = mid;
   }
-  return scaled(lo);
+  // A start not scaled down (the 90 % of StartPoint) keeps its own rows.
+  return lo > 2.0 ? scaled(lo) : theta;
 }
 
 }  // namespace
