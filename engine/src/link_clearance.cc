@@ -251,6 +251,10 @@ void ClearanceModel::Compute(const KinematicsData<double>& k, std::vector<Cleara
   }
 }
 
+Clearance ClearanceModel::ComputePair(const KinematicsData<double>& k, int i) const {
+  return impl_->Compute(k, pairs_.at(static_cast<size_t>(i)));
+}
+
 Eigen::VectorXd ClearanceModel::DistanceGradient(const RobotModel& model, const KinematicsData<double>& k,
                                                  const ClearancePair& pair, const Clearance& c) const {
   // d = nᵀ (p_a − p_b); a point fixed in a link moves by s_j × (p − o_j) per

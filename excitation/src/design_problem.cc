@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -10,6 +11,15 @@
 namespace idbench {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kClearanceScale = 0.1;  // [m]: a clearance constraint value of 1 is 10 cm
+
+// The indices 0..n−1 ordered by at[i] (stable).
+std::vector<size_t> SortedByInstant(const std::vector<size_t>& at) {
+  std::vector<size_t> order(at.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return at[a] < at[b]; });
+  return order;
+}
 }  // namespace
 
 DesignProblem::Workspace::Workspace(const DesignProblem& p)
@@ -60,11 +70,32 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
                                               [](const Link& l) { return !l.CollisionShapes().empty(); })) {
     clearance_.emplace(regressor.model(), options.clearance);
     clearance_stride_ = (options.samples + 99) / 100;
+    set_home(home_);
   }
   if (n_torque_constraints() > 0) {
     FrictionModel full;
     full.viscous = full.coulomb = full.rotor_inertia = true;
     torque_regressor_.emplace(DesignRegressor::JointTorque(regressor.model(), full));
+  }
+}
+
+void DesignProblem::set_home(const Eigen::VectorXd& q) {
+  home_ = q;
+  if (!clearance_) return;
+  // The search keeps 1 mm more than asked, so that the fine check passes
+  // between the grid instants (as the margin does for the other limits);
+  // only as much as the pair has at the home pose (none for a pair held at
+  // its distance at q = 0: the home pose itself must stay feasible).
+  constexpr double kSlack = 1e-3;  // [m]
+  const RobotModel& model = regressor_.model();
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+  ComputeKinematicsT<double>(model, q, zero, zero, &k);
+  std::vector<Clearance> at_home;
+  clearance_->Compute(k, &at_home);
+  clearance_slack_.resize(at_home.size());
+  for (size_t i = 0; i < at_home.size(); ++i) {
+    clearance_slack_[i] = std::clamp(at_home[i].distance - clearance_->pairs()[i].minimum, 0.0, kSlack);
   }
 }
 
@@ -195,11 +226,30 @@ void DesignProblem::NonlinearConstraints(const double* theta, double* result, do
   }
 }
 
+std::string DesignProblem::NonlinearConstraintName(int i) const {
+  if (i >= n_torque_constraints()) {
+    const ClearancePair& pair = clearance_->pairs()[static_cast<size_t>(i - n_torque_constraints())];
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g m", pair.minimum);
+    return "clearance '" + pair.Name(regressor_.model()) + "' >= " + buf +
+           (pair.minimum < clearance_->min_clearance() ? " (its distance at q = 0)" : "");
+  }
+  int m = -1, j = 0;
+  for (; j < n_; ++j) {
+    if (std::isfinite(limits_[static_cast<size_t>(j)].tau_max) && ++m == i) break;
+  }
+  return "torque limit of joint '" + regressor_.model().link(j).joint_name + "'";
+}
+
+std::string DesignProblem::DescribeViolation(int i, double c) const {
+  char buf[64];
+  if (i >= n_torque_constraints()) std::snprintf(buf, sizeof buf, " by %.3g m", c * kClearanceScale);
+  else std::snprintf(buf, sizeof buf, " by %.3g %% of it", 100.0 * c);
+  return NonlinearConstraintName(i) + buf;
+}
+
 void DesignProblem::ClearanceConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
-  constexpr double kScale = 0.1;  // [m]: a constraint value of 1 is 10 cm
-  // The search keeps 1 mm more than asked, so that the fine check passes
-  // between the grid instants (as the margin does for the other limits).
-  constexpr double kSlack = 1e-3;  // [m]
+  constexpr double kScale = kClearanceScale;
   const RobotModel& model = regressor_.model();
   KinematicsData<double>& k = ws->regressor.kinematics;
   // The instants: every clearance_stride_-th grid sample, then those added.
@@ -218,16 +268,21 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
     }
   }
   for (size_t i = 0; i < n_pairs; ++i) {
-    // The slack only where the pair has it at q = 0 (none for a pair held at
-    // its distance there: the home pose itself must stay feasible).
     const ClearancePair& pair = clearance_->pairs()[i];
-    const double slack = std::clamp(pair.home_distance - pair.minimum, 0.0, kSlack);
-    result[i] = (pair.minimum + slack - worst[i]) / kScale;
-    if (!grad) continue;
-    const JointState x = StateAt(*instants[at[i]], theta);
-    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
-    clearance_->Compute(k, &ws->clearances);
-    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], ws->clearances[i]);
+    result[i] = (pair.minimum + clearance_slack_[i] - worst[i]) / kScale;
+  }
+  if (!grad) return;
+  // The gradients from the witness points at each pair's closest instant:
+  // the kinematics once per instant, GJK for that pair alone.
+  size_t done_at = instants.size();
+  for (size_t i : SortedByInstant(at)) {
+    if (at[i] != done_at) {
+      const JointState x = StateAt(*instants[at[i]], theta);
+      ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
+      done_at = at[i];
+    }
+    const Clearance c = clearance_->ComputePair(k, static_cast<int>(i));
+    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], c);
     ws->gx.setZero();
     ws->gx.head(n_) = -dd_dq / kScale;
     double* g = grad + i * static_cast<size_t>(n_unknowns());
@@ -236,7 +291,7 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
   }
 }
 
-Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws) const {
+Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws, std::vector<std::string>* held_still) const {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(n_unknowns());
@@ -277,12 +332,48 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws) const {
     return *std::max_element(values.begin(), values.end()) <= 0.0;
   };
   if (feasible(theta)) return theta;
+  // A joint whose motion alone, at 1/1024 of its amplitude, breaks a
+  // constraint is held still (a clearance pair held at its distance at q = 0
+  // that any motion of the joint reduces): the others can still move.
+  if (!feasible(scaled(1.0 / 1024.0))) {
+    for (int j = 0; j < n_; ++j) {
+      Eigen::VectorXd alone = scaled(0.0);
+      alone.segment(j * block_ + 1, 2 * H_) = theta.segment(j * block_ + 1, 2 * H_) / 1024.0;
+      if (feasible(alone)) continue;
+      theta.segment(j * block_ + 1, 2 * H_).setZero();
+      if (held_still) {
+        const size_t worst = static_cast<size_t>(std::max_element(values.begin(), values.end()) - values.begin());
+        held_still->push_back("joint '" + regressor_.model().link(j).joint_name + "' (its motion alone breaks the " +
+                              NonlinearConstraintName(static_cast<int>(worst)) + ")");
+      }
+    }
+  }
   double lo = 0.0, hi = 1.0;
   for (int i = 0; i < 10; ++i) {
     const double mid = 0.5 * (lo + hi);
     (feasible(scaled(mid)) ? lo : hi) = mid;
   }
-  return scaled(std::max(0.8 * lo, 1.0 / 1024.0));
+  Eigen::VectorXd start = scaled(std::max(0.8 * lo, 1.0 / 1024.0));
+  if (lo <= 0.0) return start;
+  // Then each joint grows on its own (bisection on its factor up to its
+  // kinematic scale, 0.8 of the largest that stays feasible): the joints
+  // that do not bring links closer need not stay as small as those that do.
+  for (int j = 0; j < n_; ++j) {
+    const Eigen::VectorXd base = start;
+    auto grown = [&](double f) {
+      Eigen::VectorXd t = base;
+      t.segment(j * block_ + 1, 2 * H_) *= f;
+      return t;
+    };
+    double g_lo = 1.0, g_hi = 1.0 / (0.8 * lo);
+    if (feasible(grown(g_hi))) g_lo = g_hi;
+    for (int i = 0; i < 6 && g_lo < g_hi; ++i) {
+      const double mid = std::sqrt(g_lo * g_hi);
+      (feasible(grown(mid)) ? g_lo : g_hi) = mid;
+    }
+    start = grown(std::max(1.0, 0.8 * g_lo));
+  }
+  return start;
 }
 
 void DesignProblem::Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "excitation_design_internal.h"
@@ -27,6 +28,7 @@ struct StartRun {
   const DesignOptions* options = nullptr;
   const DesignControl* control = nullptr;
   int index = 0;
+  DesignAlgorithm algorithm = DesignAlgorithm::kSlsqp;  // options->algorithm, or what a stalled start switched to
   std::optional<DesignProblem::Workspace> ws;
   nlopt_opt opt = nullptr;
   int evaluations = 0;
@@ -34,10 +36,19 @@ struct StartRun {
   double best_value = kInf;
   Eigen::VectorXd best_theta;
   Eigen::VectorXd start_theta, last_theta;  // the start point; where the search ended
+  std::vector<std::string> held_still;      // joints the start point holds still, and why (StartPoint)
   std::vector<double> nonlinear_values;
 
   Eigen::VectorXd pending_theta;  // see Objective
   double pending_value = kInf;
+
+  // Stall watch: while stall_at > 0, the search stops (stalled) at that
+  // evaluation unless it has visited a feasible point below stall_reference.
+  // Each restart of the optimizer (more rows) moves stall_at to stall_window
+  // evaluations after it: SLSQP gets that many uninterrupted.
+  int stall_at = 0, stall_window = 0;
+  double stall_reference = kInf;
+  bool stalled = false;
 
   // SLSQP's linear rows: those within kNearActive of their limit at the
   // points it was (re)started from. Its quadratic subproblem costs in
@@ -53,7 +64,7 @@ struct StartRun {
   // keep: also the rows already taken (a resume within one Optimize, so that
   // two points outside different rows cannot alternate forever).
   void SelectRows(const double* theta, const double* also = nullptr, bool keep = false) {
-    if (options->algorithm != DesignAlgorithm::kSlsqp) return;
+    if (algorithm != DesignAlgorithm::kSlsqp) return;
     const std::vector<LinearRow>& all = problem->rows();
     if (!keep || taken.size() != all.size()) taken.assign(all.size(), 0);
     rows.clear();
@@ -81,7 +92,22 @@ struct StartRun {
   // max_evaluations; SLSQP resumes with more rows while its result violates
   // rows it did not take.
   nlopt_result Optimize(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                        std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta);
+                        std::chrono::steady_clock::time_point t_begin, Eigen::VectorXd* theta, int budget);
+
+  // The feasibility phase (start_recovery.cc): an infeasible *theta first
+  // slides back towards the home pose until feasible; then, from there, minimises
+  //   Σ_i max(0, c_i + depth)² + Σ_rows max(0, r)²
+  // over the nonlinear constraints c_i (normalised, ≤ 0 met) and the linear
+  // rows r, within the box, for at most `budget` evaluations (counted in
+  // evaluations): it leaves an infeasible point towards feasibility and a
+  // feasible one on a constraint's edge `depth` inside. *theta is left at the
+  // point of least max violation it visited; returns the evaluations used.
+  int Centre(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, double depth, int budget,
+             Eigen::VectorXd* theta);
+  // The worst constraint at theta and by how much it is broken, for a
+  // start's line (DesignProblem::DescribeViolation, or "the joint limits by 4 % of a limit").
+  std::string WorstConstraint(const double* theta);
+
 
   // Evaluates the nonlinear constraints into nonlinear_values.
   bool NonlinearFeasible(const double* theta) {
@@ -136,7 +162,7 @@ struct StartRun {
       reselect_theta = Eigen::Map<const Eigen::VectorXd>(theta, problem->n_unknowns());
       nlopt_force_stop(opt);
     }
-    const bool sbplx = options->algorithm == DesignAlgorithm::kSbplx;
+    const bool sbplx = algorithm == DesignAlgorithm::kSbplx;
     pending_theta.resize(0);
     bool feasible = linear_ok;
     if (problem->n_nonlinear_constraints() > 0 && sbplx) {
@@ -149,6 +175,10 @@ struct StartRun {
       }
     }
     if (feasible) Consider(theta, c);
+    if (stall_at > 0 && evaluations >= stall_at && !(best_value < stall_reference) && pending_theta.size() == 0) {
+      stalled = true;
+      nlopt_force_stop(opt);
+    }
     if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, linear_ok});
     return sbplx ? c + Penalty(theta) : c;
   }

@@ -225,9 +225,12 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     for (size_t i = 0; i < ls.identifiable.size(); ++i) {
       if (!ls.identifiable[i]) unexcited += "\n  " + ls.reason[i];
     }
+    // Joints the start held still (their motion alone broke a constraint).
+    std::string held;
+    for (const std::string& h : winner.held_still) held += "\n  held still: " + h;
     throw std::runtime_error("no design within these limits excites every parameter (rank " +
                              std::to_string(result.final.rank) + " of " + std::to_string(regressor.n_parameters()) +
-                             "); check the limits of the joints involved:" + unexcited);
+                             "); check the limits of the joints involved:" + unexcited + held);
   }
   result.ramp_seconds = options.ramp_seconds;
   result.check = CheckTrajectoryLimits(regressor.model(), limits, result.RobotTrajectory(), options.check_rate_hz,

@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 #include "idbench/excitation/design_problem.h"
 #include "idbench/excitation/excitation_design.h"
 
@@ -64,6 +65,49 @@ void BM_DesignPuma560(benchmark::State& state) { BenchmarkDesign(state, -1.0); }
 BENCHMARK(BM_DesignPuma560)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 void BM_DesignPuma560WithClearance(benchmark::State& state) { BenchmarkDesign(state, 0.01); }
 BENCHMARK(BM_DesignPuma560WithClearance)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+// tests/data/ur10e_like (mesh links, 15 clearance pairs at 1 cm) with its
+// acceleration limits, default options: one evaluation of the nonlinear
+// constraints (the clearance rows: GJK over pairs × instants) with and
+// without their gradient, beside one criterion evaluation with its gradient.
+struct UrLikeCase {
+  RobotModel model = LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/ur10e_like/ur10e_like.urdf").model;
+  DesignRegressor regressor = DesignRegressor::JointTorque(model, FrictionModel{});
+  std::vector<JointLimits> limits;
+  DesignOptions options;
+  UrLikeCase() {
+    const double qdd[6] = {3, 3, 5, 5, 5, 5};
+    for (int j = 0; j < 6; ++j) limits.push_back(model.link(j).limits), limits.back().qdd_max = qdd[j];
+  }
+};
+
+void BenchmarkUrLikeConstraints(benchmark::State& state, bool gradient) {
+  const UrLikeCase c;
+  DesignProblem problem(c.regressor, c.limits, c.options);
+  problem.set_home((Eigen::VectorXd(6) << 0, -0.5, 0, 0, 0, 0).finished());
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
+  const size_t m = static_cast<size_t>(problem.n_nonlinear_constraints());
+  std::vector<double> values(m), grad(m * static_cast<size_t>(problem.n_unknowns()));
+  for (auto _ : state) {
+    problem.NonlinearConstraints(theta.data(), values.data(), gradient ? grad.data() : nullptr, &ws);
+    benchmark::DoNotOptimize(values.data());
+  }
+  state.counters["pairs"] = static_cast<double>(m);
+}
+void BM_ClearanceConstraintsUr10eLike(benchmark::State& state) { BenchmarkUrLikeConstraints(state, false); }
+BENCHMARK(BM_ClearanceConstraintsUr10eLike)->Unit(benchmark::kMillisecond);
+void BM_ClearanceConstraintsGradientUr10eLike(benchmark::State& state) { BenchmarkUrLikeConstraints(state, true); }
+BENCHMARK(BM_ClearanceConstraintsGradientUr10eLike)->Unit(benchmark::kMillisecond);
+void BM_DesignCriterionGradientUr10eLike(benchmark::State& state) {
+  const UrLikeCase c;
+  const DesignProblem problem(c.regressor, c.limits, c.options);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
+  Eigen::VectorXd grad(problem.n_unknowns());
+  for (auto _ : state) benchmark::DoNotOptimize(problem.Criterion(theta.data(), grad.data(), &ws));
+}
+BENCHMARK(BM_DesignCriterionGradientUr10eLike)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench

@@ -109,7 +109,9 @@ TEST(HomePoseTest, UrLikeDesignWithClearanceImproves) {
   options.max_evaluations = 100;
   const DesignResult result = DesignExcitation(regressor, UrLimits(model), options);
   EXPECT_TRUE(result.check.feasible()) << result.check.Explain();
-  EXPECT_LT(result.final.cond, 0.05 * result.initial.cond);
+  // The start grows joint by joint after the common scale-down (cond ≈ 720
+  // rather than ≈ 7000 before): the search still takes it down tenfold.
+  EXPECT_LT(result.final.cond, 0.1 * result.initial.cond);
   EXPECT_LT(result.final.cond, 100.0);
   EXPECT_EQ(result.starts[0].feasible_at, 0);
 }

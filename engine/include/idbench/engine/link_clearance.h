@@ -76,6 +76,9 @@ class ClearanceModel {
   void Compute(const KinematicsData<double>& k, std::vector<Clearance>* out,
                const std::vector<double>* at_least = nullptr) const;
 
+  // The clearance of pair i alone (pairs()[i]) at the link poses in k.
+  Clearance ComputePair(const KinematicsData<double>& k, int i) const;
+
   // ∂distance/∂q (n_dof) of a pair from its Clearance: the closest point on a
   // moves with the joints of a's chain, the one on b with b's (ground: fixed).
   Eigen::VectorXd DistanceGradient(const RobotModel& model, const KinematicsData<double>& k,

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "idbench/engine/link_clearance.h"
@@ -77,8 +78,14 @@ class DesignProblem {
   // × n_unknowns, row-major), their gradients at the worst sample:
   //  - per joint with a torque limit, max over the grid of |τ_j|/τ_max − (1 − margin);
   //  - per clearance pair, max over the grid (every ⌈samples/100⌉-th sample,
-  //    and the instants added) of (min_clearance + 1 mm − distance)/0.1 m.
+  //    and the instants added) of (minimum + slack − distance)/0.1 m, the
+  //    slack 1 mm, or less when the pair is closer at the home pose.
   void NonlinearConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
+  // Nonlinear constraint i: "clearance 'a–b' >= 0.01 m", "torque limit of
+  // joint 'x'"; with by how much its normalised value c > 0 breaks it:
+  // "clearance 'a–b' >= 0.01 m by 0.003 m".
+  std::string NonlinearConstraintName(int i) const;
+  std::string DescribeViolation(int i, double c) const;
 
   // Adds an instant t [s] to the clearance grid of this workspace (where a
   // finer check found the links closer than the grid did).
@@ -87,13 +94,19 @@ class DesignProblem {
   // The pose the starts oscillate about [rad] (n_dof): options.home if
   // given, else the middle of the joint ranges until set_home.
   const Eigen::VectorXd& home() const { return home_; }
-  void set_home(const Eigen::VectorXd& q) { home_ = q; }
+  // Also sets each clearance pair's slack (see NonlinearConstraints) to what
+  // it has at q: the home pose is feasible on the grid when it meets the minima.
+  void set_home(const Eigen::VectorXd& q);
 
   // A seeded random series about the home pose, each joint scaled to 90 % of
   // its tightest kinematic limit, then the whole motion scaled down (by
   // bisection, to 1/1024 at least) until the torque and clearance constraints
-  // hold on the grid: feasible on the grid when the home pose has room.
-  Eigen::VectorXd StartPoint(unsigned seed, Workspace* ws) const;
+  // hold on the grid: feasible on the grid when the home pose has room. A
+  // joint whose motion alone breaks them at 1/1024 of its amplitude starts
+  // still (zero coefficients).
+  // held_still (optional) gets a line per joint started still, with the
+  // constraint its motion breaks.
+  Eigen::VectorXd StartPoint(unsigned seed, Workspace* ws, std::vector<std::string>* held_still = nullptr) const;
   // Box bounds: q0 inside the joint range, coefficients within twice the
   // velocity limit (a harmonic's velocity amplitude is √(a² + b²)).
   void Bounds(Eigen::VectorXd* lower, Eigen::VectorXd* upper) const;
@@ -119,6 +132,7 @@ class DesignProblem {
   std::optional<DesignRegressor> torque_regressor_;  // model with all joint dynamics, when τ is limited
   std::optional<ClearanceModel> clearance_;          // when the options ask for clearance and links have shapes
   int clearance_stride_ = 1;
+  std::vector<double> clearance_slack_;  // [m] per pair: min(1 mm, distance at the home pose − minimum)
   std::vector<double> row_times_;  // [s]: the instants of the linear limit rows
 };
 
