@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace idbench::testing {
 
 struct Result {
@@ -32,7 +34,8 @@ class CliFixture : public ::testing::Test {
     ASSERT_NE(exe, nullptr) << "set IDBENCH to the idbench executable";
     exe_ = exe;
     dir_ = std::filesystem::temp_directory_path() /
-           ("idbench_cli_" + std::string(Info()->test_suite_name()) + "_" + Info()->name());
+           ("idbench_cli_" + std::string(Info()->test_suite_name()) + "_" + Info()->name() + "_" +
+            std::to_string(getpid()));  // one folder per run: checkouts may run their tests at once
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

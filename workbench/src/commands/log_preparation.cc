@@ -147,10 +147,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
                                   const LogPreparationOptions& options) {
   PreparedLog out;
   const JointLogLayout& layout = source->layout();
-  out.warnings = layout.warnings;
-  out.notes = layout.notes;
   out.path = path;
-  if (layout.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
 
   // First pass: the samples in the time window, its ends, and whether the
   // steps are uniform (all within 1e-6 of the shortest: what ResampleJointLog
@@ -182,6 +179,11 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
     }
   }
   if (n_total == 0) throw std::invalid_argument(path + ": no samples");
+  // The layout's notes and warnings after a whole pass (a source may add
+  // some at its end, e.g. the degree check on the range of each joint).
+  out.warnings = layout.warnings;
+  out.notes = layout.notes;
+  if (layout.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
   out.n_raw = n;
   out.source = source;
   out.has_qd = layout.has_qd;
