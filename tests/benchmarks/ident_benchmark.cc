@@ -149,7 +149,10 @@ void BM_StreamedIdentifyPuma560(benchmark::State& state) {
   std::normal_distribution<double> noise(0.0, 1.0);
   for (auto _ : state) {
     StreamedLogFilter prepare(filter.filter, filter.sample_rate_hz, true, false, 6, n);
-    StreamedJointEquations equations(model, friction, base, {.filter = filter, .n_samples = n});
+    StreamedEquationsSettings settings;
+    settings.filter = filter;
+    settings.n_samples = n;
+    StreamedJointEquations equations(model, friction, base, settings);
     JointLog chunk;
     for (Eigen::Index s0 = 0; s0 < n; s0 += kStreamBlockSamples) {
       const Eigen::Index m = std::min(kStreamBlockSamples, n - s0);

@@ -13,6 +13,14 @@
 namespace idbench {
 namespace {
 
+// Settings with the filter and sample count given, the rest default.
+StreamedEquationsSettings Settings(std::optional<ParallelFilter> filter, Eigen::Index n_samples) {
+  StreamedEquationsSettings settings;
+  settings.filter = std::move(filter);
+  settings.n_samples = n_samples;
+  return settings;
+}
+
 // A puma560 log at 1 kHz along the general motion, shaped like a
 // controller's: t, q, measured qd, τ (no qdd), with noise on q, qd and τ.
 class StreamedJointEquationsTest : public ::testing::Test {
@@ -57,7 +65,7 @@ class StreamedJointEquationsTest : public ::testing::Test {
   StackedFactors Streamed(const JointLog& log, Eigen::Index block, Eigen::Index push) const {
     const Eigen::Index n = log.n_samples();
     StreamedLogFilter prepare(filter_.filter, filter_.sample_rate_hz, log.qd.size() > 0, false, 6, n, block);
-    StreamedEquationsSettings settings{.filter = filter_, .n_samples = n};
+    StreamedEquationsSettings settings = Settings(filter_, n);
     settings.block = block;
     StreamedJointEquations equations(model_, friction_, base_, settings);
     for (Eigen::Index s = 0; s < n; s += push) {
@@ -112,7 +120,9 @@ TEST_F(StreamedJointEquationsTest, WithoutFilterFoldsEverySampleAndKeepsBoundedS
   JointLog log = testing::SyntheticJointLog(model_, *motion, Eigen::VectorXd::LinSpaced(3001, 0.0, 3.0));
   log.tau += 0.5 * Eigen::MatrixXd::Random(3001, 6);  // residuals well above rounding
   const Eigen::VectorXd beta = Eigen::VectorXd::LinSpaced(base_.n_base(), 0.5, 1.5);
-  StreamedEquationsSettings settings{.n_samples = 3001, .series_beta = beta, .series_stride = 7};
+  StreamedEquationsSettings settings = Settings(std::nullopt, 3001);
+  settings.series_beta = beta;
+  settings.series_stride = 7;
   StreamedJointEquations equations(model_, friction_, base_, settings);
   for (Eigen::Index s = 0; s < 3001; s += 1000) equations.Push(Rows(log, s, std::min<Eigen::Index>(1000, 3001 - s)));
   Eigen::MatrixXd W;
@@ -128,12 +138,12 @@ TEST_F(StreamedJointEquationsTest, WithoutFilterFoldsEverySampleAndKeepsBoundedS
 }
 
 TEST_F(StreamedJointEquationsTest, RejectsTooManySamplesAndTooShortLogs) {
-  StreamedJointEquations equations(model_, friction_, base_, {.filter = filter_, .n_samples = 2000});
+  StreamedJointEquations equations(model_, friction_, base_, Settings(filter_, 2000));
   JointLog prepared = Rows(recorded_, 0, 2001);
   prepared.qdd = prepared.qd;
   EXPECT_THROW(equations.Push(prepared), std::invalid_argument);
   EXPECT_THROW(equations.Push(Rows(recorded_, 0, 10)), std::invalid_argument);  // no qdd
-  EXPECT_THROW(StreamedJointEquations(model_, friction_, base_, {.filter = filter_, .n_samples = 1000}),
+  EXPECT_THROW(StreamedJointEquations(model_, friction_, base_, Settings(filter_, 1000)),
                std::invalid_argument);  // 2 × 500 samples trimmed
 }
 
