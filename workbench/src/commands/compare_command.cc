@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -12,7 +13,6 @@
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/design_regressor.h"
-#include "idbench/excitation/sampled_trajectory.h"
 #include "idbench/ident/least_squares.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/workbench/formats/limits_file.h"
@@ -155,12 +155,39 @@ Eigen::VectorXd KnownNoiseSigma(const Eigen::MatrixXd& W, const std::vector<doub
   return R_inv.rowwise().norm();  // cov = R⁻¹R⁻ᵀ
 }
 
-// A recorded log as the motion it ran: PrepareJointLog (identify's reading,
-// resampling and zero-phase filter), the filter's end transients dropped,
-// then the recorded q, qd, qdd through a C² interpolant (SampledTrajectory:
-// exact at every recorded sample).
-std::unique_ptr<Trajectory> LoadRecordedMotion(const std::string& path, const RobotModel& model,
-                                               const CompareOptions& options) {
+// A recorded log as the motion it ran: q, qd and qdd each interpolated
+// linearly between the recorded samples (exact at every sample). Not one C²
+// curve through all three: a recorded qdd is rarely the second derivative of
+// the recorded q (filtered apart, a sample's lag), and a curve forced through
+// both amplifies the mismatch by 1/h² between samples. Time from the first
+// kept sample; `duration` may cut the end (the simulation's grid).
+class RecordedMotion final : public Trajectory {
+ public:
+  RecordedMotion(JointLog log, double duration) : log_(std::move(log)), duration_(duration) {}
+  int n_dof() const override { return log_.n_dof(); }
+  double duration() const override { return duration_; }
+  double recorded_duration() const { return log_.t[log_.n_samples() - 1] - log_.t[0]; }
+  void Evaluate(double t, JointState* state) const override {
+    const double* begin = log_.t.data();
+    const Eigen::Index n = log_.n_samples();
+    const double at = std::clamp(log_.t[0] + t, log_.t[0], log_.t[n - 1]);
+    const Eigen::Index i = std::clamp<Eigen::Index>((std::upper_bound(begin, begin + n, at) - begin) - 1, 0, n - 2);
+    const double w = (at - log_.t[i]) / (log_.t[i + 1] - log_.t[i]);
+    state->q = ((1.0 - w) * log_.q.row(i) + w * log_.q.row(i + 1)).transpose();
+    state->qd = ((1.0 - w) * log_.qd.row(i) + w * log_.qd.row(i + 1)).transpose();
+    state->qdd = ((1.0 - w) * log_.qdd.row(i) + w * log_.qdd.row(i + 1)).transpose();
+  }
+  void Cut(double duration) { duration_ = duration; }
+
+ private:
+  JointLog log_;
+  double duration_;
+};
+
+// Reads a recorded log with PrepareJointLog (identify's reading, resampling
+// and zero-phase filter) and drops the filter's end transients.
+std::unique_ptr<RecordedMotion> LoadRecordedMotion(const std::string& path, const RobotModel& model,
+                                                   const CompareOptions& options) {
   const PreparedLog prepared = PrepareJointLog(path, model, options.preparation());
   const JointLog& log = prepared.log;
   double trim = 0.0;  // [s] at both ends
@@ -170,29 +197,18 @@ std::unique_ptr<Trajectory> LoadRecordedMotion(const std::string& path, const Ro
            prepared.parallel_filter->sample_rate_hz;
   }
   const double t0 = log.t[0] + trim - 1e-9, t1 = log.t[log.n_samples() - 1] - trim + 1e-9;
-  std::vector<Eigen::Index> kept;
-  for (Eigen::Index s = 0; s < log.n_samples(); ++s) {
-    if (log.t[s] >= t0 && log.t[s] <= t1) kept.push_back(s);
-  }
-  if (kept.size() < 2) {
-    throw std::invalid_argument(path + ": " + std::to_string(kept.size()) +
+  const Eigen::Index first = (log.t.array() < t0).count(), end = (log.t.array() <= t1).count();
+  if (end - first < 2) {
+    throw std::invalid_argument(path + ": " + std::to_string(std::max<Eigen::Index>(end - first, 0)) +
                                 " samples left after the filter's end transients; record a longer log");
   }
-  const Eigen::Index n = static_cast<Eigen::Index>(kept.size());
-  Eigen::VectorXd t(n);
-  Eigen::MatrixXd q(model.n_dof(), n), qd(model.n_dof(), n), qdd(model.n_dof(), n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Index s = kept[static_cast<size_t>(i)];
-    t[i] = log.t[s];
-    q.col(i) = log.q.row(s).transpose();
-    qd.col(i) = log.qd.row(s).transpose();
-    qdd.col(i) = log.qdd.row(s).transpose();
-  }
-  try {
-    return std::make_unique<SampledTrajectory>(std::move(t), std::move(q), std::move(qd), std::move(qdd));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(path + ": " + e.what());
-  }
+  JointLog kept;
+  kept.t = log.t.segment(first, end - first);
+  kept.q = log.q.middleRows(first, end - first);
+  kept.qd = log.qd.middleRows(first, end - first);
+  kept.qdd = log.qdd.middleRows(first, end - first);
+  const double duration = kept.t[kept.n_samples() - 1] - kept.t[0];
+  return std::make_unique<RecordedMotion>(std::move(kept), duration);
 }
 
 }  // namespace
@@ -262,9 +278,18 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
     motions.push_back(LoadTrajectoryArg(name, model, builtin));
     CheckCompareMotion(name, motions.back()->duration(), options);
   }
+  // A recorded log is simulated like a designed motion over its span cut to
+  // a whole number of sample spacings (samples·dt: the instants fall on whole
+  // steps); not when shorter than one spacing or longer than one simulation.
+  std::vector<bool> simulated(options.trajectories.size(), true);
+  const double spacing = options.samples * options.dt;
   for (const std::string& path : options.logs) {
     names.push_back(path);
-    motions.push_back(LoadRecordedMotion(path, model, options));
+    std::unique_ptr<RecordedMotion> motion = LoadRecordedMotion(path, model, options);
+    const double cut = std::floor(motion->duration() / spacing + 1e-9) * spacing;
+    simulated.push_back(cut >= spacing && cut / options.dt <= SimulationOptions::kMaxSteps);
+    if (simulated.back()) motion->Cut(cut);
+    motions.push_back(std::move(motion));
   }
   for (size_t m = 0; m < names.size(); ++m) {
     const std::string& name = names[m];
@@ -272,6 +297,7 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
     MotionComparison row;
     row.name = name;
     row.recorded = m >= options.trajectories.size();
+    row.simulated = simulated[m];
     row.duration = motion->duration();
     // Designed and recorded alike: W on `samples` instants over the motion.
     std::vector<double> times;
@@ -288,7 +314,7 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
       }
       row.realised.cond = row.mean_relative_error = nan;
       row.predicted_percent_sigma = Eigen::VectorXd::Constant(regressor.n_parameters(), nan);
-    } else if (row.recorded) {
+    } else if (!row.simulated) {
       // Not simulated: no realised states, no Monte-Carlo error; %σ from the
       // recorded states with the torque noise (torque model).
       row.realised.cond = row.mean_relative_error = nan;
@@ -305,7 +331,7 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
       mc.friction = options.friction;
       mc.trials = options.trials;
       mc.seed = options.seed;
-      const MonteCarloReport r = RunMonteCarlo(model, mc);
+      const MonteCarloReport r = RunMonteCarlo(model, mc, *motion);
       row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
       SetPredictedSigma(r.predicted_sigma, r.beta_true, &row);
       row.mean_relative_error = r.mean_relative_error;
@@ -336,23 +362,23 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
   bool any_recorded = false;
   for (const MotionComparison& m : report.motions) {
     std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
-    any_recorded = any_recorded || m.recorded;
-    // A recorded log is not simulated: "—" and the footnote below.
-    const std::string realised = m.recorded ? "—¹" : Format("%.5g", m.realised.cond);
-    const std::string mc = m.recorded ? "—¹" : Format("%.4g", m.mean_relative_error);
+    any_recorded = any_recorded || !m.simulated;
+    // A recorded log not simulated: "—" and the footnote below.
+    const std::string realised = !m.simulated ? "—¹" : Format("%.5g", m.realised.cond);
+    const std::string mc = !m.simulated ? "—¹" : Format("%.4g", m.mean_relative_error);
     std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %*s %*s  %s\n",
                   m.rank > 0 ? std::to_string(m.rank).c_str() : "-", name.c_str(),
                   Format("%.5g", m.designed.cond).c_str(), Format("%.5g", m.designed.cond_normalised).c_str(),
                   Format("%.5g", m.designed.log_det).c_str(), Format("%.5g", m.designed.sigma_min).c_str(),
-                  m.recorded ? 15 : 11, realised.c_str(), m.recorded ? 15 : 11, mc.c_str(),
+                  m.simulated ? 11 : 15, realised.c_str(), m.simulated ? 11 : 15, mc.c_str(),
                   m.limits.feasible() ? "within" : "VIOLATED");
     out += line;
   }
   out += "\nrank: by cond(W), designed and recorded motions together (1: lowest).";
   if (any_recorded) {
-    out += "\n¹ a recorded log: not simulated, so no realised cond or Monte-Carlo error; its cond, log det and %sigma "
-           "are of the recorded states (qd, qdd as recorded or from the zero-phase filter), %sigma with the torque "
-           "noise.";
+    out += "\n¹ a recorded log shorter than samples x dt or longer than one simulation: not simulated, so no realised "
+           "cond or Monte-Carlo error; its cond, log det and %sigma are of the recorded states, %sigma with the "
+           "torque noise.";
   }
   out += "\n";
   out += options.model == "torque"
@@ -406,6 +432,7 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
   for (const MotionComparison& m : report.motions) {
     json j = {{"trajectory", m.name},
               {"recorded", m.recorded},
+              {"simulated", m.simulated},
               {"rank", m.rank > 0 ? json(m.rank) : json(nullptr)},
               {"duration", m.duration},
               {"designed", IdentifiabilityJson(m.designed)},

@@ -7,7 +7,7 @@
 // joint-torque model, hinge-wrench noise for the per-body model).
 // Recorded joint logs (any format PrepareJointLog reads) stand beside them:
 // their identifiability from the recorded states (qd, qdd measured or
-// estimated by identify's zero-phase filter), not simulated.
+// estimated by identify's zero-phase filter), and Bullet replays them.
 #pragma once
 
 #include <string>
@@ -45,7 +45,8 @@ struct CompareOptions {
 
 struct MotionComparison {
   std::string name;
-  bool recorded = false;                // a recorded log: not simulated (realised, MC error NaN)
+  bool recorded = false;                // a recorded log (its span cut to whole samples·dt when simulated)
+  bool simulated = true;                // false: a log too short or long to simulate (realised, MC error NaN)
   double duration = 0.0;
   Identifiability designed;             // analytic motion on the sample grid
   Identifiability realised;             // the states Bullet executed, same samples
