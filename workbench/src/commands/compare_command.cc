@@ -166,7 +166,6 @@ class RecordedMotion final : public Trajectory {
   RecordedMotion(JointLog log, double duration) : log_(std::move(log)), duration_(duration) {}
   int n_dof() const override { return log_.n_dof(); }
   double duration() const override { return duration_; }
-  double recorded_duration() const { return log_.t[log_.n_samples() - 1] - log_.t[0]; }
   void Evaluate(double t, JointState* state) const override {
     const double* begin = log_.t.data();
     const Eigen::Index n = log_.n_samples();
@@ -370,7 +369,7 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
                   m.rank > 0 ? std::to_string(m.rank).c_str() : "-", name.c_str(),
                   Format("%.5g", m.designed.cond).c_str(), Format("%.5g", m.designed.cond_normalised).c_str(),
                   Format("%.5g", m.designed.log_det).c_str(), Format("%.5g", m.designed.sigma_min).c_str(),
-                  m.simulated ? 11 : 15, realised.c_str(), m.simulated ? 11 : 15, mc.c_str(),
+                  m.simulated ? 11 : 14, realised.c_str(), m.simulated ? 11 : 14, mc.c_str(),  // "—¹": 5 bytes, 2 columns
                   m.limits.feasible() ? "within" : "VIOLATED");
     out += line;
   }
