@@ -9,6 +9,7 @@
 
 #include "cli_command.h"
 #include "common_flags.h"
+#include "log_reading_flags.h"
 #include "idbench/workbench/commands/compare_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/reports/design_report.h"
@@ -51,8 +52,10 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
   compare.command_line = context->command_line();
   CLI::App* command = app->add_subcommand(
       "compare", "Identifiability of motions side by side: cond, log det, %sigma, Monte-Carlo error on Bullet data");
-  command->add_option("trajectories", compare.trajectories, "Motions: built-in names or .json/.csv files")
-      ->required();
+  command->add_option("trajectories", compare.trajectories, "Motions: built-in names or .json/.csv files");
+  command->add_option("--log", compare.logs,
+                      "A recorded joint log (CSV, log description, ROS 2 bag) compared beside the motions; repeatable")
+      ->type_name("PATH");
   AddRobotFlags(command, &compare.robot, context->robot_load(), "Built-in robot or URDF file");
   command->add_option("--model", compare.model, "torque or per-body")->capture_default_str();
   AddFrictionFlag(command, &compare.friction, "Friction terms of the torque model");
@@ -66,6 +69,8 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
       ->capture_default_str();
   command->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();
   AddSeedFlag(command, &compare.seed);
+  context->AddSpellings(kLogReadingSpellings);
+  AddLogReadingFlags(command, &compare.format, nullptr, nullptr, &compare.filter, &compare.max_gap_s);
   AddOutFlag(command, &compare.out_dir, "Output directory for compare.json and compare.csv")->capture_default_str();
   AddReportFlag(command, &flags->report);
   return {command, [flags, context] {

@@ -25,9 +25,11 @@ void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<s
       ->type_name("TOPIC");
   command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
       ->capture_default_str();
-  AddFrictionFlag(command, friction, "Friction terms: none or viscous,coulomb,offset,rotor");
-  command->add_option("--coulomb-smoothing", *coulomb_smoothing,
-                      "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
+  if (friction) {
+    AddFrictionFlag(command, friction, "Friction terms: none or viscous,coulomb,offset,rotor");
+    command->add_option("--coulomb-smoothing", *coulomb_smoothing,
+                        "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
+  }
   command->add_option("--filter-cutoff", filter->cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
       ->capture_default_str();
   command->add_option("--filter-order", filter->order, "Butterworth order")->capture_default_str();

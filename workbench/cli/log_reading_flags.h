@@ -18,6 +18,8 @@ inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-uni
 
 // --columns, --topic, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
 // --filter-order, --max-gap, filling these fields of the command's options.
+// friction null (a command with its own --friction): no --friction or
+// --coulomb-smoothing (coulomb_smoothing unused).
 void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
                         double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s);
 

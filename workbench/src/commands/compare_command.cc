@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -126,14 +127,108 @@ void CheckCompareMotion(const std::string& name, double duration, const CompareO
       (works.empty() ? "" : ": --samples " + works + " would"));
 }
 
+// %σ from σ where the true value is not zero up to rounding (kZeroValue);
+// there σ itself (FormatCompareTable). The same for every motion.
+void SetPredictedSigma(const Eigen::VectorXd& sigma, const Eigen::VectorXd& beta_true, MotionComparison* row) {
+  row->predicted_sigma = sigma;
+  row->predicted_percent_sigma = 100.0 * sigma.cwiseQuotient(beta_true.cwiseAbs());
+  const double largest = beta_true.cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < beta_true.size(); ++k) {
+    if (std::abs(beta_true[k]) <= kZeroValue * largest) {
+      row->predicted_percent_sigma[k] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+}
+
+// σ per parameter of weighted least squares on W (full column rank) with
+// the known noise σ_j on joint j's rows (rows interleaved by joint):
+// √diag((WᵀΣ⁻¹W)⁻¹), what a recorded motion predicts without simulation.
+Eigen::VectorXd KnownNoiseSigma(const Eigen::MatrixXd& W, const std::vector<double>& tau_noise, int n_dof) {
+  Eigen::MatrixXd Ww = W;
+  for (Eigen::Index r = 0; r < Ww.rows(); ++r) {
+    Ww.row(r) /= tau_noise.size() == 1 ? tau_noise[0] : tau_noise[static_cast<size_t>(r % n_dof)];
+  }
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Ww);
+  const Eigen::Index p = W.cols();
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd R_inv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
+  return R_inv.rowwise().norm();  // cov = R⁻¹R⁻ᵀ
+}
+
+// A recorded log as the motion it ran: q, qd and qdd each interpolated
+// linearly between the recorded samples (exact at every sample). Not one C²
+// curve through all three: a recorded qdd is rarely the second derivative of
+// the recorded q (filtered apart, a sample's lag), and a curve forced through
+// both amplifies the mismatch by 1/h² between samples. Time from the first
+// kept sample; `duration` may cut the end (the simulation's grid).
+class RecordedMotion final : public Trajectory {
+ public:
+  RecordedMotion(JointLog log, double duration) : log_(std::move(log)), duration_(duration) {}
+  int n_dof() const override { return log_.n_dof(); }
+  double duration() const override { return duration_; }
+  void Evaluate(double t, JointState* state) const override {
+    const double* begin = log_.t.data();
+    const Eigen::Index n = log_.n_samples();
+    const double at = std::clamp(log_.t[0] + t, log_.t[0], log_.t[n - 1]);
+    const Eigen::Index i = std::clamp<Eigen::Index>((std::upper_bound(begin, begin + n, at) - begin) - 1, 0, n - 2);
+    const double w = (at - log_.t[i]) / (log_.t[i + 1] - log_.t[i]);
+    state->q = ((1.0 - w) * log_.q.row(i) + w * log_.q.row(i + 1)).transpose();
+    state->qd = ((1.0 - w) * log_.qd.row(i) + w * log_.qd.row(i + 1)).transpose();
+    state->qdd = ((1.0 - w) * log_.qdd.row(i) + w * log_.qdd.row(i + 1)).transpose();
+  }
+  void Cut(double duration) { duration_ = duration; }
+
+ private:
+  JointLog log_;
+  double duration_;
+};
+
+// Reads a recorded log with PrepareJointLog (identify's reading, resampling
+// and zero-phase filter) and drops the filter's end transients.
+std::unique_ptr<RecordedMotion> LoadRecordedMotion(const std::string& path, const RobotModel& model,
+                                                   const CompareOptions& options) {
+  const PreparedLog prepared = PrepareJointLog(path, model, options.preparation());
+  const JointLog& log = prepared.log;
+  double trim = 0.0;  // [s] at both ends
+  if (prepared.parallel_filter) {
+    trim = static_cast<double>(ParallelFilterTrimSamples(prepared.parallel_filter->filter,
+                                                         prepared.parallel_filter->sample_rate_hz)) /
+           prepared.parallel_filter->sample_rate_hz;
+  }
+  const double t0 = log.t[0] + trim - 1e-9, t1 = log.t[log.n_samples() - 1] - trim + 1e-9;
+  const Eigen::Index first = (log.t.array() < t0).count(), end = (log.t.array() <= t1).count();
+  if (end - first < 2) {
+    throw std::invalid_argument(path + ": " + std::to_string(std::max<Eigen::Index>(end - first, 0)) +
+                                " samples left after the filter's end transients; record a longer log");
+  }
+  JointLog kept;
+  kept.t = log.t.segment(first, end - first);
+  kept.q = log.q.middleRows(first, end - first);
+  kept.qd = log.qd.middleRows(first, end - first);
+  kept.qdd = log.qdd.middleRows(first, end - first);
+  const double duration = kept.t[kept.n_samples() - 1] - kept.t[0];
+  return std::make_unique<RecordedMotion>(std::move(kept), duration);
+}
+
 }  // namespace
+
+LogPreparationOptions CompareOptions::preparation() const {
+  LogPreparationOptions out;
+  out.format = format;
+  out.filter = filter;
+  out.max_gap_s = max_gap_s;
+  return out;
+}
 
 bool CompareOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;
     return false;
   };
-  if (trajectories.empty()) return fail("give at least one trajectory (built-in name or .json/.csv file)");
+  if (trajectories.empty() && logs.empty()) {
+    return fail("give at least one motion (built-in name, .json/.csv trajectory file, or a recorded log)");
+  }
+  if (!logs.empty() && !preparation().IsValid(why)) return false;
   if (model != "torque" && model != "per-body") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
@@ -168,33 +263,61 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
   std::optional<ClearanceModel> clearance;
   if (options.clearance >= 0.0) clearance.emplace(model, options.clearance);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
-  // Every motion read and checked before any work: its duration fits one
-  // simulation, and its samples fall on whole simulation steps.
+  // Every motion read and checked before any work: a designed motion's
+  // duration fits one simulation, and its samples fall on whole simulation
+  // steps; a recorded log is read whole (not simulated).
+  const size_t n_noise = options.tau_noise.size();
+  if (!per_body && n_noise != 1 && n_noise != static_cast<size_t>(model.n_dof())) {
+    throw std::invalid_argument("--tau-noise: expected 1 or " + std::to_string(model.n_dof()) +
+                                " values (one per joint), got " + std::to_string(n_noise));
+  }
+  std::vector<std::string> names = options.trajectories;
   std::vector<std::unique_ptr<Trajectory>> motions;
   for (const std::string& name : options.trajectories) {
     motions.push_back(LoadTrajectoryArg(name, model, builtin));
     CheckCompareMotion(name, motions.back()->duration(), options);
   }
-  for (size_t m = 0; m < options.trajectories.size(); ++m) {
-    const std::string& name = options.trajectories[m];
+  // A recorded log is simulated like a designed motion over its span cut to
+  // a whole number of sample spacings (samples·dt: the instants fall on whole
+  // steps); not when shorter than one spacing or longer than one simulation.
+  std::vector<bool> simulated(options.trajectories.size(), true);
+  const double spacing = options.samples * options.dt;
+  for (const std::string& path : options.logs) {
+    names.push_back(path);
+    std::unique_ptr<RecordedMotion> motion = LoadRecordedMotion(path, model, options);
+    const double cut = std::floor(motion->duration() / spacing + 1e-9) * spacing;
+    simulated.push_back(cut >= spacing && cut / options.dt <= SimulationOptions::kMaxSteps);
+    if (simulated.back()) motion->Cut(cut);
+    motions.push_back(std::move(motion));
+  }
+  for (size_t m = 0; m < names.size(); ++m) {
+    const std::string& name = names[m];
     const std::unique_ptr<Trajectory>& motion = motions[m];
     MotionComparison row;
     row.name = name;
+    row.recorded = m >= options.trajectories.size();
+    row.simulated = simulated[m];
     row.duration = motion->duration();
+    // Designed and recorded alike: W on `samples` instants over the motion.
     std::vector<double> times;
     for (int k = 0; k < options.samples; ++k) times.push_back(k * motion->duration() / options.samples);
     const Eigen::MatrixXd W = regressor.Stack(*motion, times);
     row.designed = ComputeIdentifiability(W);
     row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz, clearance ? &*clearance : nullptr);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     if (row.designed.rank < regressor.n_parameters()) {
       const LeastSquaresSolution ls =
           SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
       for (size_t i = 0; i < ls.identifiable.size(); ++i) {
         if (!ls.identifiable[i]) row.unexcited.push_back(regressor.parameter_names()[i]);
       }
-      const double nan = std::numeric_limits<double>::quiet_NaN();
       row.realised.cond = row.mean_relative_error = nan;
       row.predicted_percent_sigma = Eigen::VectorXd::Constant(regressor.n_parameters(), nan);
+    } else if (!row.simulated) {
+      // Not simulated: no realised states, no Monte-Carlo error; %σ from the
+      // recorded states with the torque noise (torque model).
+      row.realised.cond = row.mean_relative_error = nan;
+      if (!per_body) SetPredictedSigma(KnownNoiseSigma(W, options.tau_noise, model.n_dof()), report.true_parameters, &row);
     } else if (per_body) {
       PerBodyMonteCarlo(model, *motion, options, regressor, &row);
     } else {
@@ -207,22 +330,22 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
       mc.friction = options.friction;
       mc.trials = options.trials;
       mc.seed = options.seed;
-      const MonteCarloReport r = RunMonteCarlo(model, mc);
+      const MonteCarloReport r = RunMonteCarlo(model, mc, *motion);
       row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
-      // %σ only where the true value is not zero up to rounding (kZeroValue);
-      // there σ itself (FormatCompareTable).
-      row.predicted_sigma = r.predicted_sigma;
-      row.predicted_percent_sigma = 100.0 * r.predicted_sigma.cwiseQuotient(r.beta_true.cwiseAbs());
-      const double largest = r.beta_true.cwiseAbs().maxCoeff();
-      for (Eigen::Index k = 0; k < r.beta_true.size(); ++k) {
-        if (std::abs(r.beta_true[k]) <= kZeroValue * largest) {
-          row.predicted_percent_sigma[k] = std::numeric_limits<double>::quiet_NaN();
-        }
-      }
+      SetPredictedSigma(r.predicted_sigma, r.beta_true, &row);
       row.mean_relative_error = r.mean_relative_error;
     }
     report.motions.push_back(std::move(row));
   }
+  // Ranked by cond(W), designed and recorded together; rank-deficient last (0).
+  std::vector<size_t> order;
+  for (size_t m = 0; m < report.motions.size(); ++m) {
+    if (report.motions[m].unexcited.empty()) order.push_back(m);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return report.motions[a].designed.cond < report.motions[b].designed.cond;
+  });
+  for (size_t i = 0; i < order.size(); ++i) report.motions[order[i]].rank = static_cast<int>(i + 1);
   return report;
 }
 
@@ -232,18 +355,31 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
   std::snprintf(line, sizeof line, "compare: %s model, %zu parameters, %d samples per motion, %d noisy trials\n\n",
                 options.model.c_str(), report.parameter_names.size(), options.samples, options.trials);
   out += line;
-  std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", "motion", "cond(W)", "norm cond",
-                "log det", "sigma_min", "realised", "MC error", "limits, clearance");
+  std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %11s %11s  %s\n", "rank", "motion", "cond(W)",
+                "norm cond", "log det", "sigma_min", "realised", "MC error", "limits, clearance");
   out += line;
+  bool any_recorded = false;
   for (const MotionComparison& m : report.motions) {
     std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
-    std::snprintf(line, sizeof line, "%-28s %11s %11s %11s %11s %11s %11s  %s\n", name.c_str(),
+    any_recorded = any_recorded || !m.simulated;
+    // A recorded log not simulated: "—" and the footnote below.
+    const std::string realised = !m.simulated ? "—¹" : Format("%.5g", m.realised.cond);
+    const std::string mc = !m.simulated ? "—¹" : Format("%.4g", m.mean_relative_error);
+    std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %*s %*s  %s\n",
+                  m.rank > 0 ? std::to_string(m.rank).c_str() : "-", name.c_str(),
                   Format("%.5g", m.designed.cond).c_str(), Format("%.5g", m.designed.cond_normalised).c_str(),
                   Format("%.5g", m.designed.log_det).c_str(), Format("%.5g", m.designed.sigma_min).c_str(),
-                  Format("%.5g", m.realised.cond).c_str(), Format("%.4g", m.mean_relative_error).c_str(),
+                  m.simulated ? 11 : 14, realised.c_str(), m.simulated ? 11 : 14, mc.c_str(),  // "—¹": 5 bytes, 2 columns
                   m.limits.feasible() ? "within" : "VIOLATED");
     out += line;
   }
+  out += "\nrank: by cond(W), designed and recorded motions together (1: lowest).";
+  if (any_recorded) {
+    out += "\n¹ a recorded log shorter than samples x dt or longer than one simulation: not simulated, so no realised "
+           "cond or Monte-Carlo error; its cond, log det and %sigma are of the recorded states, %sigma with the "
+           "torque noise.";
+  }
+  out += "\n";
   out += options.model == "torque"
              ? "\nMC error: mean over trials of |beta_hat - beta|/|beta| (WLS, torque noise); realised: cond(W) of the "
                "states Bullet executed.\n"
@@ -294,6 +430,9 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
   json motions = json::array();
   for (const MotionComparison& m : report.motions) {
     json j = {{"trajectory", m.name},
+              {"recorded", m.recorded},
+              {"simulated", m.simulated},
+              {"rank", m.rank > 0 ? json(m.rank) : json(nullptr)},
               {"duration", m.duration},
               {"designed", IdentifiabilityJson(m.designed)},
               {"realised", IdentifiabilityJson(m.realised)},
@@ -328,7 +467,7 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
 
 std::string FormatCompareCsv(const CompareReport& report) {
   std::string out = "trajectory,duration,cond,cond_normalised,log_det,sigma_min,realised_cond,mean_relative_error,"
-                    "within_robot_limits\n";
+                    "within_robot_limits,recorded,rank\n";
   for (const MotionComparison& m : report.motions) {
     for (double v : {m.duration, m.designed.cond, m.designed.cond_normalised, m.designed.log_det,
                      m.designed.sigma_min, m.realised.cond, m.mean_relative_error}) {
@@ -336,7 +475,8 @@ std::string FormatCompareCsv(const CompareReport& report) {
       else out += "\"" + m.name + "\",";
       AppendShortest(&out, v);
     }
-    out += m.limits.feasible() ? ",1\n" : ",0\n";
+    out += m.limits.feasible() ? ",1," : ",0,";
+    out += (m.recorded ? "1," : "0,") + std::to_string(m.rank) + "\n";
   }
   return out;
 }

@@ -56,29 +56,33 @@ void CheckRegressorSamples(const std::string& option, double samples, int n_dof)
 }
 
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options) {
+  const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
+  return RunMonteCarlo(model, options, *LoadTrajectoryArg(options.trajectory, model, builtin));
+}
+
+MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options, const Trajectory& motion) {
   const int n = model.n_dof();
   CheckRegressorSamples("--samples", options.samples, n);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
-  const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
   const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);
   SensorOptions sensors;
-  sensors.rate_hz = options.samples / motion->duration();
+  sensors.rate_hz = options.samples / motion.duration();
   sensors.tau_noise = options.tau_noise;
   std::string why;
   // The log rate samples/duration must divide the simulation rate: name
   // --samples (not --tau-noise) and the steps it must divide.
-  const double per_sample = motion->duration() / options.dt / options.samples;
+  const double per_sample = motion.duration() / options.dt / options.samples;
   if (per_sample < 1.0 - 1e-9 || std::abs(per_sample - std::round(per_sample)) > 1e-6 * per_sample) {
     throw std::invalid_argument("--samples: " + std::to_string(options.samples) + " samples over the " +
-                                Shortest(motion->duration()) + " s motion fall every " + Format("%.4g", per_sample) +
+                                Shortest(motion.duration()) + " s motion fall every " + Format("%.4g", per_sample) +
                                 " simulation steps of " + Shortest(options.dt) +
                                 " s; they must fall on whole steps (samples must divide the " +
-                                std::to_string(std::lround(motion->duration() / options.dt)) + " steps)");
+                                std::to_string(std::lround(motion.duration() / options.dt)) + " steps)");
   }
   if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--tau-noise: " + why);
   // 1. One noise-free experiment and one held-out, and the fixed regressors.
   const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
-  const JointLog log = SimulateNoiseFree(model, *motion, options.dt, sensors.rate_hz);
+  const JointLog log = SimulateNoiseFree(model, motion, options.dt, sensors.rate_hz);
   const JointLog held = SimulateNoiseFree(model, *held_motion, options.dt, sensors.rate_hz);
   MonteCarloReport report;
   report.log = log;

@@ -5,6 +5,9 @@
 // tracking); predicted %σ per parameter; and the Monte-Carlo identification
 // error on Bullet-simulated data with seeded noise (torque noise for the
 // joint-torque model, hinge-wrench noise for the per-body model).
+// Recorded joint logs (any format PrepareJointLog reads) stand beside them:
+// their identifiability from the recorded states (qd, qdd measured or
+// estimated by identify's zero-phase filter), and Bullet replays them.
 #pragma once
 
 #include <string>
@@ -12,11 +15,16 @@
 
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/excitation_design.h"
+#include "idbench/workbench/commands/log_preparation.h"
 
 namespace idbench {
 
 struct CompareOptions {
-  std::vector<std::string> trajectories;   // built-in names or .json/.csv files (≥ 1)
+  std::vector<std::string> trajectories;   // built-in names or .json/.csv files
+  std::vector<std::string> logs;           // recorded joint logs (≥ 1 motion in all)
+  JointLogFormat format;                   // how the logs are read
+  LogFilterOptions filter{.trim_s = -1.0}; // for logs missing qd or qdd
+  double max_gap_s = 0.0;                  // [s] longest step resampled; 0: 10 median steps
   std::string robot = "puma560";
   std::string model = "torque";            // torque | per-body
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
@@ -32,10 +40,13 @@ struct CompareOptions {
   std::string command_line;
 
   bool IsValid(std::string* why) const;
+  LogPreparationOptions preparation() const;
 };
 
 struct MotionComparison {
   std::string name;
+  bool recorded = false;                // a recorded log (its span cut to whole samples·dt when simulated)
+  bool simulated = true;                // false: a log too short or long to simulate (realised, MC error NaN)
   double duration = 0.0;
   Identifiability designed;             // analytic motion on the sample grid
   Identifiability realised;             // the states Bullet executed, same samples
@@ -49,6 +60,7 @@ struct MotionComparison {
   // parameters whose columns are zero or dependent; there is then no
   // estimate, so no %σ, realised cond or Monte-Carlo error (NaN).
   std::vector<std::string> unexcited;
+  int rank = 0;                         // 1 = lowest cond(W) among the motions; 0: rank-deficient
 };
 
 struct CompareReport {

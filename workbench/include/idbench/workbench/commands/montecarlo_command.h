@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/trajectory.h"
 #include "idbench/ident/joint_torque_identifier.h"
 
 namespace idbench {
@@ -54,6 +55,8 @@ constexpr int kMaxTrials = 100000;
 void CheckRegressorSamples(const std::string& option, double samples, int n_dof);
 
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options);
+// The same along `motion` (options.trajectory then only names it).
+MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options, const Trajectory& motion);
 std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report);
 std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCarloReport& report);
 

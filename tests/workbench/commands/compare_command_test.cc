@@ -1,0 +1,160 @@
+// compare on recorded logs: a noise-free log written from a built-in motion
+// (inverse dynamics, ident/synthetic_log.h) has the identifiability of the
+// motion it came from, whatever its rate; a log without qd/qdd goes through
+// identify's zero-phase filter; a recorded log is ranked with the designed
+// motions and not simulated.
+#include "idbench/workbench/commands/compare_command.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include <Eigen/Cholesky>
+
+#include "idbench/engine/puma560.h"
+#include "idbench/excitation/builtin_motions.h"
+#include "idbench/excitation/design_regressor.h"
+#include "idbench/ident/joint_torque_regressor.h"
+#include "ident/synthetic_log.h"
+#include "workbench/cli/joint_log_writer.h"
+
+namespace idbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CompareCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("idbench_compare_command_test_" + std::to_string(getpid()));
+    fs::create_directories(dir_);
+    options_.out_dir = (dir_ / "out").string();
+    options_.trials = 2;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // The built-in "general" motion (as compare builds it) sampled at `t`,
+  // written as CSV with the given signals.
+  std::string WriteLog(const std::string& name, const Eigen::VectorXd& t, const std::vector<std::string>& signals) {
+    const std::unique_ptr<Trajectory> motion =
+        MakeBuiltinMotion("general", 6, {.duration = options_.duration, .paper_qdd = 0.5});
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << testing::JointLogCsvText(testing::SyntheticJointLog(model_, *motion, t), signals, true);
+    return path.string();
+  }
+
+  RobotModel model_ = MakePuma560();
+  CompareOptions options_;
+  fs::path dir_;
+};
+
+// At 1 kHz the compare instants (every 40 ms over 10 s) are recorded samples:
+// the log's cond, log det and σ_min equal the motion's to 1e-6 (measured:
+// 4156.94182086 both; realised cond 4169.86624736 and Monte-Carlo error
+// 0.049663504 both).
+TEST_F(CompareCommandTest, NoiseFreeLogHasTheConditionOfItsMotion) {
+  options_.trajectories = {"general"};
+  options_.logs = {WriteLog("general.csv", Eigen::VectorXd::LinSpaced(10001, 0.0, 10.0), {"t", "q", "qd", "qdd", "tau"})};
+  const CompareReport report = RunCompare(model_, options_);
+  ASSERT_EQ(report.motions.size(), 2u);
+  const MotionComparison& designed = report.motions[0];
+  const MotionComparison& recorded = report.motions[1];
+  EXPECT_FALSE(designed.recorded);
+  EXPECT_TRUE(recorded.recorded);
+  EXPECT_EQ(recorded.duration, 10.0);
+  EXPECT_NEAR(recorded.designed.cond / designed.designed.cond, 1.0, 1e-6);
+  EXPECT_NEAR(recorded.designed.log_det, designed.designed.log_det, 1e-6);
+  EXPECT_NEAR(recorded.designed.sigma_min / designed.designed.sigma_min, 1.0, 1e-6);
+  // Bullet replays the log (linear between its samples, which fall on the
+  // simulation's steps) as it runs the motion: the same realised states, the
+  // same seeded noise, the same Monte-Carlo error and %σ.
+  EXPECT_TRUE(recorded.simulated);
+  EXPECT_NEAR(recorded.realised.cond / designed.realised.cond, 1.0, 1e-6);
+  EXPECT_NEAR(recorded.mean_relative_error / designed.mean_relative_error, 1.0, 1e-6);
+  ASSERT_EQ(recorded.predicted_sigma.size(), designed.predicted_sigma.size());
+  for (Eigen::Index k = 0; k < recorded.predicted_sigma.size(); ++k) {
+    EXPECT_NEAR(recorded.predicted_sigma[k] / designed.predicted_sigma[k], 1.0, 1e-6) << report.parameter_names[k];
+  }
+  // Equal cond: both ranked, 1 and 2.
+  EXPECT_EQ(designed.rank + recorded.rank, 3);
+  EXPECT_GE(std::min(designed.rank, recorded.rank), 1);
+}
+
+// 199.7 Hz (samples between the compare instants, which linear
+// interpolation of the recorded q, qd, qdd fills) is accepted, and its cond
+// is the motion's to 1e-3; without qd and qdd the filter estimates them and the
+// motion is ranked like any other.
+TEST_F(CompareCommandTest, OddRateLogsAreAccepted) {
+  const Eigen::Index n = static_cast<Eigen::Index>(std::floor(10.0 * 199.7)) + 1;
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(n, 0.0, static_cast<double>(n - 1) / 199.7);
+  options_.trajectories = {"general"};
+  options_.logs = {WriteLog("odd.csv", t, {"t", "q", "qd", "qdd", "tau"}), WriteLog("q_only.csv", t, {"t", "q", "tau"})};
+  options_.trials = 2;
+  const CompareReport report = RunCompare(model_, options_);
+  ASSERT_EQ(report.motions.size(), 3u);
+  // The log ends at its last sample before 10 s: the truth is the motion
+  // itself on the log's instants (every duration/samples from 0).
+  const MotionComparison& odd = report.motions[1];
+  EXPECT_NEAR(odd.duration, static_cast<double>(n - 1) / 199.7, 1e-12);
+  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 10.0, .paper_qdd = 0.5});
+  const DesignRegressor regressor = DesignRegressor::JointTorque(model_, *ParseFrictionTerms(options_.friction, nullptr));
+  std::vector<double> times;
+  for (int k = 0; k < options_.samples; ++k) times.push_back(k * odd.duration / options_.samples);
+  const Identifiability truth = ComputeIdentifiability(regressor.Stack(*motion, times));
+  EXPECT_NEAR(odd.designed.cond / truth.cond, 1.0, 1e-3);  // measured 1.5e-4 (4157.569 vs 4156.942)
+  EXPECT_NEAR(odd.designed.log_det, truth.log_det, 1e-2 * std::abs(truth.log_det));
+  // Simulated over 10 s (40 steps of 1 ms between instants): the motion's
+  // Monte-Carlo error within 1 % (measured 0.04976 vs 0.04966).
+  EXPECT_TRUE(odd.simulated);
+  EXPECT_NEAR(odd.mean_relative_error / report.motions[0].mean_relative_error, 1.0, 1e-2);
+  EXPECT_TRUE(odd.unexcited.empty());
+  EXPECT_TRUE(std::isfinite(odd.designed.cond));
+  const MotionComparison& filtered = report.motions[2];
+  EXPECT_TRUE(filtered.unexcited.empty());
+  EXPECT_TRUE(std::isfinite(filtered.designed.cond));
+  // 5/cutoff = 0.5 s of filter transients dropped at each end, then cut to
+  // whole samples·dt = 0.25 s for the simulation: 8.75 s.
+  EXPECT_NEAR(filtered.duration, 8.75, 1e-9);
+  std::vector<int> ranks;
+  for (const MotionComparison& m : report.motions) ranks.push_back(m.rank);
+  std::sort(ranks.begin(), ranks.end());
+  EXPECT_EQ(ranks, (std::vector<int>{1, 2, 3}));
+}
+
+// A log shorter than samples·dt (1.9 s < 1900 × 10 ms) cannot be simulated
+// on whole steps: not simulated (NaN realised cond and Monte-Carlo error),
+// its σ that of weighted least squares with the known torque noise on the
+// recorded states (the instants on its samples), here against the normal
+// equations of the motion itself.
+TEST_F(CompareCommandTest, ShortLogIsNotSimulated) {
+  options_.samples = 1900;
+  options_.dt = 1e-2;
+  options_.logs = {WriteLog("short.csv", Eigen::VectorXd::LinSpaced(1901, 0.0, 1.9), {"t", "q", "qd", "qdd", "tau"})};
+  const CompareReport report = RunCompare(model_, options_);
+  ASSERT_EQ(report.motions.size(), 1u);
+  const MotionComparison& m = report.motions[0];
+  ASSERT_TRUE(m.unexcited.empty());
+  EXPECT_FALSE(m.simulated);
+  EXPECT_TRUE(std::isnan(m.realised.cond));
+  EXPECT_TRUE(std::isnan(m.mean_relative_error));
+  EXPECT_EQ(m.rank, 1);
+  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 10.0, .paper_qdd = 0.5});
+  const DesignRegressor regressor = DesignRegressor::JointTorque(model_, *ParseFrictionTerms(options_.friction, nullptr));
+  std::vector<double> times;
+  for (int k = 0; k < options_.samples; ++k) times.push_back(k * 1.9 / options_.samples);
+  Eigen::MatrixXd W = regressor.Stack(*motion, times);
+  for (Eigen::Index r = 0; r < W.rows(); ++r) W.row(r) /= options_.tau_noise[static_cast<size_t>(r % 6)];
+  const Eigen::MatrixXd covariance = (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(W.cols(), W.cols()));
+  ASSERT_EQ(m.predicted_sigma.size(), W.cols());
+  for (Eigen::Index k = 0; k < W.cols(); ++k) {
+    EXPECT_NEAR(m.predicted_sigma[k] / std::sqrt(covariance(k, k)), 1.0, 1e-6) << report.parameter_names[k];
+  }
+}
+
+}  // namespace
+}  // namespace idbench
