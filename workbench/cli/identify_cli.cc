@@ -99,7 +99,10 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
   identify.command_line = context->command_line();
   CLI::App* command = app->add_subcommand("identify", "Identify base parameters from a joint log (CSV)");
   AddRobotFlags(command, &identify.robot, context->robot_load());
-  command->add_option("--data", identify.data, "Joint-log CSV (t, q*, [qd*, qdd*], tau*)")->required();
+  command
+      ->add_option("--data", identify.data,
+                   "Joint log: CSV (t, q*, [qd*, qdd*], tau*), log description (.json/.yaml) or ROS 2 bag")
+      ->required();
   command->add_option("--model", identify.model, "torque (per-body needs hinge wrenches: idbench run)")
       ->capture_default_str();
   command->add_option("--estimator", identify.estimator, "ols, wls or pc (physically consistent)")
