@@ -77,7 +77,8 @@ TEST_F(PayloadCliTest, TwoLogsWriteThePayloadAndAFragmentThatLoads) {
   urdf.insert(urdf.rfind("</robot>"), Slurp(dir_ / "p" / "payload.urdf.xml"));
   const RobotModel merged = LoadUrdfString(urdf).model;
   const LinkInertia& got = merged.links().back().inertia;
-  const LinkInertia& want = Loaded().links().back().inertia;
+  const RobotModel loaded_robot = Loaded();  // held: a reference into a temporary would dangle
+  const LinkInertia& want = loaded_robot.links().back().inertia;
   EXPECT_NEAR(got.mass, want.mass, 1e-6);
   EXPECT_LT((got.p_BoBcm_B - want.p_BoBcm_B).norm(), 1e-7);
   EXPECT_LT((got.I_Bcm_B - want.I_Bcm_B).norm(), 1e-8);
