@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -58,6 +59,10 @@ struct BarrierProblem {
     for (const auto& [i, a] : row.a) value += a * w[i];
     return extra >= 0 ? value + w[extra] : value;
   }
+  // Whether w lies in the strict interior, tested on S_j(w) and r_k(w)
+  // themselves (PhiChange's factored increments lose that test where an
+  // S_j is nearly singular).
+  bool Inside(const Eigen::VectorXd& w) const { return std::isfinite(Phi(w, 0.0)); }
   // The barrier function at w, +∞ outside the strict interior.
   double Phi(const Eigen::VectorXd& w, double tau) const {
     double phi = tau * Objective(w);
@@ -139,6 +144,21 @@ struct BarrierProblem {
   }
 };
 
+// The Newton step −H⁻¹∇ from the symmetrically scaled system E H E (E H E
+// unit diagonal: the barrier's curvature grows as 1/slack² near active
+// constraints, and the scaling keeps the factorisation accurate), with a
+// tiny diagonal shift where rounding makes it semidefinite. False if no
+// descent direction comes out.
+bool NewtonStep(const Eigen::VectorXd& grad, const Eigen::MatrixXd& hess, Eigen::VectorXd* step) {
+  const Eigen::VectorXd E = hess.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  Eigen::MatrixXd scaled = E.asDiagonal() * hess * E.asDiagonal();
+  *step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
+  if (step->allFinite() && grad.dot(*step) < 0.0) return true;
+  scaled.diagonal().array() += 1e-12;
+  *step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
+  return step->allFinite() && grad.dot(*step) < 0.0;
+}
+
 // Minimises Phi(·, τ) from a strictly feasible w by damped Newton steps;
 // returns false if a step could not lower it (stalled). `stop` ends early.
 template <typename Stop>
@@ -147,18 +167,8 @@ bool Centre(const BarrierProblem& problem, double tau, Eigen::VectorXd* w, int* 
   Eigen::MatrixXd hess;
   while (*steps < max_steps) {
     problem.Derivatives(*w, tau, &grad, &hess);
-    // Newton direction from the symmetrically scaled system E H E (E H E)
-    // unit diagonal: the barrier's curvature grows as 1/slack² near active
-    // constraints, and the scaling keeps the factorisation accurate), with a
-    // tiny diagonal shift where rounding makes it semidefinite.
-    const Eigen::VectorXd E = hess.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-    Eigen::MatrixXd scaled = E.asDiagonal() * hess * E.asDiagonal();
-    Eigen::VectorXd step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
-    if (!step.allFinite() || !(grad.dot(step) < 0.0)) {
-      scaled.diagonal().array() += 1e-12;
-      step = -E.cwiseProduct(scaled.ldlt().solve(E.cwiseProduct(grad)));
-      if (!step.allFinite() || !(grad.dot(step) < 0.0)) return false;
-    }
+    Eigen::VectorXd step;
+    if (!NewtonStep(grad, hess, &step)) return false;
     const double decrement2 = -grad.dot(step);
     if (decrement2 / 2.0 <= kCentringTolerance) return true;
     // Backtracking line search inside the domain. Within the region of
@@ -168,8 +178,12 @@ bool Centre(const BarrierProblem& problem, double tau, Eigen::VectorXd* w, int* 
     // has already swamped.
     const bool quadratic_region = decrement2 < 1.0 / 16.0;
     double alpha = 1.0;
-    while (quadratic_region ? !std::isfinite(problem.PhiChange(*w, alpha * step, tau))
-                            : problem.PhiChange(*w, alpha * step, tau) > -kArmijo * alpha * decrement2) {
+    auto rejected = [&](double a) {
+      const double change = problem.PhiChange(*w, a * step, tau);
+      if (quadratic_region ? !std::isfinite(change) : change > -kArmijo * a * decrement2) return true;
+      return !problem.Inside(*w + a * step);
+    };
+    while (rejected(alpha)) {
       alpha *= 0.5;
       if (alpha < 1e-14) return decrement2 < 1e-6;  // rounding floor near the centre
     }
@@ -276,33 +290,59 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   phase2.q = -2.0 * problem.R.transpose() * problem.z;
   phase2.R = &problem.R;
   phase2.z = &problem.z;
-  const Eigen::LDLT<Eigen::MatrixXd> P_ldlt(phase2.P);
   auto f = [&](const Eigen::VectorXd& v) { return (problem.R * v - problem.z).squaredNorm(); };
-  // The dual function at Z_j = S_j⁻¹/τ, λ_k = 1/(τ r_k): a lower bound on f*.
+  // The dual function at Z_j = S_j⁻¹/τ, λ_k = 1/(τ r_k), a lower bound on
+  // f*. These give Σ tr(Z_j S_j(u)) + Σ λ_k r_k(u) = m/τ (m = degree), so
+  // with G = Σ tr(Z_j B_ij) + Σ λ_k a_k the Lagrangian is
+  // f(v) − m/τ − Gᵀ(v − u), least where R v − z = y = ½ R⁻ᵀ G, and
+  //   f(u) − g = m/τ + ‖y − e‖²,   e = R u − z,   y − e = ½ R⁻ᵀ (G − ∇f(u)):
+  // the centred gap plus what the centring left, taken without the
+  // cancellations of evaluating g itself (Z carries ε·cond(S_j) where a
+  // block is nearly singular).
+  const Eigen::PartialPivLU<Eigen::MatrixXd> Rt_lu(problem.R.transpose());
+  const int degree = phase2.degree();
   auto lower_bound = [&](const Eigen::VectorXd& v, double tau) {
-    Eigen::VectorXd g_dual = Eigen::VectorXd::Zero(n);  // Σ tr(Z_j B_ij) + Σ λ_k a_k
-    double constant = 0.0;                               // Σ tr(Z_j C_j) + Σ λ_k c_k
+    Eigen::VectorXd g_dual = Eigen::VectorXd::Zero(n);  // G
     for (int j = 0; j < static_cast<int>(problem.blocks.size()); ++j) {
       const LmiBlock& b = problem.blocks[static_cast<size_t>(j)];
       const Eigen::MatrixXd Z = phase2.S(j, v).llt().solve(Eigen::MatrixXd::Identity(b.C.rows(), b.C.rows())) / tau;
-      constant += Z.cwiseProduct(b.C).sum();
       for (size_t i = 0; i < b.variables.size(); ++i) g_dual[b.variables[i]] += Z.cwiseProduct(b.B[i]).sum();
     }
     for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) {
-      const LinearInequality& row = problem.rows[static_cast<size_t>(k)];
       const double lambda = 1.0 / (tau * phase2.r(k, v));
-      constant += lambda * row.c;
-      for (const auto& [i, a] : row.a) g_dual[i] += lambda * a;
+      for (const auto& [i, a] : problem.rows[static_cast<size_t>(k)].a) g_dual[i] += lambda * a;
     }
-    const Eigen::VectorXd v_star = P_ldlt.solve(g_dual - phase2.q);
-    return f(v_star) - constant - g_dual.dot(v_star);
+    const Eigen::VectorXd centring = 0.5 * Rt_lu.solve(g_dual - phase2.ObjectiveGradient(v));  // y − e
+    return f(v) - (degree / tau + centring.squaredNorm());
+  };
+  // A sharper certificate near the centre: one more Newton step Δu and the
+  // dual point it implies, Z⁺ = (S⁻¹ − S⁻¹ S_Δ S⁻¹)/τ with S_Δ = Σ Δu_i B_i,
+  // λ⁺ = (1 − aᵀΔu/r)/(τ r), both positive while Δuᵀ H_b Δu < 1 (H_b the
+  // barrier's Hessian). At u⁺ = u + Δu they give
+  //   f(u⁺) − g = (m − Δuᵀ H_b Δu)/τ + ¼ ‖R⁻ᵀ r_N‖²/τ²,
+  // r_N = ∇Φ + H Δu the Newton system's residual: no term for how well u was
+  // centred along the barrier's stiff directions, which rounding (ε·cond S_j)
+  // leaves off centre by more than the tolerance. False where it does not apply.
+  auto certify_after_step = [&](const Eigen::VectorXd& v, double tau, Eigen::VectorXd* next, double* gap) {
+    Eigen::VectorXd grad_b, step;
+    Eigen::MatrixXd hess_b;
+    phase2.Derivatives(v, 0.0, &grad_b, &hess_b);  // the barrier alone
+    const Eigen::VectorXd grad = tau * phase2.ObjectiveGradient(v) + grad_b;
+    const Eigen::MatrixXd hess = tau * phase2.P + hess_b;
+    if (!NewtonStep(grad, hess, &step)) return false;
+    const double curvature = step.dot(hess_b * step);
+    *next = v + step;
+    if (!(curvature < 1.0) || !phase2.Inside(*next)) return false;
+    *gap = (degree - curvature) / tau + 0.25 * Rt_lu.solve(grad + hess * step).squaredNorm() / (tau * tau);
+    return std::isfinite(*gap);
   };
   // Outer iterations: centre, certify, raise τ. Rounding ends the progress
   // once τ f is ~10¹³ times the Newton decrement; the best certified point
-  // is kept.
-  const int degree = phase2.degree();
+  // (strictly feasible: only there is Z = S⁻¹/τ a dual point) is kept, and
+  // two stalled centrings in a row that do not improve it end the solve.
   double tau = degree / std::max(f(u) + options.objective_offset, 1e-300);
   bool stalled = false;
+  int fruitless_stalls = 0;
   double best_gap = kInf;  // absolute: f − g
   Eigen::VectorXd best_u = u;
   auto relative = [&](double gap, double objective) {
@@ -313,20 +353,30 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   while (solution.newton_steps < options.max_newton_steps && std::isfinite(tau) && tau > 0.0 && tau < 1e300) {
     const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
     stalled = !Centre(phase2, tau, &u, &solution.newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
-    const double objective = f(u), bound = lower_bound(u, tau), gap = objective - bound;
-    if (!std::isfinite(gap)) break;
-    if (gap < best_gap) {
-      best_gap = gap;
-      best_u = u;
-      solution.objective = objective;
-      solution.lower_bound = bound;
+    double objective = f(u), gap = objective - lower_bound(u, tau);
+    if (!std::isfinite(gap) || !phase2.Inside(u)) break;
+    Eigen::VectorXd candidate = u, stepped;
+    double stepped_gap = kInf;
+    if (certify_after_step(u, tau, &stepped, &stepped_gap) && stepped_gap < gap) {
+      candidate = stepped;
+      objective = f(stepped);
+      gap = stepped_gap;
     }
-    if (relative(best_gap, solution.objective) <= options.relative_gap || gap > 10.0 * best_gap) break;
+    const bool improved = gap < best_gap;
+    if (improved) {
+      best_gap = gap;
+      best_u = candidate;
+      solution.objective = objective;
+      solution.lower_bound = objective - gap;
+    }
+    fruitless_stalls = stalled && !improved ? fruitless_stalls + 1 : 0;
+    if (relative(best_gap, solution.objective) <= options.relative_gap || gap > 10.0 * best_gap || fruitless_stalls >= 2)
+      break;
     tau *= kBarrierGrowth;
   }
   solution.u = best_u;
   solution.relative_gap = relative(best_gap, solution.objective);
-  solution.feasible = std::isfinite(phase2.Phi(best_u, 1.0));
+  solution.feasible = phase2.Inside(best_u);
   solution.converged = solution.feasible && solution.relative_gap <= options.relative_gap;
   solution.status = solution.converged                              ? "converged"
                     : !std::isfinite(best_gap)                        ? "stopped: the objective or its bound is not finite"

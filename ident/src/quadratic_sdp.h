@@ -17,7 +17,9 @@
 // λ_k = 1/(τ r_k) > 0 are dual feasible, so the dual function
 //   g(Z, λ) = min_v f(v) − Σ tr(Z_j S_j(v)) − Σ λ_k r_k(v)
 // (a quadratic in v, minimised exactly) is a lower bound on the optimum, and
-// f(u) − g ≥ f(u) − f* is the gap reported. Internal to ident.
+// f(u) − g ≥ f(u) − f* is the gap reported; near the centre the dual point
+// one Newton step further on gives a sharper one (quadratic_sdp.cc).
+// Internal to ident.
 #pragma once
 
 #include <Eigen/Core>

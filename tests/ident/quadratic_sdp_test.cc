@@ -34,6 +34,36 @@ TEST(QuadraticSdpTest, AnalyticCaseOnTwoActiveConstraints) {
   EXPECT_LE(s.relative_gap, 1e-9);
 }
 
+// Asked for a gap no double reaches, the solve runs into rounding: it must
+// stop there, on a strictly feasible point no better than the optimum, and
+// say so (a CI run under clang's sanitizer build once saw the iterate step
+// out of a nearly singular block at τ ~ 10¹⁹ and report that point).
+TEST(QuadraticSdpTest, AnUnreachableGapStopsInsideWhereRoundingEndsTheProgress) {
+  QuadraticSdp p;
+  p.R = Eigen::Matrix2d::Identity();
+  p.z = Eigen::Vector2d(3.0, 0.5);
+  LmiBlock block;
+  block.C = Eigen::Matrix2d::Identity();
+  block.variables = {0};
+  Eigen::Matrix2d B;
+  B << 0, 1, 1, 0;
+  block.B = {B};
+  p.blocks.push_back(block);
+  p.rows.push_back(LinearInequality{0.2, {{1, -1.0}}});
+  QuadraticSdpOptions options;
+  options.relative_gap = 1e-300;
+  const QuadraticSdpSolution s = SolveQuadraticSdp(p, options);
+  EXPECT_FALSE(s.converged);
+  EXPECT_TRUE(s.feasible) << s.status;
+  EXPECT_TRUE(IsStrictlyFeasible(p, s.u));
+  EXPECT_LT(std::abs(s.u[0]), 1.0);
+  EXPECT_LT(s.u[1], 0.2);
+  EXPECT_GE(s.objective, 4.09 * (1 - 1e-15));     // no better than the optimum found by hand
+  EXPECT_LE(s.objective - 4.09, 4.09 * 1e-9);     // and as close as the default tolerance asks
+  EXPECT_EQ(s.status, "stopped where rounding ends the progress");
+  EXPECT_LT(s.newton_steps, 500);
+}
+
 // A random well-posed instance: R upper triangular with a dominant diagonal,
 // three 4 × 4 LMIs over overlapping variables whose C is positive definite
 // (u = 0 feasible), and rows c + aᵀu ≥ 0 with c > 0.
@@ -83,6 +113,26 @@ TEST(QuadraticSdpTest, AgreesWithDsdpOnRandomProblems) {
     EXPECT_LE(s.lower_bound, f_dsdp * (1 + 1e-9)) << "seed " << seed;
     EXPECT_NEAR(s.objective, f_dsdp, 1e-7 * f_dsdp) << "seed " << seed;
     EXPECT_LT((s.u - u_dsdp).norm(), 1e-4 * (1.0 + u_dsdp.norm())) << "seed " << seed;
+  }
+}
+
+// The same on random instances, whose optima sit on 4 × 4 blocks: each is
+// certified to the default 10⁻⁹ (4 of these 40 stopped between 1.2e-9 and
+// 2.5e-9 while the bound was taken at the centred point alone), and asked
+// for more, the point returned is inside and no lower than the bound allows.
+TEST(QuadraticSdpTest, AnUnreachableGapStopsInsideOnRandomProblems) {
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    const QuadraticSdp p = RandomProblem(seed, 10);
+    const QuadraticSdpSolution certified = SolveQuadraticSdp(p);
+    ASSERT_TRUE(certified.converged) << "seed " << seed << ": " << certified.status;
+    QuadraticSdpOptions options;
+    options.relative_gap = 1e-300;
+    const QuadraticSdpSolution s = SolveQuadraticSdp(p, options);
+    EXPECT_TRUE(s.feasible) << "seed " << seed << ": " << s.status;
+    EXPECT_TRUE(IsStrictlyFeasible(p, s.u)) << "seed " << seed;
+    EXPECT_GE(Objective(p, s.u), certified.lower_bound) << "seed " << seed;
+    EXPECT_LE(s.objective, certified.objective) << "seed " << seed;
+    EXPECT_LT(s.newton_steps, 1000) << "seed " << seed;
   }
 }
 

@@ -72,10 +72,7 @@ TEST_F(ReportCliTest, RunReportHasCommandTablesFigureAndPlots) {
 TEST_F(ReportCliTest, IdentifyReport) {
   ASSERT_EQ(Run("simulate --duration 3 --out " + (dir_ / "log.csv").string()).exit_code, 0);
   const fs::path out = dir_ / "id";
-  // OLS: the report is under test here; the physically consistent fit's
-  // verdict is tested in identify_cli_test (see the closing note of 2026-11-26
-  // on its certification under clang's sanitizer build).
-  const Result r = Run("identify --estimator ols --data " + (dir_ / "log.csv").string() + " --report --out " +
+  const Result r = Run("identify --data " + (dir_ / "log.csv").string() + " --report --out " +
                        out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ExpectCompleteReport(out, {"figure.png", "plot_joints.svg", "plot_parameters.svg", "plot_spectrum.svg",
@@ -91,7 +88,7 @@ TEST_F(ReportCliTest, IdentifyReportWithValidationPlotsTheHeldOutTorques) {
   ASSERT_EQ(Run("simulate --duration 3 --trajectory general-reversed --no-derivatives --out " +
                 (dir_ / "held.csv").string()).exit_code, 0);
   const fs::path out = dir_ / "id";
-  const Result r = Run("identify --estimator ols --data " + (dir_ / "log.csv").string() + " --validate " +
+  const Result r = Run("identify --data " + (dir_ / "log.csv").string() + " --validate " +
                        (dir_ / "held.csv").string() + " --report --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ExpectCompleteReport(out, {"plot_torques.svg", "plot_torques.png", "plot_torques.pdf", "plot_validation_torques.svg",
