@@ -12,7 +12,7 @@ namespace {
 
 // min (u0 − 3)² + (u1 − 0.5)² s.t. [[1, u0], [u0, 1]] ⪰ 0 (|u0| ≤ 1) and
 // 0.2 − u1 ≥ 0: the optimum is u = (1, 0.2), f = 4.09, found by hand.
-TEST(QuadraticSdpTest, AnalyticCaseOnTwoActiveConstraints) {
+QuadraticSdp AnalyticProblem() {
   QuadraticSdp p;
   p.R = Eigen::Matrix2d::Identity();
   p.z = Eigen::Vector2d(3.0, 0.5);
@@ -24,6 +24,11 @@ TEST(QuadraticSdpTest, AnalyticCaseOnTwoActiveConstraints) {
   block.B = {B};
   p.blocks.push_back(block);
   p.rows.push_back(LinearInequality{0.2, {{1, -1.0}}});
+  return p;
+}
+
+TEST(QuadraticSdpTest, AnalyticCaseOnTwoActiveConstraints) {
+  const QuadraticSdp p = AnalyticProblem();
   const QuadraticSdpSolution s = SolveQuadraticSdp(p);
   ASSERT_TRUE(s.converged) << s.status;
   EXPECT_NEAR(s.u[0], 1.0, 1e-8);
@@ -39,17 +44,7 @@ TEST(QuadraticSdpTest, AnalyticCaseOnTwoActiveConstraints) {
 // say so (a CI run under clang's sanitizer build once saw the iterate step
 // out of a nearly singular block at τ ~ 10¹⁹ and report that point).
 TEST(QuadraticSdpTest, AnUnreachableGapStopsInsideWhereRoundingEndsTheProgress) {
-  QuadraticSdp p;
-  p.R = Eigen::Matrix2d::Identity();
-  p.z = Eigen::Vector2d(3.0, 0.5);
-  LmiBlock block;
-  block.C = Eigen::Matrix2d::Identity();
-  block.variables = {0};
-  Eigen::Matrix2d B;
-  B << 0, 1, 1, 0;
-  block.B = {B};
-  p.blocks.push_back(block);
-  p.rows.push_back(LinearInequality{0.2, {{1, -1.0}}});
+  const QuadraticSdp p = AnalyticProblem();
   QuadraticSdpOptions options;
   options.relative_gap = 1e-300;
   const QuadraticSdpSolution s = SolveQuadraticSdp(p, options);
