@@ -38,7 +38,9 @@ struct FieldFlag {
 // What the subcommands are added with; main() keeps it for as long as they run.
 class CliContext {
  public:
-  explicit CliContext(std::string command_line) : command_line_(std::move(command_line)) {}
+  // Starts with the spellings of the fields every command shares (out_dir,
+  // robot, friction, duration, ...).
+  explicit CliContext(std::string command_line);
 
   // The command line as typed ("idbench identify --data log.csv"), recorded in the results.
   const std::string& command_line() const { return command_line_; }
@@ -53,7 +55,8 @@ class CliContext {
   // gains alike, and a parse error is spelled before any command runs.
   void AddSpellings(std::span<const FieldFlag> table);
   // The message with each field that is a word of its own (not part of a
-  // path such as /tmp/time_window.csv) spelled as its flag.
+  // path such as /tmp/time_window.csv) spelled as its flag; a field that is
+  // a plain word (data) only where it labels what follows ("data: ...").
   std::string FlagSpelling(std::string message) const;
 
   // "idbench: error: MESSAGE" on stderr, flag-spelled; returns kExitUsage.

@@ -16,7 +16,10 @@ namespace {
 
 // Fields of GainsOptions named in messages.
 constexpr FieldFlag kGainsSpellings[] = {{"loaded_time_window", "--loaded-time-window"},
-                                         {"time_window", "--time-window"}};
+                                         {"time_window", "--time-window"},
+                                         {"data", "--data"},
+                                         {"loaded", "--loaded"},
+                                         {"payload_mass", "--payload-mass"}};
 
 int GainsCommand(const GainsOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;

@@ -13,6 +13,9 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of MonteCarloOptions named in messages (beside the shared ones).
+constexpr FieldFlag kMonteCarloSpellings[] = {{"trials", "--trials"}, {"samples", "--samples"}, {"tau_noise", "--tau-noise"}};
+
 int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
@@ -31,6 +34,7 @@ int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& l
 }  // namespace
 
 CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kMonteCarloSpellings);
   auto options = std::make_shared<MonteCarloOptions>();
   MonteCarloOptions& montecarlo = *options;
   montecarlo.command_line = context->command_line();

@@ -19,6 +19,9 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of RunOptions named in messages (beside the shared ones).
+constexpr FieldFlag kRunSpellings[] = {{"motion", "--motion"}, {"accel_deg_s2", "--accel"}, {"sample_times", "--samples"}};
+
 struct RunFlags {
   RunOptions options;
   bool no_figure = false;  // --no-figure: options.figure = false
@@ -51,6 +54,7 @@ int RunCommand(const RunOptions& options, const CliContext& context) {
 }  // namespace
 
 CliCommand AddRunCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kRunSpellings);
   auto flags = std::make_shared<RunFlags>();
   RunOptions& run = flags->options;
   run.command_line = context->command_line();

@@ -124,14 +124,14 @@ std::string Rosbag2JointLogSource::ChooseTopic(const std::string& requested) con
   if (!requested.empty()) {
     const auto found = std::find_if(topics.begin(), topics.end(), [&](const BagTopic& t) { return t.name == requested; });
     if (found == topics.end()) {
-      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' is not in the bag (topics: " + Join(all) + ")");
+      throw std::invalid_argument(path_ + ": topic: '" + requested + "' is not in the bag (topics: " + Join(all) + ")");
     }
     if (found->type != kJointStateType) {
-      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' has type " + found->type + ", expected " +
+      throw std::invalid_argument(path_ + ": topic: '" + requested + "' has type " + found->type + ", expected " +
                                   kJointStateType);
     }
     if (!found->serialization.empty() && found->serialization != "cdr") {
-      throw std::invalid_argument(path_ + ": the log format's topic '" + requested + "' is serialized as " + found->serialization +
+      throw std::invalid_argument(path_ + ": topic: '" + requested + "' is serialized as " + found->serialization +
                                   ", expected cdr");
     }
     return requested;

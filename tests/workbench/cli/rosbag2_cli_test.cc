@@ -54,12 +54,12 @@ TEST_F(Rosbag2CliTest, TopicPicksTheJointStateTopic) {
   EXPECT_TRUE(fs::exists(dir_ / "ok" / "identified.json")) << ok.err;
   const Result other = Identify((kBags / "bag_db3").string(), "other", "--topic /other");
   EXPECT_NE(other.exit_code, 0);
-  EXPECT_NE(other.err.find("--topic '/other' has type std_msgs/msg/String, expected sensor_msgs/msg/JointState"),
+  EXPECT_NE(other.err.find("--topic: '/other' has type std_msgs/msg/String, expected sensor_msgs/msg/JointState"),
             std::string::npos)
       << other.err;
   const Result csv = Identify((kBags / "expected.csv").string(), "csv", "--topic /joint_states");
   EXPECT_NE(csv.exit_code, 0);
-  EXPECT_NE(csv.err.find("--topic '/joint_states': only a bag has topics"), std::string::npos) << csv.err;
+  EXPECT_NE(csv.err.find("--topic: '/joint_states' given, but only a bag has topics"), std::string::npos) << csv.err;
 }
 
 TEST_F(Rosbag2CliTest, ADamagedBagIsOneErrorNamingTheMessage) {

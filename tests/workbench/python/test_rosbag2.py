@@ -29,5 +29,5 @@ def test_a_bag_identifies_as_its_csv(puma):
 
 
 def test_topic_of_another_type_is_refused(puma):
-    with pytest.raises(ValueError, match="topic '/other' has type std_msgs/msg/String"):
+    with pytest.raises(ValueError, match="topic: '/other' has type std_msgs/msg/String"):
         idbench.identify(puma, str(BAGS / "bag_db3"), topic="/other")

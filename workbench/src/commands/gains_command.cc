@@ -49,18 +49,18 @@ bool GainsOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (data.empty()) return fail("--data: the unloaded log is required");
-  if (loaded.empty()) return fail("--loaded: the log with the payload is required");
+  if (data.empty()) return fail("data: the unloaded log is required");
+  if (loaded.empty()) return fail("loaded: the log with the payload is required");
   DriveGainOptions gains;
   gains.payload_mass = payload_mass;
   std::string gains_why;
-  if (!gains.IsValid(&gains_why)) return fail("--payload-mass: " + gains_why);
+  if (!gains.IsValid(&gains_why)) return fail("payload_mass: " + gains_why);
   std::string friction_why;
-  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+    return fail("coulomb_smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   if (!preparation(false).IsValid(why) || !preparation(true).IsValid(why)) return false;
-  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -34,18 +34,18 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
     return false;
   };
   if (trials < 2 || trials > kMaxTrials) {
-    return fail("--trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
+    return fail("trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
   }
-  if (samples < 2) return fail("--samples: must be >= 2, got " + std::to_string(samples));
-  if (!(duration > 0.0) || !std::isfinite(duration)) return fail("--duration: must be > 0 s");
-  if (tau_noise.empty()) return fail("--tau-noise: give one value or one per joint");
+  if (samples < 2) return fail("samples: must be >= 2, got " + std::to_string(samples));
+  if (!(duration > 0.0) || !std::isfinite(duration)) return fail("duration: must be > 0 s");
+  if (tau_noise.empty()) return fail("tau_noise: give one value or one per joint");
   for (double s : tau_noise) {
-    if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
+    if (!(s > 0.0) || !std::isfinite(s)) return fail("tau_noise: every value must be > 0 N m");
   }
   std::string friction_why;
-  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   std::string out_why;  // --out is optional here
-  if (!out_dir.empty() && !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (!out_dir.empty() && !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
 
@@ -62,7 +62,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
 
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options, const Trajectory& motion) {
   const int n = model.n_dof();
-  CheckRegressorSamples("--samples", options.samples, n);
+  CheckRegressorSamples("samples", options.samples, n);
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
   const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);
   SensorOptions sensors;
@@ -73,13 +73,13 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   // --samples (not --tau-noise) and the steps it must divide.
   const double per_sample = motion.duration() / options.dt / options.samples;
   if (per_sample < 1.0 - 1e-9 || std::abs(per_sample - std::round(per_sample)) > 1e-6 * per_sample) {
-    throw std::invalid_argument("--samples: " + std::to_string(options.samples) + " samples over the " +
+    throw std::invalid_argument("samples: " + std::to_string(options.samples) + " samples over the " +
                                 Shortest(motion.duration()) + " s motion fall every " + Format("%.4g", per_sample) +
                                 " simulation steps of " + Shortest(options.dt) +
                                 " s; they must fall on whole steps (samples must divide the " +
                                 std::to_string(std::lround(motion.duration() / options.dt)) + " steps)");
   }
-  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("--tau-noise: " + why);
+  if (!sensors.IsValid(n, options.dt, &why)) throw std::invalid_argument("tau_noise: " + why);
   // 1. One noise-free experiment and one held-out, and the fixed regressors.
   const FrictionModel friction = ParseFrictionTerms(options.friction, nullptr).value_or(FrictionModel{});
   const JointLog log = SimulateNoiseFree(model, motion, options.dt, sensors.rate_hz);

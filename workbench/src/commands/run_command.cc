@@ -45,20 +45,20 @@ bool RunOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (robot != "paper6r") return fail("--robot: unknown robot '" + robot + "' (built-in: paper6r)");
+  if (robot != "paper6r") return fail("robot: unknown robot '" + robot + "' (built-in: paper6r)");
   if (motion != "paper" && motion != "general" && !IsTrajectoryFile(motion))
-    return fail("--motion: expected 'paper', 'general' or a trajectory file (.json, .csv), got '" + motion + "'");
+    return fail("motion: expected 'paper', 'general' or a trajectory file (.json, .csv), got '" + motion + "'");
   if (!std::isfinite(accel_deg_s2) || accel_deg_s2 <= 0.0 || accel_deg_s2 > kMaxAccelDegS2)
-    return fail("--accel: must be in (0, " + Shortest(kMaxAccelDegS2) + "] deg/s^2, got " + Shortest(accel_deg_s2));
-  if (!std::isfinite(dt) || dt <= 0.0) return fail("--dt: must be > 0 s, got " + Shortest(dt));
-  if (!std::isfinite(duration) || duration <= 0.0) return fail("--duration: must be > 0 s, got " + Shortest(duration));
+    return fail("accel_deg_s2: must be in (0, " + Shortest(kMaxAccelDegS2) + "] deg/s^2, got " + Shortest(accel_deg_s2));
+  if (!std::isfinite(dt) || dt <= 0.0) return fail("dt: must be > 0 s, got " + Shortest(dt));
+  if (!std::isfinite(duration) || duration <= 0.0) return fail("duration: must be > 0 s, got " + Shortest(duration));
   // A whole number of steps, so that the run is exactly as long as asked.
   const double steps = duration / dt;
   if (std::abs(steps - std::round(steps)) > 1e-6 * steps)
-    return fail("--duration: " + Shortest(duration) + " s is not a whole number of --dt " + Shortest(dt) + " s steps");
+    return fail("duration: " + Shortest(duration) + " s is not a whole number of steps (dt: " + Shortest(dt) + " s)");
   std::string sim_why;
-  if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
-  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (!simulation().IsValid(&sim_why)) return fail("dt: " + sim_why);
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   if (all_samples) return true;
   // Samples lie on the step grid and need the next step for the
   // acceleration: t = n·dt with n in [0, steps − 1].
@@ -67,15 +67,15 @@ bool RunOptions::IsValid(std::string* why) const {
   for (double t : sample_times) {
     const double n = t / dt;
     if (!std::isfinite(t) || std::llround(n) < 0 || std::llround(n) > n_steps - 1) {
-      return fail("--samples: time " + Shortest(t) + " s is outside the run [0, " + Shortest((n_steps - 1) * dt) + "] s");
+      return fail("sample_times: time " + Shortest(t) + " s is outside the run [0, " + Shortest((n_steps - 1) * dt) + "] s");
     }
     if (std::abs(n - std::round(n)) > 1e-6) {
-      return fail("--samples: time " + Shortest(t) + " s is not on the step grid of --dt " + Shortest(dt) + " s");
+      return fail("sample_times: time " + Shortest(t) + " s is not on the step grid (dt: " + Shortest(dt) + " s)");
     }
-    if (!used.insert(std::llround(n)).second) return fail("--samples: time " + Shortest(t) + " s is given twice");
+    if (!used.insert(std::llround(n)).second) return fail("sample_times: time " + Shortest(t) + " s is given twice");
   }
   if (static_cast<int>(sample_times.size()) < kMinSamples) {
-    return fail("--samples: " + std::to_string(sample_times.size()) + " sample time(s) given, need at least " +
+    return fail("sample_times: " + std::to_string(sample_times.size()) + " sample time(s) given, need at least " +
                 std::to_string(kMinSamples) + " (the unknowns per body: m, J11, J22, J33)");
   }
   return true;
