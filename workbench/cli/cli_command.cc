@@ -1,5 +1,4 @@
 #include "cli_command.h"
-#include "idbench/workbench/reports/message_list.h"
 
 #include <cstdio>
 
@@ -29,7 +28,7 @@ int CliContext::UsageError(const std::string& message) const {
 }
 
 void CliContext::PrintWarnings(const std::vector<std::string>& warnings) const {
-  for (const std::string& w : CollapseRepeatedMessages(warnings)) std::fprintf(stderr, "idbench: warning: %s\n", FlagSpelling(w).c_str());
+  for (const std::string& w : warnings) std::fprintf(stderr, "idbench: warning: %s\n", FlagSpelling(w).c_str());
 }
 
 }  // namespace idbench::cli

@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "cli_command.h"
-#include "idbench/workbench/reports/message_list.h"
 
 namespace idbench::cli {
 
@@ -42,7 +41,7 @@ RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptio
     throw UsageException("--lock and --tip apply to URDF files, not to the built-in robot '" + name_or_path + "'");
   }
   UrdfLoadResult loaded = LoadRobot(name_or_path, load);
-  for (const std::string& w : CollapseRepeatedMessages(loaded.warnings)) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
+  for (const std::string& w : loaded.warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
   return std::move(loaded.model);
 }
 
