@@ -107,6 +107,9 @@ TEST_F(ReportCliTest, RunReportHasCommandTablesFigureAndPlots) {
   EXPECT_NE(html.find("idbench run --report --out " + out.string()), std::string::npos);
   EXPECT_NE(html.find("<td>6402.601"), std::string::npos);  // B1's mass, paper Table 1
   EXPECT_NE(html.find("NOT IDENTIFIABLE"), std::string::npos);
+  // A simulation's report may speak of the truth; its text stays inside the page.
+  EXPECT_TRUE(ContainsTruth(html));
+  ExpectTextInsideMargins(out / "report.pdf");
   // `idbench report` on the same directory writes the same page again.
   const std::string before = html;
   const Result again = Run("report --out " + out.string());
