@@ -33,8 +33,7 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   // The robot file's values: the truth of a log simulated from it, a
   // reference (CAD values, a datasheet) for a recorded one.
   const std::string reference = simulated ? "truth (robot file)" : "robot file";
-  std::vector<std::string> joint_names;
-  for (const Link& link : model.links()) joint_names.push_back(link.joint_name);
+  const std::vector<std::string> joint_names = JointNames(model);
   ReportContent content;
   content.title = "idbench identify: " + model.name() + " from " + options.data + ", " + options.estimator;
   content.command = options.command_line.empty() ? "idbench identify" : options.command_line;

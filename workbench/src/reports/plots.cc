@@ -60,6 +60,12 @@ JointSignals SignalsOf(const JointLog& log, int max_samples) {
   return s;
 }
 
+std::vector<std::string> JointNames(const RobotModel& model) {
+  std::vector<std::string> names;
+  for (const Link& link : model.links()) names.push_back(link.joint_name);
+  return names;
+}
+
 std::string JointLabel(const std::vector<std::string>& joint_names, Eigen::Index j) {
   const bool named = j < static_cast<Eigen::Index>(joint_names.size()) && !joint_names[static_cast<size_t>(j)].empty();
   return named ? joint_names[static_cast<size_t>(j)] : "joint " + std::to_string(j + 1);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "idbench/engine/measurements.h"
+#include "idbench/engine/robot_model.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/render/plot.h"
@@ -45,6 +46,9 @@ struct TorquePlotLabels {
 // both axes; every k-th sample so that at most max_samples remain, as SignalsOf.
 PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const TorquePlotLabels& labels = {},
                                 int max_samples = 2000);
+
+// The robot file's joint names, in chain order (n_dof).
+std::vector<std::string> JointNames(const RobotModel& model);
 
 // The name of joint j (0-based) in a plot: joint_names[j], or "joint j+1"
 // when it has none.
