@@ -24,6 +24,7 @@ namespace idbench::render_internal {
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                                        \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                                                        \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                                                \
+  X(PFNGLBLENDFUNCPROC, BlendFunc)                                                                        \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                                    \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                                                      \
   X(PFNGLFINISHPROC, Finish)                                                                              \

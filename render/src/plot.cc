@@ -104,6 +104,69 @@ void DataRange(const PlotAxes& axes, double* x_lo, double* x_hi, double* y_lo, d
   }
 }
 
+// Linear ticks for about `target` steps, more when the nice step leaves
+// fewer than three (a range of 1.1 in 5 steps rounds up to a step of 0.5).
+std::vector<double> AtLeastThreeTicks(double lo, double hi, int target) {
+  target = std::max(2, target);
+  std::vector<double> ticks = LinearTicks(lo, hi, target);
+  for (int more = target + 1; ticks.size() < 3 && more <= 4 * target; ++more) ticks = LinearTicks(lo, hi, more);
+  return ticks;
+}
+
+// The legend: one line right of the title when it fits beside it, else a
+// box of one entry per line in the plot area's top-right corner (never
+// beyond the axes' box).
+void DrawLegend(cairo_t* cr, const PlotAxes& axes, const Frame& f) {
+  constexpr double kSwatch = 12.0, kGap = 4.0, kSpacing = 10.0;  // [pt]
+  cairo_set_font_size(cr, kTickFont);
+  double line_width = 0.0, widest = 0.0;
+  std::vector<size_t> entries;
+  for (size_t k = 0; k < axes.series.size(); ++k) {
+    if (axes.series[k].label.empty()) continue;
+    entries.push_back(k);
+    const double w = TextWidth(cr, axes.series[k].label);
+    line_width += kSwatch + kGap + w + kSpacing;
+    widest = std::max(widest, w);
+  }
+  if (entries.empty()) return;
+  cairo_save(cr);
+  cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  cairo_set_font_size(cr, kTitleFont);
+  const double title_width = TextWidth(cr, axes.title);
+  cairo_restore(cr);
+  cairo_set_font_size(cr, kTickFont);
+  if (title_width + 12.0 + line_width <= f.width) {
+    double legend_x = f.left + f.width;
+    for (size_t e = entries.size(); e-- > 0;) {
+      const size_t k = entries[e];
+      legend_x -= TextWidth(cr, axes.series[k].label);
+      cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+      ShowText(cr, legend_x, f.top - 8.0, axes.series[k].label, 0.0);
+      legend_x -= kSwatch + kGap;
+      SetColor(cr, k);
+      cairo_rectangle(cr, legend_x, f.top - 15.0, kSwatch, 8.0);
+      cairo_fill(cr);
+      legend_x -= kSpacing;
+    }
+    return;
+  }
+  const double row = 1.3 * kTickFont, box_w = std::min(f.width, kSwatch + kGap + widest + 10.0);
+  const double box_h = row * static_cast<double>(entries.size()) + 6.0;
+  const double x = f.left + f.width - box_w, y = f.top;
+  cairo_set_source_rgba(cr, 1.0, 1.0, 1.0, 0.85);
+  cairo_rectangle(cr, x, y, box_w, box_h);
+  cairo_fill(cr);
+  for (size_t e = 0; e < entries.size(); ++e) {
+    const size_t k = entries[e];
+    const double baseline = y + 3.0 + row * static_cast<double>(e + 1) - 3.0;
+    SetColor(cr, k);
+    cairo_rectangle(cr, x + 4.0, baseline - 8.0, kSwatch, 8.0);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    ShowText(cr, x + 4.0 + kSwatch + kGap, baseline, axes.series[k].label, 0.0);
+  }
+}
+
 void DrawAxes(cairo_t* cr, const PlotAxes& axes, double x0, double y0, double w, double h) {
   cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   // Room for category labels: rotated when they do not fit side by side.
@@ -122,7 +185,7 @@ void DrawAxes(cairo_t* cr, const PlotAxes& axes, double x0, double y0, double w,
   // Grid and ticks.
   cairo_set_line_width(cr, 0.6);
   const std::vector<double> y_ticks = axes.log_y ? LogTicks(std::pow(10.0, f.y_lo), std::pow(10.0, f.y_hi))
-                                                 : LinearTicks(f.y_lo, f.y_hi, std::max(2, static_cast<int>(f.height / 28.0)));
+                                                 : AtLeastThreeTicks(f.y_lo, f.y_hi, static_cast<int>(f.height / 28.0));
   for (double t : y_ticks) {
     const double y = f.Y(t);
     if (y < f.top - 0.5 || y > f.top + f.height + 0.5) continue;
@@ -142,7 +205,7 @@ void DrawAxes(cairo_t* cr, const PlotAxes& axes, double x0, double y0, double w,
       }
     }
   } else {
-    for (double t : LinearTicks(f.x_lo, f.x_hi, std::max(2, static_cast<int>(f.width / 70.0)))) {
+    for (double t : AtLeastThreeTicks(f.x_lo, f.x_hi, static_cast<int>(f.width / 70.0))) {
       const double x = f.X(t);
       if (x < f.left - 0.5 || x > f.left + f.width + 0.5) continue;
       cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
@@ -224,7 +287,7 @@ void DrawAxes(cairo_t* cr, const PlotAxes& axes, double x0, double y0, double w,
   }
   cairo_restore(cr);
 
-  // Frame, labels, title and a one-line legend on the title's right.
+  // Frame, labels, legend and title.
   cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
   cairo_set_line_width(cr, 1.0);
   cairo_rectangle(cr, f.left, f.top, f.width, f.height);
@@ -232,22 +295,12 @@ void DrawAxes(cairo_t* cr, const PlotAxes& axes, double x0, double y0, double w,
   cairo_set_font_size(cr, kLabelFont);
   if (!axes.x_label.empty()) ShowText(cr, f.left + 0.5 * f.width, y0 + h - 6.0, axes.x_label, 0.5);
   if (!axes.y_label.empty()) ShowText(cr, x0 + 14.0, f.top + 0.5 * f.height, axes.y_label, 0.5, -std::numbers::pi / 2.0);
-  double legend_x = f.left + f.width;
-  cairo_set_font_size(cr, kTickFont);
-  for (size_t k = axes.series.size(); k-- > 0;) {
-    const std::string& label = axes.series[k].label;
-    if (label.empty()) continue;
-    legend_x -= TextWidth(cr, label);
-    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    ShowText(cr, legend_x, f.top - 8.0, label, 0.0);
-    legend_x -= 16.0;
-    SetColor(cr, k);
-    cairo_rectangle(cr, legend_x, f.top - 15.0, 12.0, 8.0);
-    cairo_fill(cr);
-    legend_x -= 10.0;
-  }
+  DrawLegend(cr, axes, f);
   cairo_select_font_face(cr, kFont, CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
   cairo_set_font_size(cr, kTitleFont);
+  // A title wider than the axes is drawn smaller, not past their box.
+  const double title_width = TextWidth(cr, axes.title);
+  if (title_width > f.width) cairo_set_font_size(cr, kTitleFont * f.width / title_width);
   cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
   ShowText(cr, f.left, f.top - 8.0, axes.title, 0.0);
 }

@@ -42,7 +42,7 @@ void main() {
 constexpr const char* kFragmentShader = R"(#version 330 core
 in vec3 v_position_W;
 in vec3 v_normal_W;
-uniform int u_mode;          // 0 lit primitive, 1 floor, 2 shadow
+uniform int u_mode;          // 0 lit primitive, 1 floor, 2 shadow, 3 ghost below the floor
 uniform vec3 u_color;
 uniform vec3 u_eye_W;
 uniform vec3 u_to_light_W;
@@ -51,6 +51,7 @@ uniform vec3 u_floor_light;
 uniform vec3 u_floor_dark;
 uniform vec3 u_floor_center; // (x, y, radius)
 uniform float u_tile;        // checker size [m]
+uniform float u_floor_z;     // [m]
 out vec4 frag_color;
 float FloorFade() {
   float d = length(v_position_W.xy - u_floor_center.xy) / u_floor_center.z;
@@ -67,6 +68,7 @@ void main() {
     frag_color = vec4(mix(u_color, u_background, FloorFade()), 1.0);
     return;
   }
+  if (u_mode == 3 && v_position_W.z > u_floor_z) discard;
   vec3 n = normalize(v_normal_W);
   vec3 v = normalize(u_eye_W - v_position_W);
   if (dot(n, v) < 0.0) n = -n;
@@ -76,7 +78,7 @@ void main() {
   float sky = 0.12 * (0.5 + 0.5 * n.z);
   float spec = 0.28 * pow(max(dot(n, normalize(l + v)), 0.0), 40.0);
   vec3 c = u_color * (0.30 + sky + 0.55 * key + fill) + vec3(spec);
-  frag_color = vec4(min(c, vec3(1.0)), 1.0);
+  frag_color = vec4(min(c, vec3(1.0)), u_mode == 3 ? 0.5 : 1.0);
 }
 )";
 
@@ -153,7 +155,7 @@ Floor FitFloor(const std::vector<Eigen::Vector3d>& points) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
   for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   Floor floor;
-  floor.z = std::min(0.0, lo.z());
+  floor.z = 0.0;  // where the robot stands; what reaches below shows through it
   floor.center_W = 0.5 * (lo.head<2>() + hi.head<2>());
   // Wide enough for the farthest point and its shadow.
   const double height = hi.z() - floor.z;
@@ -194,7 +196,8 @@ struct SceneRenderer::Impl {
   int width = 0, height = 0;
   // Uniform locations.
   GLint u_model = -1, u_normal = -1, u_view_proj = -1, u_mode = -1, u_color = -1, u_eye = -1, u_to_light = -1,
-        u_background = -1, u_floor_light = -1, u_floor_dark = -1, u_floor_center = -1, u_tile = -1;
+        u_background = -1, u_floor_light = -1, u_floor_dark = -1, u_floor_center = -1, u_tile = -1,
+        u_floor_z = -1;
 
   // Throws with the info log unless `status` of the shader or program is set.
   static void Check(GLuint object, GLenum status, PFNGLGETSHADERIVPROC get_iv, PFNGLGETSHADERINFOLOGPROC get_log,
@@ -228,7 +231,7 @@ struct SceneRenderer::Impl {
     u_model = at("u_model"), u_normal = at("u_normal"), u_view_proj = at("u_view_proj"), u_mode = at("u_mode");
     u_color = at("u_color"), u_eye = at("u_eye_W"), u_to_light = at("u_to_light_W"), u_background = at("u_background");
     u_floor_light = at("u_floor_light"), u_floor_dark = at("u_floor_dark"), u_floor_center = at("u_floor_center");
-    u_tile = at("u_tile");
+    u_tile = at("u_tile"), u_floor_z = at("u_floor_z");
   }
 
   // Binds the vertex array of a primitive's mesh (the shared one for the unit
@@ -418,6 +421,23 @@ void SceneRenderer::Draw(const Scene& scene, const Floor& floor, const Camera& c
     gl.Uniform3fv(r.u_color, 1, p.color.data());
     r.DrawMesh(r.BindMeshOf(p), ModelMatrix(p));
   }
+
+  // What lies below the floor and is hidden by it, see-through: the parts of
+  // the primitives under z_f drawn again where something is in front of
+  // them, at half opacity (a link through the floor stays visible).
+  gl.Uniform1i(r.u_mode, 3);
+  gl.Uniform1f(r.u_floor_z, float(floor.z));
+  gl.DepthFunc(GL_GREATER);
+  gl.DepthMask(GL_FALSE);
+  gl.Enable(GL_BLEND);
+  gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  for (const ScenePrimitive& p : scene.primitives) {
+    gl.Uniform3fv(r.u_color, 1, p.color.data());
+    r.DrawMesh(r.BindMeshOf(p), ModelMatrix(p));
+  }
+  gl.Disable(GL_BLEND);
+  gl.DepthMask(GL_TRUE);
+  gl.DepthFunc(GL_LEQUAL);
 
   // Resolve the samples into the texture; restore the caller's state.
   gl.BindVertexArray(0);

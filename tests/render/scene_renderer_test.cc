@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 #include "idbench/render/osmesa_context.h"
 #include "engine/test_meshes.h"
@@ -112,6 +113,57 @@ TEST_F(SceneRendererTest, BoxMeshLooksLikeTheBoxPrimitive) {
   }
   EXPECT_GT(robot, 1000);
   EXPECT_LT(different, robot / 50) << robot << " box pixels";
+}
+
+// The floor lies at z = 0, where the robot stands, even when a link reaches
+// below it.
+TEST(FitFloorTest, FloorIsAtZeroWhereTheRobotStands) {
+  const std::vector<Eigen::Vector3d> points{{0.0, 0.0, -0.4}, {1.0, 0.5, 1.2}, {-0.2, 0.3, 0.1}};
+  const Floor floor = FitFloor(points);
+  EXPECT_EQ(floor.z, 0.0);
+  EXPECT_NEAR(floor.center_W.x(), 0.4, 1e-15);
+  EXPECT_NEAR(floor.center_W.y(), 0.25, 1e-15);
+  EXPECT_GT(floor.radius, 1.2);  // wider than the points' height above it
+}
+
+// A post that stands on the floor and goes 0.3 m through it: seen from above,
+// the part below z = 0 still shows (through the floor), so the post's pixels
+// are as many as with no floor in sight; and where the floor hides it, its
+// pixels are paler than above the floor.
+TEST_F(SceneRendererTest, LinkBelowTheFloorShowsThroughIt) {
+  constexpr int kWidth = 240, kHeight = 240;
+  Camera camera;
+  camera.p_WEye_W = Eigen::Vector3d(0.0, -3.0, 2.0);
+  camera.p_WTarget_W = Eigen::Vector3d(0.0, 0.0, 0.1);
+  Scene scene;
+  ScenePrimitive post;
+  post.kind = Shape::Kind::kBox;
+  post.size = Eigen::Vector3d(0.2, 0.2, 0.9);
+  post.X_WG.translation() = Eigen::Vector3d(0.0, 0.0, 0.15);  // z from -0.3 to 0.6
+  post.color = Eigen::Vector3f(0.9f, 0.1f, 0.1f);
+  scene.primitives.push_back(post);
+  const Floor floor = FitFloor(scene.BoundingPoints());
+  ASSERT_EQ(floor.z, 0.0);
+  const Floor out_of_sight{.z = -1000.0, .center_W = Eigen::Vector2d::Zero(), .radius = 1.0};
+  const Image with_floor = renderer_.Render(scene, floor, camera, kWidth, kHeight);
+  const Image without = renderer_.Render(scene, out_of_sight, camera, kWidth, kHeight);
+  const testing::PixelBox a = testing::RobotBox(with_floor, 0, 0, kWidth, kHeight);
+  const testing::PixelBox b = testing::RobotBox(without, 0, 0, kWidth, kHeight);
+  ASSERT_GT(b.count, 1000);
+  EXPECT_NEAR(static_cast<double>(a.count), static_cast<double>(b.count), 0.03 * static_cast<double>(b.count));
+  EXPECT_EQ(a.y1, b.y1);  // the post's lowest row, below the floor line, is drawn
+  // The bottom of the post (under the floor) against its top (above it): the
+  // red channel's lead over green is smaller through the floor.
+  const auto lead = [&](int y) {
+    const std::uint8_t* p = with_floor.at((a.x0 + a.x1) / 2, y);
+    return int(p[0]) - int(p[1]);
+  };
+  const auto lead_without = [&](int y) {
+    const std::uint8_t* p = without.at((b.x0 + b.x1) / 2, y);
+    return int(p[0]) - int(p[1]);
+  };
+  EXPECT_LT(lead(a.y1 - 2), lead_without(b.y1 - 2) - 20);
+  EXPECT_NEAR(lead(a.y0 + 2), lead_without(b.y0 + 2), 3);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ int RenderCommand(const RenderOptions& options, const UrdfLoadOptions& load, con
   if (!options.IsValid(&why)) return context.UsageError(why);
   const RobotModel model = LoadRobotOrThrow(options.robot, load);
   const std::unique_ptr<Trajectory> trajectory = MakeRenderTrajectory(model, options);
-  const PoseFigureOptions figure = options.figure();
+  const PoseFigureOptions figure = options.figure(trajectory->duration());
   if (!figure.IsValid(trajectory->duration(), &why)) return context.UsageError(why);
   const std::string png = RenderPoseFigurePng(model, *trajectory, figure);
   const std::filesystem::path path(options.out);
@@ -44,8 +44,9 @@ CliCommand AddRenderCommand(CLI::App* app, CliContext* context) {
   command->add_option("--accel", render.paper_accel_deg_s2, "Acceleration of the paper motion [deg/s^2]")
       ->capture_default_str();
   command->add_option("--duration", render.duration, "Length of the built-in motion [s]")->capture_default_str();
-  command->add_option("--times", render.times, "Instants t1,t2,... [s], one panel each")->delimiter(',')
-      ->capture_default_str();
+  command->add_option("--times", render.times,
+                      "Instants t1,t2,... [s], one panel each (default: 8 spread over the whole motion)")
+      ->delimiter(',');
   command->add_option("--layout", render.layout, "grid (rows of 4) or strip (one row)")->capture_default_str();
   command->add_option("--size", render.size, "One panel, WxH [px]")->capture_default_str();
   AddOutFlag(command, &render.out, "PNG file to write")->capture_default_str();

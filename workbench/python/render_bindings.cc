@@ -29,7 +29,7 @@ void BindRender(py::module_& m) {
         std::string why;
         if (!options.IsValid(&why)) throw std::invalid_argument(why);
         const std::unique_ptr<Trajectory> motion = MakeRenderTrajectory(*robot.model, options);
-        const PoseFigureOptions figure = options.figure();
+        const PoseFigureOptions figure = options.figure(motion->duration());
         if (!figure.IsValid(motion->duration(), &why)) throw std::invalid_argument(why);
         Image image;
         {

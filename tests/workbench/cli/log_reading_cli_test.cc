@@ -327,6 +327,23 @@ TEST_F(LogReadingCliTest, DecimateAppliesToALogWithDerivatives) {
   EXPECT_LT(j["fit"]["relative_error"].get<double>(), 1e-8);
 }
 
+// --decimate on a log whose qd, qdd are estimated by filtering: the count
+// said is that of the equations kept, by the arithmetic of the parallel
+// filter: 1001 samples at 100 Hz, the ends' transients 5/fc = 0.5 s = 50
+// samples each dropped, then one in 3: ⌈(1001 − 2·50)/3⌉ = 301 (6ab1a0b said
+// 1001 samples and nothing of the decimation).
+TEST_F(LogReadingCliTest, DecimateAfterFilteringSaysTheSamplesKept) {
+  const fs::path log = Write("raw.csv", Motion(model_), {"t", "q", "tau"}, true);
+  const Result r = Run("identify --robot puma560 --estimator ols --data " + log.string() +
+                       " --decimate 3 --out " + (dir_ / "id").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const int n = 1001, trim = 50, k = 3, kept = (n - 2 * trim + k - 1) / k;
+  ASSERT_EQ(kept, 301);
+  EXPECT_NE(r.out.find("raw.csv: decimation 3 after filtering: one sample in 3 kept, " + std::to_string(kept) +
+                       " of 1001 (50 filter-transient samples dropped at each end)"),
+            std::string::npos) << r.out;
+}
+
 // An empty entry in --columns is named with its position (6ab1a0b reported a
 // missing q2).
 TEST_F(LogReadingCliTest, EmptyColumnNameIsNamed) {

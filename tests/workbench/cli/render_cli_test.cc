@@ -72,6 +72,22 @@ TEST_F(RenderCliTest, StripOfChosenInstantsAndSize) {
   ExpectRobotInEveryPanel(figure, 3, 1, 0.01);  // the PUMA's links are thin (4 cm)
 }
 
+// A trajectory file of 5 s (its last sample at 4.999 s) is shown whole by
+// default (6ab1a0b: 0–2 s): the same figure as the eight instants
+// 0.15·k·4.999 s, k = 0…7, to 3 digits, the last one clamped to the end,
+// given by hand.
+TEST_F(RenderCliTest, TrajectoryFileIsShownWholeByDefault) {
+  const fs::path motion = dir_ / "motion.csv";
+  ASSERT_EQ(Run("simulate --duration 5 --out " + motion.string()).exit_code, 0);
+  const Result r = Run("render --trajectory " + motion.string() + " --size 120x90 --out " + (dir_ / "a.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("8 instants"), std::string::npos) << r.out;
+  const Result given = Run("render --trajectory " + motion.string() + " --times 0,0.75,1.5,2.25,3,3.75,4.5,4.999 " +
+                           "--size 120x90 --out " + (dir_ / "b.png").string());
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_EQ(Slurp(dir_ / "a.png"), Slurp(dir_ / "b.png"));
+}
+
 TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
   const fs::path out = dir_ / "fig.png";
   {

@@ -13,6 +13,7 @@
 #include "idbench/workbench/formats/limits_file.h"
 #include "idbench/workbench/reports/report_command.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/workbench/reports/message_list.h"
 
 namespace idbench::gui {
 namespace {
@@ -61,7 +62,7 @@ bool Session::LoadRobot(const std::string& name_or_path) {
   try {
     UrdfLoadResult loaded = idbench::LoadRobot(name_or_path);
     model_ = std::make_shared<const RobotModel>(std::move(loaded.model));
-    for (const std::string& w : loaded.warnings) Info("warning: " + w);
+    for (const std::string& w : CollapseRepeatedMessages(loaded.warnings)) Info("warning: " + w);
   } catch (const std::exception& e) {
     Error(e.what());
     return false;

@@ -279,6 +279,13 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
     }
     out.parallel_filter = ParallelFilter{options.filter, rate_hz};
     hold(n);
+    if (const int k = options.filter.decimation; k > 1) {  // the equations kept (ParallelFilterKeptSamples)
+      const Eigen::Index trim = ParallelFilterTrimSamples(options.filter, rate_hz);
+      out.notes.push_back(path + ": decimation " + std::to_string(k) + " after filtering: one sample in " +
+                          std::to_string(k) + " kept, " + std::to_string(std::max<Eigen::Index>(0, (n - 2 * trim + k - 1) / k)) +
+                          " of " + std::to_string(n) + " (" + std::to_string(trim) +
+                          " filter-transient samples dropped at each end)");
+    }
     out.derivatives = out.has_qd ? "qd from the log (filtered), qdd from the filtered qd"
                     : out.has_qdd ? "qd from the filtered q, qdd from the log (filtered)"
                                   : "qd, qdd from the filtered q";

@@ -24,9 +24,9 @@ bool ParseImageSize(const std::string& text, int* width, int* height) {
   return parse(text.data(), text.data() + x, width) && parse(text.data() + x + 1, text.data() + text.size(), height);
 }
 
-PoseFigureOptions RenderOptions::figure() const {
+PoseFigureOptions RenderOptions::figure(double duration) const {
   PoseFigureOptions figure;
-  figure.times = times;
+  figure.times = times.empty() ? DefaultFigureTimes(duration) : times;
   figure.layout = layout;
   if (!ParseImageSize(size, &figure.panel_width, &figure.panel_height)) figure.panel_width = figure.panel_height = 0;
   return figure;
@@ -51,7 +51,9 @@ bool RenderOptions::IsValid(std::string* why) const {
   for (double t : times) {
     if (!std::isfinite(t)) return fail("--times: expected finite times [s], got " + Shortest(t));
   }
-  return figure().IsValid(INFINITY, why);
+  PoseFigureOptions figure = this->figure(0.0);
+  if (times.empty()) figure.times = {0.0};  // the default times fit any motion
+  return figure.IsValid(INFINITY, why);
 }
 
 std::vector<double> DefaultFigureTimes(double duration) {

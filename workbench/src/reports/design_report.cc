@@ -95,7 +95,7 @@ ReportContent MakeDesignReportContent(const RobotModel& model, const DesignComma
   const std::vector<double> times = DesignSampleTimes(design);
   content.plots = {
       {"joints", "The designed motion and the motor torques it needs (inverse dynamics with friction).",
-       JointSignalsPlot(MotionSignals(model, r.trajectory))},
+       JointSignalsPlot(MotionSignals(model, r.trajectory), JointNames(model))},
       {"spectrum", "Singular values of the column-normalised W: the start and the design.",
        SpectrumPlot("Singular-value spectrum of W",
                     {{"start", NormalizedSingularValues(regressor.Stack(r.initial_trajectory, times))},

@@ -2,25 +2,46 @@
 
 #include "joint_log_playback.h"
 #include "number_format.h"
+#include "idbench/workbench/reports/message_list.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/workbench/commands/render_command.h"
 #include "idbench/workbench/reports/plots.h"
 
 namespace idbench {
+namespace {
+
+// "N samples", and for a filtered log how many equations of them were kept
+// (ParallelFilterKeptSamples: the filter's ends dropped, the decimation).
+std::string SamplesText(const IdentifyReport& report) {
+  std::string text = std::to_string(report.n_samples) + " samples";
+  if (!report.parallel_filter) return text;
+  const ParallelFilter& pf = *report.parallel_filter;
+  const size_t kept = ParallelFilterKeptSamples(pf.filter, pf.sample_rate_hz, report.n_samples).size();
+  return text + ", qd and qdd estimated by zero-phase filtering; " + std::to_string(kept) +
+         " identified from, the filter's ends dropped" +
+         (pf.filter.decimation > 1 ? " and one in " + std::to_string(pf.filter.decimation) + " kept" : "");
+}
+
+}  // namespace
 
 using internal::JointLogPlayback;
 
 ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyOptions& options,
-                                        const IdentifyReport& report) {
+                                        const IdentifyReport& report, LogOrigin origin) {
   const JointTorqueIdentification& id = report.identification;
+  const bool simulated = origin == LogOrigin::kSimulated;
+  // The robot file's values: the truth of a log simulated from it, a
+  // reference (CAD values, a datasheet) for a recorded one.
+  const std::string reference = simulated ? "truth (robot file)" : "robot file";
+  const std::vector<std::string> joint_names = JointNames(model);
   ReportContent content;
   content.title = "idbench identify: " + model.name() + " from " + options.data + ", " + options.estimator;
   content.command = options.command_line.empty() ? "idbench identify" : options.command_line;
   std::string friction;
   for (const std::string& f : options.friction) friction += (friction.empty() ? "" : ",") + f;
   content.experiment = {{"robot", model.name()},
-                        {"data", options.data + " (" + std::to_string(report.n_samples) + " samples" +
-                                     (report.filtered ? ", qd and qdd estimated by zero-phase filtering" : "") + ")"},
+                        {simulated ? "simulated log" : "recorded log",
+                         options.data + " (" + SamplesText(report) + ")"},
                         {"estimator", options.estimator},
                         {"friction", friction},
                         {"cond(W)", id.linear.rank < id.base.n_base()
@@ -33,6 +54,9 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
     content.experiment.push_back({"relative torque error (validation on " + options.validate + ")",
                                   Format("%.4g", report.validation->relative_error)});
   }
+  for (const std::string& warning : CollapseRepeatedMessages(report.warnings)) {
+    content.experiment.push_back({"warning", warning});
+  }
   // The poses along the log.
   if (report.log.n_samples() >= 2) {
     const JointLogPlayback playback(report.log);
@@ -41,8 +65,12 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
     content.pose_figure_png = RenderPoseFigurePng(model, playback, figure);
     content.pose_caption = "The poses of " + model.name() + " along the log (times from its first sample).";
   }
-  ReportTable base{"Base parameters (robot file value is the truth for a simulated log)",
-                   {"#", "base parameter", "identified", "σ", "%σ", "status", "robot file", "difference"},
+  ReportTable base{simulated ? "Base parameters identified from the simulated log against the truth (the robot file "
+                               "that generated it)"
+                             : "Base parameters identified from the recorded log, with the robot file's values for "
+                               "reference",
+                   {"#", "base parameter", "identified", "σ", "%σ", "status", reference,
+                    simulated ? "error" : "identified − robot file"},
                    {}};
   std::vector<ParameterEstimate> estimates;
   for (int k = 0; k < id.base.n_base(); ++k) {
@@ -60,7 +88,7 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   }
   ReportTable fit{"Torque RMS per joint [N m]", {"joint", "fit", "robot file"}, {}};
   for (Eigen::Index j = 0; j < id.fit.joint_rms.size(); ++j) {
-    fit.rows.push_back({std::to_string(j + 1), Format("%.4g", id.fit.joint_rms[j]), Format("%.4g", id.model_fit.joint_rms[j])});
+    fit.rows.push_back({JointLabel(joint_names, j), Format("%.4g", id.fit.joint_rms[j]), Format("%.4g", id.model_fit.joint_rms[j])});
   }
   if (report.validation) {
     fit.header.push_back("validation");
@@ -74,9 +102,11 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   if (!unexcited.rows.empty()) content.tables.push_back(unexcited);
   const Eigen::MatrixXd W = StackBaseRegressor(model, options.friction_model(), id.base, report.log);
   content.plots = {
-      {"joints", "The joint log as identified.", JointSignalsPlot(SignalsOf(report.log))},
-      {"parameters", "Base parameters: robot file (bars) and identified (dots) ± 3σ; numbered as in the table.",
-       ParameterPlot("Identified versus robot-file base parameters", "robot file", estimates)},
+      {"joints", std::string("The ") + (simulated ? "simulated" : "recorded") + " joint log as identified.",
+       JointSignalsPlot(SignalsOf(report.log), joint_names)},
+      {"parameters", "Base parameters: " + reference + " (bars) and identified (dots) ± 3σ; numbered as in the table.",
+       ParameterPlot(simulated ? "Identified versus true base parameters" : "Identified and robot-file base parameters",
+                     reference, estimates)},
       {"spectrum", "Singular values of the column-normalised base regressor W stacked over the log.",
        SpectrumPlot("Singular-value spectrum of the base regressor", {{"W", NormalizedSingularValues(W)}})}};
   // Measured against predicted torque, τ̂ = W β of the chosen estimator, on
@@ -85,15 +115,19 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   const auto filtered = [](const std::optional<ParallelFilter>& filter) {
     return filter ? "both parallel-filtered, the filter's ends dropped, as in the torque RMS." : "as in the torque RMS.";
   };
-  content.plots.push_back({"torques", "Measured and predicted joint torque on the identification log" + how +
+  // A simulated log's torques come from its simulated sensors.
+  const std::string measured = simulated ? "simulated" : "measured";
+  const std::string measured_caption = simulated ? "Simulated" : "Measured";
+  content.plots.push_back({"torques", measured_caption + " and predicted joint torque on the identification log" + how +
                                           filtered(report.parallel_filter),
                            TorqueComparisonPlot(PredictIdentifiedTorques(model, options, report, false),
-                                                "identification log")});
+                                                {"identification log", measured, joint_names})});
   if (report.held_out_log) {
     content.plots.push_back(
-        {"validation_torques", "Measured and predicted joint torque on the held-out log " + options.validate + how +
+        {"validation_torques", measured_caption + " and predicted joint torque on the held-out log " + options.validate + how +
                                    filtered(report.held_out_filter),
-         TorqueComparisonPlot(PredictIdentifiedTorques(model, options, report, true), "held-out log")});
+         TorqueComparisonPlot(PredictIdentifiedTorques(model, options, report, true),
+                              {"held-out log", measured, joint_names})});
   }
   return content;
 }

@@ -6,21 +6,59 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace idbench::internal {
 namespace {
 
 constexpr double kPageWidth = 595.0, kPageHeight = 842.0, kMargin = 40.0;  // [pt]
+constexpr double kTextWidth = kPageWidth - 2 * kMargin;                     // [pt]
 constexpr const char* kSans = "DejaVu Sans";
 constexpr const char* kMono = "DejaVu Sans Mono";
 
-// Keeps the text within max_chars, ending in "…" when cut.
-std::string Clip(const std::string& text, size_t max_chars) {
-  if (text.size() <= max_chars) return text;
-  size_t cut = max_chars - 1;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 sequence
-  return text.substr(0, cut) + "…";
+// The byte length of the UTF-8 character starting at text[i].
+size_t CharLength(const std::string& text, size_t i) {
+  size_t n = 1;
+  while (i + n < text.size() && (static_cast<unsigned char>(text[i + n]) & 0xC0) == 0x80) ++n;
+  return n;
+}
+
+// Breaks `text` into lines no wider than `width` as `measure` measures them:
+// at spaces, and inside a word (between UTF-8 characters) only when the word
+// alone is wider than a line. Nothing is cut: the lines hold every character.
+std::vector<std::string> BreakLines(const std::string& text, double width,
+                                    const std::function<double(const std::string&)>& measure) {
+  std::vector<std::string> lines;
+  std::string line;
+  size_t i = 0;
+  while (i < text.size()) {
+    // The next word with the spaces before it.
+    size_t end = i;
+    while (end < text.size() && text[end] == ' ') ++end;
+    while (end < text.size() && text[end] != ' ') ++end;
+    const std::string piece = text.substr(i, end - i);
+    if (measure(line + piece) <= width) {
+      line += piece;
+      i = end;
+      continue;
+    }
+    if (!line.empty()) {  // the word starts the next line, without its spaces
+      lines.push_back(line);
+      line.clear();
+      while (i < text.size() && text[i] == ' ') ++i;
+      continue;
+    }
+    // A word wider than a line: as many characters as fit (at least one).
+    size_t cut = i + CharLength(text, i);
+    while (cut < end && measure(text.substr(i, cut + CharLength(text, cut) - i)) <= width) cut += CharLength(text, cut);
+    lines.push_back(text.substr(i, cut - i));
+    i = cut;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
 }
 
 class PdfWriter {
@@ -48,21 +86,20 @@ class PdfWriter {
     y_ = kMargin;
   }
 
+  // Text broken into lines that fit the page width (BreakLines).
   void Text(const std::string& text, double size, bool bold = false, const char* font = kSans) {
-    cairo_select_font_face(cr_, font, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr_, size);
-    Reserve(1.4 * size);
+    SetFont(font, size, bold);
     cairo_set_source_rgb(cr_, 0, 0, 0);
-    cairo_move_to(cr_, kMargin, y_ + size);
-    cairo_show_text(cr_, text.c_str());
-    y_ += 1.4 * size;
+    for (const std::string& line : BreakLines(text, kTextWidth, [&](const std::string& t) { return Width(t); })) {
+      Reserve(1.4 * size);
+      cairo_move_to(cr_, kMargin, y_ + size);
+      cairo_show_text(cr_, line.c_str());
+      y_ += 1.4 * size;
+    }
   }
 
   // Monospaced text broken into lines that fit the page width.
-  void Wrapped(const std::string& text, double size) {
-    const size_t per_line = static_cast<size_t>((kPageWidth - 2 * kMargin) / (0.602 * size));
-    for (size_t i = 0; i < text.size(); i += per_line) Text(text.substr(i, per_line), size, false, kMono);
-  }
+  void Wrapped(const std::string& text, double size) { Text(text, size, false, kMono); }
 
   void Space(double height) { y_ += height; }
 
@@ -104,38 +141,46 @@ class PdfWriter {
     y_ += scale * figure.height + 6.0;
   }
 
-  // A table with columns as wide as their widest cell, shrunk to the page.
+  // A table with columns as wide as their widest cell, up to kMaxColumnShare
+  // of the text width (longer cells wrap within it), shrunk to the page.
   void Table(const ReportTable& table) {
     Text(table.caption, 10.0, true);
+    constexpr double kPadding = 8.0, kMaxColumnShare = 0.45;
     double size = 7.5;
-    cairo_set_font_size(cr_, size);
     std::vector<double> widths(table.header.size(), 0.0);
     // Measured in the weight each row is drawn in (the header bold).
     const auto measure = [&](const std::vector<std::string>& row, bool bold) {
-      cairo_select_font_face(cr_, kSans, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+      SetFont(kSans, size, bold);
       for (size_t c = 0; c < row.size() && c < widths.size(); ++c) {
-        cairo_text_extents_t e;
-        cairo_text_extents(cr_, Clip(row[c], 60).c_str(), &e);
-        widths[c] = std::max(widths[c], e.x_advance + 8.0);
+        widths[c] = std::max(widths[c], std::min(Width(row[c]) + kPadding, kMaxColumnShare * kTextWidth));
       }
     };
     measure(table.header, true);
     for (const auto& row : table.rows) measure(row, false);
     double total = 0.0;
     for (double w : widths) total += w;
-    const double shrink = std::min(1.0, (kPageWidth - 2 * kMargin) / total);
+    const double shrink = std::min(1.0, kTextWidth / total);
     size *= shrink;
     const auto draw_row = [&](const std::vector<std::string>& row, bool bold) {
-      Reserve(1.35 * size);
-      cairo_select_font_face(cr_, kSans, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-      cairo_set_font_size(cr_, size);
-      double x = kMargin;
+      SetFont(kSans, size, bold);
+      std::vector<std::vector<std::string>> cells;
+      size_t n_lines = 1;
       for (size_t c = 0; c < row.size() && c < widths.size(); ++c) {
-        cairo_move_to(cr_, x, y_ + size);
-        cairo_show_text(cr_, Clip(row[c], 60).c_str());
+        // 1 pt of the padding spare: text does not scale exactly with the font size.
+        cells.push_back(BreakLines(row[c], (widths[c] - kPadding) * shrink + 1.0,
+                                   [&](const std::string& t) { return Width(t); }));
+        n_lines = std::max(n_lines, cells.back().size());
+      }
+      Reserve(1.35 * size * static_cast<double>(n_lines));
+      double x = kMargin;
+      for (size_t c = 0; c < cells.size(); ++c) {
+        for (size_t l = 0; l < cells[c].size(); ++l) {
+          cairo_move_to(cr_, x, y_ + size + 1.35 * size * static_cast<double>(l));
+          cairo_show_text(cr_, cells[c][l].c_str());
+        }
         x += widths[c] * shrink;
       }
-      y_ += 1.35 * size;
+      y_ += 1.35 * size * static_cast<double>(n_lines);
     };
     draw_row(table.header, true);
     for (const auto& row : table.rows) draw_row(row, false);
@@ -143,6 +188,16 @@ class PdfWriter {
   }
 
  private:
+  void SetFont(const char* font, double size, bool bold) {
+    cairo_select_font_face(cr_, font, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr_, size);
+  }
+  // The advance of `text` in the current font [pt].
+  double Width(const std::string& text) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr_, text.c_str(), &e);
+    return e.x_advance;
+  }
   static cairo_status_t Append(void* closure, const unsigned char* data, unsigned int length) {
     static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
     return CAIRO_STATUS_SUCCESS;

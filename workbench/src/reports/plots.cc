@@ -19,14 +19,15 @@ Eigen::MatrixXd EveryKthRow(const Eigen::MatrixXd& m, int k) {
 }
 
 PlotAxes SignalAxes(const std::string& title, const std::string& y_label, const std::vector<double>& t,
-                    const Eigen::MatrixXd& values, const std::string& x_label) {
+                    const Eigen::MatrixXd& values, const std::string& x_label,
+                    const std::vector<std::string>& joint_names) {
   PlotAxes axes;
   axes.title = title;
   axes.y_label = y_label;
   axes.x_label = x_label;
   for (Eigen::Index j = 0; j < values.cols(); ++j) {
     PlotSeries s;
-    s.label = std::to_string(j + 1);
+    s.label = JointLabel(joint_names, j);
     s.x = t;
     s.y.assign(values.col(j).data(), values.col(j).data() + values.rows());
     axes.series.push_back(std::move(s));
@@ -59,19 +60,30 @@ JointSignals SignalsOf(const JointLog& log, int max_samples) {
   return s;
 }
 
-PlotFigure JointSignalsPlot(const JointSignals& signals) {
+std::vector<std::string> JointNames(const RobotModel& model) {
+  std::vector<std::string> names;
+  for (const Link& link : model.links()) names.push_back(link.joint_name);
+  return names;
+}
+
+std::string JointLabel(const std::vector<std::string>& joint_names, Eigen::Index j) {
+  const bool named = j < static_cast<Eigen::Index>(joint_names.size()) && !joint_names[static_cast<size_t>(j)].empty();
+  return named ? joint_names[static_cast<size_t>(j)] : "joint " + std::to_string(j + 1);
+}
+
+PlotFigure JointSignalsPlot(const JointSignals& signals, const std::vector<std::string>& joint_names) {
   PlotFigure figure;
   figure.width = 720, figure.height = 760;
-  figure.axes.push_back(SignalAxes("Joint positions", "q [rad]", signals.t, signals.q, ""));
+  figure.axes.push_back(SignalAxes("Joint positions", "q [rad]", signals.t, signals.q, "", joint_names));
   if (signals.qd.size() > 0) {
-    figure.axes.push_back(SignalAxes("Joint velocities", "qd [rad/s]", signals.t, signals.qd, ""));
-    figure.axes.push_back(SignalAxes("Joint accelerations", "qdd [rad/s²]", signals.t, signals.qdd, ""));
+    figure.axes.push_back(SignalAxes("Joint velocities", "qd [rad/s]", signals.t, signals.qd, "", joint_names));
+    figure.axes.push_back(SignalAxes("Joint accelerations", "qdd [rad/s²]", signals.t, signals.qdd, "", joint_names));
   }
-  figure.axes.push_back(SignalAxes("Joint torques", "τ [N m]", signals.t, signals.tau, "t [s]"));
+  figure.axes.push_back(SignalAxes("Joint torques", "τ [N m]", signals.t, signals.tau, "t [s]", joint_names));
   return figure;
 }
 
-PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& log_label, int max_samples) {
+PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const TorquePlotLabels& labels, int max_samples) {
   const Eigen::Index n_kept = series.t.size(), n_dof = series.measured.cols();
   const int k = std::max(1, static_cast<int>((n_kept + max_samples - 1) / max_samples));
   std::vector<double> t;
@@ -83,10 +95,11 @@ PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& l
   figure.width = 900, figure.height = 220.0 * static_cast<double>(std::max<Eigen::Index>(1, rows));
   for (Eigen::Index j = 0; j < n_dof; ++j) {
     PlotAxes axes;
-    axes.title = "Joint " + std::to_string(j + 1) + ", " + log_label;
+    axes.title = JointLabel(labels.joint_names, j) + ", " + labels.log;
     axes.y_label = "τ [N m]";
-    if (j >= n_dof - figure.columns) axes.x_label = "t [s]";  // the bottom row
-    for (const auto& [label, values] : {std::pair{"measured", &measured}, std::pair{"predicted", &predicted}}) {
+    axes.x_label = "t [s]";
+    for (const auto& [label, values] :
+         {std::pair{labels.measured.c_str(), &measured}, std::pair{"predicted", &predicted}}) {
       PlotSeries s;
       s.label = label;
       s.x = t;

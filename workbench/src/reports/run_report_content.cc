@@ -66,7 +66,7 @@ ReportContent MakeRunReportContent(const RobotModel& model, const RunOptions& op
                       other_report.identification.max_rel_error)};
   content.plots = {
       {"joints", "Joint positions, velocities, accelerations and torques over time (simulated in Bullet).",
-       JointSignalsPlot(SignalsOf(report.log))},
+       JointSignalsPlot(SignalsOf(report.log), JointNames(model))},
       {"parameters", "True (bars) and identified (dots, error bars = |error|) parameters; unidentifiable ones have no dot.",
        ParameterPlot("Identified versus true parameters", "true", RunParameterEstimates(r))},
       {"spectrum", "Singular values of each body's column-normalised Euler block over the samples; a missing value is "

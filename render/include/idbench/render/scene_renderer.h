@@ -1,7 +1,8 @@
 // Draws a Scene with OpenGL 3.3 core into the renderer's own multisampled
 // framebuffer object: lit primitives, a checkered floor fading into the
-// background, and the primitives' shadow cast on the floor by a directional
-// light (planar projection). GL is reached only through the loader, so the
+// background, the primitives' shadow cast on the floor by a directional
+// light (planar projection), and the parts below the floor that it hides
+// seen through it at half opacity. GL is reached only through the loader, so the
 // renderer works under OSMesa (headless, see osmesa_context.h) and in a GUI
 // window alike; a GL context must be current on the calling thread for the
 // renderer's whole life.
@@ -25,8 +26,9 @@ struct Floor {
   double radius = 5.0;                                  // [m]; fades out towards it
 };
 
-// A floor under all the points: at the lowest point or z = 0, whichever is
-// lower, wide enough to catch their shadows. Points must not be empty.
+// The floor the robot stands on: at z = 0 (also when points reach below it:
+// Draw shows what lies under the floor through it), centred under the
+// points, wide enough to catch their shadows. Points must not be empty.
 Floor FitFloor(const std::vector<Eigen::Vector3d>& points);
 
 class SceneRenderer {

@@ -19,13 +19,14 @@ struct RenderOptions {
   std::string trajectory = "paper";   // built-in motion or trajectory file (trajectory_file.h)
   double paper_accel_deg_s2 = 30.0;   // acceleration of the "paper" motion [deg/s²]
   double duration = 2.0;              // of a built-in motion [s] (a file brings its own)
-  std::vector<double> times{0.0, 0.3, 0.6, 0.9, 1.2, 1.5, 1.8, 2.0};  // [s]
+  std::vector<double> times;          // [s]; empty: DefaultFigureTimes over the whole motion
   std::string layout = "grid";        // grid | strip
   std::string size = "480x360";       // one panel, W x H [px]
   std::string out = "out/figure.png";
 
-  // The figure options these stand for (a malformed size gives 0 x 0).
-  PoseFigureOptions figure() const;
+  // The figure options these stand for, for a motion of `duration` seconds
+  // (no times given: DefaultFigureTimes(duration); a malformed size gives 0 x 0).
+  PoseFigureOptions figure(double duration) const;
   // Checks what does not need the trajectory; *why names the bad option.
   bool IsValid(std::string* why) const;
 };

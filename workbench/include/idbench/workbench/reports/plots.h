@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "idbench/engine/measurements.h"
+#include "idbench/engine/robot_model.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/render/plot.h"
@@ -28,14 +29,30 @@ struct JointSignals {
 JointSignals SignalsOf(const SimulationLog& log, int max_samples = 2000);
 JointSignals SignalsOf(const JointLog& log, int max_samples = 2000);
 
-// q, qd, qdd and τ over time, one axes each, one line per joint.
-PlotFigure JointSignalsPlot(const JointSignals& signals);
+// q, qd, qdd and τ over time, one axes each, one line per joint, the lines
+// labelled by joint name (the robot file's; none: "joint 1", "joint 2", …).
+PlotFigure JointSignalsPlot(const JointSignals& signals, const std::vector<std::string>& joint_names = {});
+
+// The words of a torque comparison plot.
+struct TorquePlotLabels {
+  std::string log = "identification log";  // in each axes' title
+  std::string measured = "measured";       // the log's torque ("simulated" for a simulation's)
+  std::vector<std::string> joint_names;    // the robot file's; none: "joint 1", "joint 2", …
+};
 
 // Measured against predicted torque (PredictTorqueSeries) over time, one axes
-// per joint in two columns, titled "Joint j, <log_label>", each with the lines
-// "measured" and "predicted"; every k-th sample so that at most max_samples
-// remain, as SignalsOf.
-PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const std::string& log_label, int max_samples = 2000);
+// per joint in two columns, titled "<joint name>, <labels.log>", each with the
+// lines labels.measured and "predicted", τ [N m] against t [s] with ticks on
+// both axes; every k-th sample so that at most max_samples remain, as SignalsOf.
+PlotFigure TorqueComparisonPlot(const TorqueSeries& series, const TorquePlotLabels& labels = {},
+                                int max_samples = 2000);
+
+// The robot file's joint names, in chain order (n_dof).
+std::vector<std::string> JointNames(const RobotModel& model);
+
+// The name of joint j (0-based) in a plot: joint_names[j], or "joint j+1"
+// when it has none.
+std::string JointLabel(const std::vector<std::string>& joint_names, Eigen::Index j);
 
 // One parameter: its true (or reference) value, the estimate and its
 // uncertainty (σ, or the error when there is no σ); NaN estimate = not identified.

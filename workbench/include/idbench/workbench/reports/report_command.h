@@ -43,12 +43,19 @@ struct ReportContent {
 ReportContent MakeRunReportContent(const RobotModel& model, const RunOptions& options, const RunReport& report,
                                    std::string pose_figure_png);
 
+// Where an identification's log came from. A recorded log's report sets the
+// identified values beside the robot file's (a reference, not a truth) and
+// calls its torques "measured"; a log simulated from the robot file has the
+// file's values as its truth, and "truth" appears only then.
+enum class LogOrigin { kRecorded, kSimulated };
+
 // An identification's report: base parameters with σ against the robot
 // file, fit and validation, joint signals, measured vs predicted torques (of
-// the log and the held-out log), the base regressor's spectrum, and
-// the poses along the log.
+// the log and the held-out log), the base regressor's spectrum, the poses
+// along the log, and the warnings (repeated ones collapsed). Joints and links
+// by the robot file's names.
 ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyOptions& options,
-                                        const IdentifyReport& report);
+                                        const IdentifyReport& report, LogOrigin origin = LogOrigin::kRecorded);
 
 // report.html, report.pdf, figure.png (with a pose figure) and the plots as
 // PNG, SVG and PDF, to be written into `dir` (the HTML names them relatively).
