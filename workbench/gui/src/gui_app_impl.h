@@ -60,6 +60,8 @@ struct GuiApp::Impl {
   std::string log_robot_path;   // URDF to load
   std::string columns_text;     // IdentifyOptions::format.columns, comma-separated; "" = the header's
   std::string friction_text;    // IdentifyOptions::friction, comma-separated
+  std::string time_window_text; // IdentifyOptions::time_window, "T0,T1" [s]; "" = the whole log
+  std::string drive_gains_text; // IdentifyOptions::format.drive_gains [N m/A], comma-separated
   std::string text_error;       // why a field above does not parse ("" = they do)
   bool log_fields_initialised = false;
   std::string preview_path;     // the log previewed, and its first lines split at commas

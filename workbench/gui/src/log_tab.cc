@@ -68,6 +68,28 @@ bool ParseFriction(const std::string& text, std::vector<std::string>* friction, 
   return true;
 }
 
+// A list of numbers ("" = none); `count` > 0: exactly that many.
+bool ParseNumbers(const std::string& text, size_t count, std::vector<double>* values, std::string* why) {
+  std::vector<double> parsed;
+  for (const std::string& item : SplitList(text)) {
+    double v = 0.0;
+    if (!internal::ParseDouble(item, &v, why)) return false;
+    parsed.push_back(v);
+  }
+  if (count > 0 && !parsed.empty() && parsed.size() != count) {
+    *why = "expected " + std::to_string(count) + " numbers or none, got " + std::to_string(parsed.size());
+    return false;
+  }
+  *values = parsed;
+  return true;
+}
+
+std::string JoinNumbers(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ",") + Number(v, "%.17g");
+  return text;
+}
+
 // The first lines of a text log, split at commas; a bag or an unreadable file gives none.
 std::vector<std::vector<std::string>> ReadPreview(const std::string& path) {
   std::vector<std::vector<std::string>> rows;
@@ -131,6 +153,8 @@ void GuiApp::Impl::DrawLogTab() {
   if (!log_fields_initialised) {  // the text fields start at the options' values
     friction_text = JoinList(id.friction);
     columns_text = JoinList(id.format.columns);
+    time_window_text = JoinNumbers(id.time_window);
+    drive_gains_text = JoinNumbers(id.format.drive_gains);
     log_fields_initialised = true;
   }
   ImGui::BeginDisabled(busy);
@@ -166,6 +190,15 @@ void GuiApp::Impl::DrawLogTab() {
   list_field("log.friction", "friction", &friction_text,
              [&id](const std::string& text, std::string* why) { return ParseFriction(text, &id.friction, why); });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("of: none, viscous, coulomb, offset, rotor");
+  list_field("log.time_window", "time window [s]", &time_window_text, [&id](const std::string& text, std::string* why) {
+    return ParseNumbers(text, 2, &id.time_window, why);
+  });
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("T0,T1: the part of the log identified from; empty: all of it");
+  list_field("log.drive_gains", "drive gains [N m/A]", &drive_gains_text,
+             [&id](const std::string& text, std::string* why) {
+               return ParseNumbers(text, 0, &id.format.drive_gains, why);
+             });
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("One per joint, tau = K i from the current columns i1..; empty: the log's tau");
   ImGui::PopItemWidth();
   ImGui::SetNextItemWidth(80);
   widgets.Combo("log.estimator", "estimator", &id.estimator, {"ols", "wls", "pc"});
