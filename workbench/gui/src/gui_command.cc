@@ -42,8 +42,9 @@ int RunGuiCommand(const GuiCommandOptions& options) {
   }
   try {
     HeadlessGui gui({.width = options.width, .height = options.height,
-                     .session = {.robot = options.robot, .out_dir = options.out_dir,
-                                 .data = options.data, .validate = options.validate}});
+                     .session = {.robot = options.robot, .out_dir = options.out_dir}});
+    gui.session().identify.data = options.data;  // the Log tab's logs
+    gui.session().identify.validate = options.validate;
     std::string why;
     const bool ok = RunGuiScript(gui, steps, options.script, &why);
     gui.session().WaitForJobs();

@@ -56,8 +56,9 @@ int RunGuiWindow(const GuiCommandOptions& options) {
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     internal::InitImGuiRenderer(&GetProcAddress);
     {
-      GuiApp app({.robot = options.robot, .out_dir = options.out_dir, .data = options.data, .validate = options.validate},
-                 &GetProcAddress);
+      GuiApp app({.robot = options.robot, .out_dir = options.out_dir}, &GetProcAddress);
+      app.session().identify.data = options.data;  // the Log tab's logs
+      app.session().identify.validate = options.validate;
       g_drop_target = &app;
       glfwSetDropCallback(window, &OnDrop);
       double last = glfwGetTime();

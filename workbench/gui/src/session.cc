@@ -47,8 +47,6 @@ Session::Session(const SessionOptions& options) : out_dir(options.out_dir) {
     // The session needs a robot: fall back to the first built-in.
     LoadRobot(BuiltinRobotNames().front());
   }
-  identify.data = options.data;
-  identify.validate = options.validate;
 }
 
 Session::~Session() {

@@ -32,8 +32,6 @@ namespace idbench::gui {
 struct SessionOptions {
   std::string robot = "paper6r";   // built-in name or URDF path
   std::string out_dir = "out/gui"; // where simulate, compare and export write
-  std::string data;                // a recorded joint log to identify from (IdentifyOptions::data); "" = none
-  std::string validate;            // a held-out log (IdentifyOptions::validate); "" = none
 };
 
 struct SessionMessage {
