@@ -236,7 +236,7 @@ void Session::StartSimulate() {
 void Session::StartIdentify() {
   IdentifyOptions options = identify;
   options.robot = robot_source_;
-  if (options.data.empty()) return Error("identify: no joint log yet; simulate or open a recorded log");
+  if (options.data.empty()) return Error("identify: no joint log yet; simulate first, or open a recorded log in the Log tab");
   // The checks of `idbench identify`, against the loaded robot too.
   std::string why;
   if (!options.IsValid(&why) || !options.format.IsValidFor(model_->n_dof(), &why) ||
