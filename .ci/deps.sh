@@ -12,6 +12,7 @@ packages=(build-essential cmake pkg-config
           libgtest-dev libbenchmark-dev
           xvfb xauth libgl1-mesa-dri  # the windowed GUI's smoke test runs under Xvfb
           poppler-utils               # pdfinfo: the report tests open the PDFs
+          libmujoco-dev               # the MJCF export's test loads it with MuJoCo (mj_inverse)
           clang-16 libclang-rt-16-dev)  # the sanitizer build and the libFuzzer harnesses (.ci/sanitizers)
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi

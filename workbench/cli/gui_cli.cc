@@ -33,6 +33,8 @@ CliCommand AddGuiCommand(CLI::App* app, CliContext* context) {
   CLI::App* command = app->add_subcommand(
       "gui", "The workbench window (GLFW + OpenGL 3); --headless draws it offscreen, driven by --script");
   AddRobotFlag(command, &gui.robot);
+  command->add_option("--data", gui.data, "A recorded joint log, opened in the Log tab");
+  command->add_option("--validate", gui.validate, "Its held-out log (Log tab)");
   AddOutFlag(command, &gui.out_dir, "Directory for logs and exports")->capture_default_str();
   command->add_flag("--headless", gui.headless, "No window: OSMesa, scripted input");
   command->add_option("--script", gui.script, "Headless: steps (click, set, wait, frames, screenshot), one a line");

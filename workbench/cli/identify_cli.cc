@@ -40,7 +40,7 @@ int IdentifyCommand(const IdentifyOptions& options, const UrdfLoadOptions& load,
   std::fputs(FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   EnsureOutputDirectory(dir);
-  // The robot model (identified.urdf, joints.yaml) only when its verdict is
+  // The robot model (identified.urdf, identified.xml, joints.yaml) only when its verdict is
   // fit to load, or the user accepts it (--write-unverified); the diagnostics always.
   const bool model_files = WritesRobotModel(options, report);
   std::vector<std::pair<std::filesystem::path, std::string>> files{
@@ -48,6 +48,7 @@ int IdentifyCommand(const IdentifyOptions& options, const UrdfLoadOptions& load,
   if (model_files) {
     files.emplace_back(dir / "identified.urdf", FormatIdentifiedUrdf(model, options, report));
     files.emplace_back(dir / "joints.yaml", FormatJointDynamicsYaml(model, options, report));
+    files.emplace_back(dir / "identified.xml", FormatIdentifiedMjcf(model, options, report));
   }
   if (with_report) {
     for (auto& file : FormatReportFiles(MakeIdentifyReportContent(model, options, report), dir))
@@ -55,7 +56,7 @@ int IdentifyCommand(const IdentifyOptions& options, const UrdfLoadOptions& load,
   }
   WriteFilesAtomically(files);
   std::printf("wrote %s%s%s\n", (dir / "identified.json").c_str(),
-              model_files ? (", " + (dir / "identified.urdf").string() + " and joints.yaml").c_str() : "",
+              model_files ? (", " + (dir / "identified.urdf").string() + ", identified.xml and joints.yaml").c_str() : "",
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
   const std::string refused = RefusedModelMessage(options, report, OptionNames::kCommandLine);
   if (refused.empty()) return 0;

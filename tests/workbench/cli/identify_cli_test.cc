@@ -116,6 +116,7 @@ TEST_F(IdentifyCliTest, JointsYamlHoldsTheEstimatedFriction) {
   const Result r = Run("identify --robot puma560 --estimator pc --data " + log.string() + " --out " + (dir_ / "id").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string yaml = Slurp(dir_ / "id" / "joints.yaml");
+  EXPECT_NE(Slurp(dir_ / "id" / "identified.xml").find("frictionloss=\""), std::string::npos);  // the MJCF beside them
   const nlohmann::json j = Json(dir_ / "id" / "identified.json");
   std::map<std::string, double> file_value;
   for (const auto& p : j["physically_consistent"]["standard_parameters"]) file_value[p["name"]] = p["robot_file_value"];
@@ -474,6 +475,7 @@ TEST_F(OffsetGeometryCliTest, FitPinnedOnContradictoryBoundsIsRefused) {
     ASSERT_TRUE(fs::exists(out / "identified.json")) << estimator;
     EXPECT_FALSE(fs::exists(out / "identified.urdf")) << estimator;
     EXPECT_FALSE(fs::exists(out / "joints.yaml")) << estimator;
+    EXPECT_FALSE(fs::exists(out / "identified.xml")) << estimator;
     const nlohmann::json j = Json(out / "identified.json");
     EXPECT_FALSE(j["verdict"]["fit_to_load"].get<bool>());
     EXPECT_FALSE(j["verdict"]["robot_model_written"].get<bool>());

@@ -222,6 +222,60 @@ wait report 120
   if (!HasFailure()) fs::remove_all(out);  // else kept to look at
 }
 
+// The Log tab on a file, as a user with a recorded log: the Experiment tab's
+// simulated log dropped onto the window twice (fit and held-out), friction,
+// time window and estimator set; the identification equals RunIdentify's on
+// the same options (the command line's call), the torque plots are drawn,
+// and a bad value is refused naming it, the option unchanged.
+TEST(HeadlessGuiTest, LogTabIdentifiesAFileAsTheLibrary) {
+  const fs::path out = TempDir("log");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click tab.experiment\nset experiment.duration 4\nclick experiment.simulate\nwait simulate 120\n");
+  const std::string log = (out / "log.csv").string();
+  ASSERT_TRUE(fs::is_regular_file(log)) << session.last_error();
+  gui.app().DropFiles({log, log});
+  EXPECT_EQ(session.identify.data, log);
+  EXPECT_EQ(session.identify.validate, log);
+  RunScript(gui, R"(
+click tab.log
+set log.friction viscous,coulomb
+set log.time_window 0.5,3.5
+set log.estimator wls
+click log.identify
+wait identify 300
+frames 2
+)");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  IdentifyOptions options;
+  options.data = options.validate = log;
+  options.friction = {"viscous", "coulomb"};
+  options.time_window = {0.5, 3.5};
+  options.estimator = "wls";
+  const IdentifyReport expected = RunIdentify(session.model(), options);
+  const JointTorqueIdentification& id = session.identify_report()->identification;
+  EXPECT_EQ(id.beta, expected.identification.beta);
+  EXPECT_EQ(id.consistent.pi, expected.identification.consistent.pi);
+  EXPECT_EQ(session.identify_report()->n_samples, expected.n_samples);
+  ASSERT_TRUE(session.identify_report()->validation.has_value());
+  EXPECT_EQ(session.identify_report()->validation->relative_error, expected.validation->relative_error);
+  // Measured against predicted torque, fit and held out, drawn.
+  ASSERT_TRUE(session.fit_torques().has_value());
+  ASSERT_TRUE(session.held_out_torques().has_value());
+  EXPECT_EQ(session.fit_torques()->measured.cols(), 6);
+  const WidgetEntry* plot = gui.widgets().Find("log.plot.1");
+  ASSERT_NE(plot, nullptr);
+  EXPECT_GT(SaturatedPixels(gui.Screenshot(), plot->rect), 50);
+  // Refused values name what is wrong and leave the options as they were.
+  std::string why;
+  EXPECT_FALSE(gui.Set("log.friction", "viscous,sticky", &why));
+  EXPECT_NE(why.find("sticky"), std::string::npos) << why;
+  EXPECT_EQ(session.identify.friction, (std::vector<std::string>{"viscous", "coulomb"}));
+  EXPECT_FALSE(gui.Set("log.time_window", "1", &why));
+  EXPECT_EQ(session.identify.time_window, (std::vector<double>{0.5, 3.5}));
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // A long design runs while frames keep coming, shows progress, and stops on
 // the Stop button with the best feasible design so far.
 TEST(HeadlessGuiTest, DesignRunsInTheBackgroundAndStops) {

@@ -1,5 +1,5 @@
 // The Export tab: the designed trajectory, the shown motion as CSV, the
-// identified URDF, the report and a screenshot, into the output directory.
+// identified robot (URDF, MJCF, joints.yaml, identified.json), the report and a screenshot, into the output directory.
 #include <imgui.h>
 
 #include "gui_app_impl.h"
@@ -18,10 +18,10 @@ void GuiApp::Impl::DrawExportTab() {
     session.ExportTrajectoryCsv();
   ImGui::SameLine();
   ImGui::TextColored(kDimColor, "the shown motion at %g Hz: trajectory.csv", session.design.csv_rate_hz);
-  if (widgets.Button("export.urdf", "Identified URDF", session.identify_report().has_value()))
-    session.ExportIdentifiedUrdf();
+  if (widgets.Button("export.urdf", "Identified robot", session.identify_report().has_value()))
+    session.ExportIdentifiedModel();
   ImGui::SameLine();
-  ImGui::TextColored(kDimColor, "physically consistent parameters: identified.urdf");
+  ImGui::TextColored(kDimColor, "identified.json; physically consistent: identified.urdf, .xml (MJCF), joints.yaml");
   if (JobButton("export.report", "Report", session.identify_report().has_value() && !session.running(JobKind::kReport),
                 session.running(JobKind::kReport), "writing the report..."))
     session.StartReport();

@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,22 @@ GuiApp::GuiApp(const SessionOptions& options, GlProcLoader loader) : impl_(std::
   const std::vector<std::string> names = BuiltinRobotNames();
   const std::string& source = impl_->session.robot_source();
   impl_->robot_choice = std::find(names.begin(), names.end(), source) != names.end() ? source : names.front();
+  if (std::find(names.begin(), names.end(), source) == names.end()) impl_->log_robot_path = source;
+}
+
+void GuiApp::DropFiles(const std::vector<std::string>& paths) {
+  Impl& m = *impl_;
+  int logs = 0;
+  for (const std::string& path : paths) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".urdf" || ext == ".URDF" || ext == ".xacro") {
+      m.log_robot_path = path;
+      m.pending_robot = path;
+    } else {
+      // A log; of two dropped together, the second is the held-out one.
+      (logs++ == 0 ? m.session.identify.data : m.session.identify.validate) = path;
+    }
+  }
 }
 
 GuiApp::~GuiApp() = default;
@@ -54,6 +71,7 @@ void GuiApp::Frame(double dt_seconds) {
     };
     for (const Tab& tab : {Tab{"tab.design", "Design", &Impl::DrawDesignTab},
                            Tab{"tab.experiment", "Experiment", &Impl::DrawExperimentTab},
+                           Tab{"tab.log", "Log", &Impl::DrawLogTab},
                            Tab{"tab.compare", "Compare", &Impl::DrawCompareTab},
                            Tab{"tab.export", "Export", &Impl::DrawExportTab}}) {
       const bool open = ImGui::BeginTabItem(tab.label);

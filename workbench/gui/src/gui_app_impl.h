@@ -56,6 +56,18 @@ struct GuiApp::Impl {
   int drawn_overlays = 0;
   bool drawn_once = false;
 
+  // Log tab: the text fields behind the option lists (parsed into session.identify).
+  std::string log_robot_path;   // URDF to load
+  std::string columns_text;     // IdentifyOptions::format.columns, comma-separated; "" = the header's
+  std::string friction_text;    // IdentifyOptions::friction, comma-separated
+  std::string time_window_text; // IdentifyOptions::time_window, "T0,T1" [s]; "" = the whole log
+  std::string drive_gains_text; // IdentifyOptions::format.drive_gains [N m/A], comma-separated
+  std::string text_error;       // why a field above does not parse ("" = they do)
+  bool log_fields_initialised = false;
+  std::string preview_path;     // the log previewed, and its first lines split at commas
+  std::vector<std::vector<std::string>> preview_rows;
+  bool plot_held_out = false;   // the torque plots show the held-out log
+
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one
 
@@ -85,6 +97,10 @@ struct GuiApp::Impl {
   void DrawPerBodyExperiment(bool busy);
   void DrawCompareTab();
   void DrawExportTab();
+  void DrawLogTab();
+  void DrawLogPreview();
+  void DrawTorquePlots();
+  void DrawLogResults();
   void DrawMessages();
 };
 

@@ -23,6 +23,7 @@ bool GuiCommandOptions::IsValid(std::string* why) const {
     return fail(out_why);
   }
   if (!headless && !script.empty()) return fail("--script needs --headless");
+  if (!validate.empty() && data.empty()) return fail("--validate: given without --data");
   if (frames < 0) return fail("--frames: must be >= 0, got " + std::to_string(frames));
   return true;
 }
@@ -42,6 +43,8 @@ int RunGuiCommand(const GuiCommandOptions& options) {
   try {
     HeadlessGui gui({.width = options.width, .height = options.height,
                      .session = {.robot = options.robot, .out_dir = options.out_dir}});
+    gui.session().identify.data = options.data;  // the Log tab's logs
+    gui.session().identify.validate = options.validate;
     std::string why;
     const bool ok = RunGuiScript(gui, steps, options.script, &why);
     gui.session().WaitForJobs();

@@ -8,6 +8,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "idbench/gui/gui_app.h"
 #include "idbench/gui/gui_command.h"
@@ -18,6 +20,13 @@ namespace idbench::gui {
 namespace {
 
 void* GetProcAddress(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+
+// The window's app, for GLFW's drop callback (a plain function; one window).
+GuiApp* g_drop_target = nullptr;
+void OnDrop(GLFWwindow*, int count, const char** paths) {
+  if (!g_drop_target) return;
+  g_drop_target->DropFiles(std::vector<std::string>(paths, paths + count));
+}
 
 void OnGlfwError(int code, const char* description) { std::fprintf(stderr, "GLFW error %d: %s\n", code, description); }
 
@@ -48,6 +57,10 @@ int RunGuiWindow(const GuiCommandOptions& options) {
     internal::InitImGuiRenderer(&GetProcAddress);
     {
       GuiApp app({.robot = options.robot, .out_dir = options.out_dir}, &GetProcAddress);
+      app.session().identify.data = options.data;  // the Log tab's logs
+      app.session().identify.validate = options.validate;
+      g_drop_target = &app;
+      glfwSetDropCallback(window, &OnDrop);
       double last = glfwGetTime();
       for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
         // Wake up regularly while jobs run, so their progress shows.
@@ -78,6 +91,8 @@ int RunGuiWindow(const GuiCommandOptions& options) {
         }
         glfwSwapBuffers(window);
       }
+      glfwSetDropCallback(window, nullptr);
+      g_drop_target = nullptr;
     }
     internal::ShutdownImGuiRenderer();
     ImGui_ImplGlfw_Shutdown();

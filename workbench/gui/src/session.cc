@@ -73,6 +73,8 @@ bool Session::LoadRobot(const std::string& name_or_path) {
   design_report_.reset();
   log_.reset();
   identify_report_.reset();
+  fit_torques_.reset();
+  held_out_torques_.reset();
   compare_report_.reset();
   per_body_result_.reset();
   {
@@ -235,20 +237,37 @@ void Session::StartSimulate() {
 void Session::StartIdentify() {
   IdentifyOptions options = identify;
   options.robot = robot_source_;
-  if (options.data.empty()) return Error("identify: no joint log yet; simulate first");
+  if (options.data.empty()) return Error("identify: no joint log yet; simulate first, or open a recorded log in the Log tab");
+  // The checks of `idbench identify`, against the loaded robot too.
   std::string why;
-  if (!options.IsValid(&why)) return Error("identify: " + why);
+  if (!options.IsValid(&why) || !options.format.IsValidFor(model_->n_dof(), &why) ||
+      !options.plausibility.IsValidFor(*model_, &why))
+    return Error("identify: " + why);
   StartJob(JobKind::kIdentify, [this, model = model_, options](const std::atomic<bool>&) {
     auto report = std::make_shared<IdentifyReport>(RunIdentify(*model, options));
-    return std::function<void()>([this, report, options] {
+    // The torque plots: measured against predicted, on the fit log and the held-out one.
+    auto fit = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, false));
+    std::shared_ptr<TorqueSeries> held_out;
+    if (report->held_out_prepared)
+      held_out = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, true));
+    return std::function<void()>([this, report, options, fit, held_out] {
       identify_report_ = std::move(*report);
       identified_with_ = options;
+      fit_torques_ = std::move(*fit);
+      if (held_out) held_out_torques_ = std::move(*held_out);
+      else held_out_torques_.reset();
+      for (const std::string& w : identify_report_->warnings) Info("warning: " + w);
       const JointTorqueIdentification& id = identify_report_->identification;
       char line[256];
       std::snprintf(line, sizeof line, "identify: %d base parameters, %d determined by the log (rank), cond(W) %.4g, "
                     "torque error %.3g%%", id.base.n_base(), id.linear.rank, id.linear.cond,
                     100.0 * id.fit.relative_error);
       Info(line);
+      if (identify_report_->validation) {
+        std::snprintf(line, sizeof line, "identify: held-out torque error %.3g%% (%s)",
+                      100.0 * identify_report_->validation->relative_error, options.validate.c_str());
+        Info(line);
+      }
     });
   });
 }
@@ -422,17 +441,22 @@ bool Session::ExportTrajectoryCsv() {
   return Export("trajectory.csv", [&] { return FormatTrajectoryCsv(*t, design.csv_rate_hz); });
 }
 
-bool Session::ExportIdentifiedUrdf() {
+bool Session::ExportIdentifiedModel() {
   if (!identify_report_) {
     Error("export: nothing identified yet");
     return false;
   }
-  if (!WritesRobotModel(identified_with_, *identify_report_)) {  // the verdict refuses it (issue 20)
-    Error("export: " + RefusedModelMessage(identified_with_, *identify_report_, OptionNames::kCommandLine));
+  // As `idbench identify` writes them: the diagnostics always, the robot model when the verdict allows.
+  const IdentifyOptions& options = identified_with_;
+  const IdentifyReport& report = *identify_report_;
+  if (!Export("identified.json", [&] { return FormatIdentifiedJson(*model_, options, report); })) return false;
+  if (!WritesRobotModel(options, report)) {  // the verdict refuses it (issue 20)
+    Error("export: " + RefusedModelMessage(options, report, OptionNames::kCommandLine));
     return false;
   }
-  return Export("identified.urdf",
-                [&] { return FormatIdentifiedUrdf(*model_, identified_with_, *identify_report_); });
+  return Export("identified.urdf", [&] { return FormatIdentifiedUrdf(*model_, options, report); }) &&
+         Export("identified.xml", [&] { return FormatIdentifiedMjcf(*model_, options, report); }) &&
+         Export("joints.yaml", [&] { return FormatJointDynamicsYaml(*model_, options, report); });
 }
 
 // ---- Messages -------------------------------------------------------------

@@ -1,4 +1,4 @@
-// The files `identify` writes: identified.json, joints.yaml, identified.urdf.
+// The files `identify` writes: identified.json, joints.yaml, identified.urdf, identified.xml.
 #include "idbench/workbench/commands/identify_command.h"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "idbench/engine/urdf.h"
+#include "idbench/workbench/formats/mjcf_writer.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -199,6 +200,15 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
 std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
   return WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
+}
+
+}  // namespace idbench
+
+namespace idbench {
+
+std::string FormatIdentifiedMjcf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report) {
+  return WriteMjcf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
 }
 
 }  // namespace idbench

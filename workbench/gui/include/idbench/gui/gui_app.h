@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "idbench/gui/session.h"
 #include "idbench/gui/widget_registry.h"
@@ -47,6 +48,10 @@ class GuiApp {
 
   // A screenshot the Export panel asked for: its path, once.
   std::optional<std::string> TakeScreenshotRequest();
+  // Files dropped onto the window: a .urdf (or .xacro) is loaded as the
+  // robot, a log becomes the Log tab's data; of two logs dropped together the
+  // second is the held-out one.
+  void DropFiles(const std::vector<std::string>& paths);
 
  private:
   struct Impl;

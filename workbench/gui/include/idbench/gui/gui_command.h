@@ -9,6 +9,8 @@ namespace idbench::gui {
 struct GuiCommandOptions {
   std::string robot = "paper6r";   // built-in name or URDF path
   std::string out_dir = "out/gui"; // simulate, compare and export write here
+  std::string data;                // a recorded joint log, opened in the Log tab; "" = none
+  std::string validate;            // its held-out log; "" = none
   bool headless = false;
   std::string script;              // headless: steps (gui_script.h); "" = none
   std::string screenshot;          // PNG of the last frame; "" = none

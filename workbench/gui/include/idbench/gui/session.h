@@ -114,6 +114,12 @@ class Session {
   std::vector<double> DesignCurve() const;
   const std::optional<JointLog>& log() const { return log_; }
   const std::optional<IdentifyReport>& identify_report() const { return identify_report_; }
+  // The options identify_report() was made with.
+  const IdentifyOptions& identified_with() const { return identified_with_; }
+  // Measured and predicted torque of the identification (PredictIdentifiedTorques)
+  // on its log and on the held-out one (when identified with one).
+  const std::optional<TorqueSeries>& fit_torques() const { return fit_torques_; }
+  const std::optional<TorqueSeries>& held_out_torques() const { return held_out_torques_; }
   std::vector<IdentifiedRow> IdentifiedRows() const;
   // Standard parameters no motion can excite (no effect on any torque).
   std::vector<std::string> UnexcitedParameters() const;
@@ -130,7 +136,10 @@ class Session {
   // ---- Export (into out_dir) ----------------------------------------------
   bool ExportTrajectoryJson();   // the designed motion's coefficients
   bool ExportTrajectoryCsv();    // the current motion at the design's csv rate
-  bool ExportIdentifiedUrdf();   // the physically consistent identified robot
+  // The identification's files as `idbench identify` writes them:
+  // identified.json always; identified.urdf, identified.xml (MJCF) and
+  // joints.yaml when the verdict is fit to load (else an error says why).
+  bool ExportIdentifiedModel();
   std::string OutPath(const std::string& file) const;
 
   // ---- Messages -----------------------------------------------------------
@@ -162,6 +171,7 @@ class Session {
   std::optional<JointLog> log_;
   std::optional<IdentifyReport> identify_report_;
   IdentifyOptions identified_with_;   // the options of identify_report_
+  std::optional<TorqueSeries> fit_torques_, held_out_torques_;
   std::optional<CompareReport> compare_report_;
   std::optional<PerBodyIdentificationResult> per_body_result_;
 

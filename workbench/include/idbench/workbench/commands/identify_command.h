@@ -119,5 +119,10 @@ std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptio
 // identified.urdf: the robot with the physically consistent standard parameters.
 std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report);
+// identified.xml: the same robot as MJCF (formats/mjcf_writer.h), with its
+// rotor inertia (armature), viscous (damping) and Coulomb (frictionloss)
+// friction; offsets have no MJCF counterpart.
+std::string FormatIdentifiedMjcf(const RobotModel& model, const IdentifyOptions& options,
+                                 const IdentifyReport& report);
 
 }  // namespace idbench
