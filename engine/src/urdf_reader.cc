@@ -14,6 +14,7 @@
 #include "urdf_chain_builder.h"
 #include "urdf_document.h"
 #include "urdf_messages.h"
+#include "urdf_transmissions.h"
 
 namespace idbench {
 namespace {
@@ -82,8 +83,10 @@ UrdfLoadResult LoadUrdfString(const std::string& xml, const std::string& source_
     throw std::invalid_argument(source_name + ": not a valid URDF" +
                                 (first_error.text.empty() ? "" : " (" + first_error.text + ")"));
   }
-  return internal::BuildUrdfChain(*urdf, source_name,
-                                  std::filesystem::path(base_directory.empty() ? "." : base_directory), options);
+  UrdfLoadResult result = internal::BuildUrdfChain(
+      *urdf, source_name, std::filesystem::path(base_directory.empty() ? "." : base_directory), options);
+  result.transmission = internal::ReadUrdfTransmissions(xml, source_name, result.model, &result.warnings);
+  return result;
 }
 
 UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& options) {

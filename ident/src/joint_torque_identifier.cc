@@ -40,8 +40,14 @@ std::vector<std::vector<int>> JointFactorColumns(const RobotModel& model, const 
       for (int j = c / kInertialParametersPerLink; j >= 0; j = model.link(j).parent) {
         columns[static_cast<size_t>(j)].push_back(k);
       }
-    } else {
+    } else if (!friction.actuator_side()) {
       columns[static_cast<size_t>((c - n_inertial) / friction.per_joint())].push_back(k);
+    } else {
+      // Motor m's terms reach every joint it turns with (A(m, j) != 0).
+      const int m = (c - n_inertial) / friction.per_joint();
+      for (int j = 0; j < model.n_dof(); ++j) {
+        if (friction.actuator_from_joint(m, j) != 0.0) columns[static_cast<size_t>(j)].push_back(k);
+      }
     }
   }
   return columns;

@@ -39,6 +39,12 @@ template <typename Scalar, typename A, typename B>
 
 }  // namespace
 
+std::optional<Transmission::SingleMotor> SingleMotorOf(const FrictionModel& friction, int j) {
+  Transmission transmission;
+  transmission.actuator_from_joint = friction.actuator_from_joint;
+  return transmission.SingleMotorOf(j);
+}
+
 std::optional<FrictionModel> ParseFrictionTerms(const std::vector<std::string>& terms, std::string* why) {
   FrictionModel f;
   for (const std::string& term : terms) {
@@ -67,7 +73,7 @@ std::vector<std::string> StandardParameterNames(const RobotModel& model, const F
     }
   }
   for (int j = 1; j <= model.n_dof(); ++j) {
-    const std::string s = std::to_string(j);
+    const std::string s = (friction.actuator_side() ? "m" : "") + std::to_string(j);
     if (friction.viscous) names.push_back("Fv" + s);
     if (friction.coulomb) names.push_back("Fc" + s);
     if (friction.offset) names.push_back("offset" + s);
@@ -88,10 +94,19 @@ Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel&
   }
   int k = model.n_links() * kInertialParametersPerLink;
   for (const Link& link : model.links()) {
-    if (friction.viscous) pi[k++] = link.dynamics.viscous;
-    if (friction.coulomb) pi[k++] = link.dynamics.coulomb;
+    // The joint-side values where a motor drives a joint alone (else zero).
+    JointDynamics dyn = link.dynamics;
+    if (friction.actuator_side()) {
+      const int j = static_cast<int>(&link - model.links().data());
+      const std::optional<Transmission::SingleMotor> single = SingleMotorOf(friction, j);
+      const double N = single ? single->ratio : 0.0;
+      dyn = single ? JointDynamics{dyn.viscous / (N * N), dyn.coulomb / std::abs(N), dyn.rotor_inertia / (N * N)}
+                   : JointDynamics{};
+    }
+    if (friction.viscous) pi[k++] = dyn.viscous;
+    if (friction.coulomb) pi[k++] = dyn.coulomb;
     if (friction.offset) pi[k++] = 0.0;
-    if (friction.rotor_inertia) pi[k++] = link.dynamics.rotor_inertia;
+    if (friction.rotor_inertia) pi[k++] = dyn.rotor_inertia;
   }
   return pi;
 }
@@ -118,6 +133,24 @@ RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionMo
     if (friction.coulomb) dyn.coulomb = pi[k++];
     if (friction.offset) ++k;
     if (friction.rotor_inertia) dyn.rotor_inertia = pi[k++];
+  }
+  if (friction.actuator_side()) {
+    // Motor k's terms on the joint it drives alone (Ia·N², Fv·N², Fc·|N|).
+    std::vector<JointDynamics> motor(links.size());
+    for (size_t k = 0; k < links.size(); ++k) motor[k] = links[k].dynamics;
+    for (size_t j = 0; j < links.size(); ++j) {
+      const std::optional<Transmission::SingleMotor> single = SingleMotorOf(friction, static_cast<int>(j));
+      JointDynamics& dyn = links[j].dynamics;
+      if (!single) {
+        dyn = JointDynamics{};
+        continue;
+      }
+      const double N = single->ratio;
+      const JointDynamics& m = motor[static_cast<size_t>(single->motor)];
+      if (friction.viscous) dyn.viscous = m.viscous * N * N;
+      if (friction.coulomb) dyn.coulomb = m.coulomb * std::abs(N);
+      if (friction.rotor_inertia) dyn.rotor_inertia = m.rotor_inertia * N * N;
+    }
   }
   return RobotModel(model.name(), std::move(links), model.gravity_W());
 }
@@ -212,6 +245,24 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
   if (per_joint == 0) return;
   const int base = model.n_links() * kInertialParametersPerLink;
   Scalar columns[4];
+  if (friction.actuator_side()) {
+    // Motor k's terms on θ̇m_k = A_k·q̇, into the joints through A_kᵀ.
+    const Eigen::MatrixXd& A = friction.actuator_from_joint;
+    for (int k = 0; k < n; ++k) {
+      Scalar thetad(0.0), thetadd(0.0);
+      for (int j = 0; j < n; ++j) {
+        if (A(k, j) == 0.0) continue;
+        thetad += A(k, j) * qd[j];
+        thetadd += A(k, j) * qdd[j];
+      }
+      FrictionColumns(friction, thetad, thetadd, columns);
+      for (int j = 0; j < n; ++j) {
+        if (A(k, j) == 0.0) continue;
+        for (int c = 0; c < per_joint; ++c) (*Y)(j, base + per_joint * k + c) = A(k, j) * columns[c];
+      }
+    }
+    return;
+  }
   for (int j = 0; j < n; ++j) {
     FrictionColumns(friction, qd[j], qdd[j], columns);
     for (int k = 0; k < per_joint; ++k) (*Y)(j, base + per_joint * j + k) = columns[k];
@@ -259,6 +310,24 @@ Scalar ContractJointTorqueRegressorT(const RobotModel& model, const FrictionMode
   const int per_joint = friction.per_joint();
   const int base = model.n_links() * kInertialParametersPerLink;
   Scalar columns[4];
+  if (friction.actuator_side() && per_joint > 0) {
+    const Eigen::MatrixXd& A = friction.actuator_from_joint;
+    const int n = model.n_dof();
+    for (int k = 0; k < n; ++k) {
+      Scalar thetad(0.0), thetadd(0.0);
+      for (int j = 0; j < n; ++j) {
+        if (A(k, j) == 0.0) continue;
+        thetad += A(k, j) * qd[j];
+        thetadd += A(k, j) * qdd[j];
+      }
+      FrictionColumns(friction, thetad, thetadd, columns);
+      for (int j = 0; j < n; ++j) {
+        if (A(k, j) == 0.0) continue;
+        for (int c = 0; c < per_joint; ++c) sum += G(j, base + per_joint * k + c) * A(k, j) * columns[c];
+      }
+    }
+    return sum;
+  }
   for (int j = 0; j < model.n_dof() && per_joint > 0; ++j) {
     FrictionColumns(friction, qd[j], qdd[j], columns);
     for (int k = 0; k < per_joint; ++k) sum += G(j, base + per_joint * j + k) * columns[k];

@@ -30,6 +30,17 @@ const char* ActuatorColumn(const std::string& name) {
   return kWhat[kind];
 }
 
+bool ParseActuatorColumnName(const std::string& name, ColumnTarget* target) {
+  if (!ActuatorColumn(name)) return false;
+  static constexpr int kKindOf[] = {1, 2, 4, 5};  // qm, qdm, taum, im
+  const size_t digits = name.find_first_of("0123456789");
+  const int prefix = ActuatorPrefix(name.substr(0, digits));
+  int motor = 0;
+  std::from_chars(name.data() + digits, name.data() + name.size(), motor);
+  *target = {kKindOf[prefix], motor - 1, true};
+  return true;
+}
+
 bool ParseColumnName(const std::string& name, ColumnTarget* target) {
   if (name == "_") {
     *target = {-1, 0};

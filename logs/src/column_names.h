@@ -14,7 +14,8 @@ namespace idbench::internal {
 // -1 skipped) and joint.
 struct ColumnTarget {
   int kind;
-  int joint;
+  int joint;              // the joint, or the actuator when `actuator`
+  bool actuator = false;  // an actuator-side column (qm, qdm, taum, im: kinds 1, 2, 4, 5)
 };
 constexpr const char* kKindPrefix[] = {"t", "q", "qd", "qdd", "tau", "i"};
 constexpr int kKinds = 6;
@@ -27,6 +28,9 @@ bool ParseColumnName(const std::string& name, ColumnTarget* target);
 // velocity, taum<j> motor torque, im<j> motor current), what it is ("motor
 // position"); nullptr for any other name.
 const char* ActuatorColumn(const std::string& name);
+// An actuator-side name as its target: qm<k> → {1, k − 1, true}, qdm → 2,
+// taum → 4, im → 5. False for any other name.
+bool ParseActuatorColumnName(const std::string& name, ColumnTarget* target);
 // Its prefix's kind for ranges (qm1..qm6): 0..3 in kActuatorPrefix, or -1.
 int ActuatorPrefix(const std::string& prefix);
 constexpr const char* kActuatorPrefix[] = {"qm", "qdm", "taum", "im"};

@@ -26,7 +26,8 @@ std::string Joined(const std::vector<double>& values) {
 }
 
 // The caller's options and the description's: each given in one place.
-JointLogFormat MergedFormat(const JointLogDescription& description, const JointLogFormat& format) {
+JointLogFormat MergedFormat(const JointLogDescription& description, const JointLogFormat& format,
+                            std::vector<std::string>* notes) {
   const std::string& source = description.source;
   if (!format.columns.empty()) {
     throw std::invalid_argument(source + ": --columns given with a log description: name each file's columns in its "
@@ -49,6 +50,13 @@ JointLogFormat MergedFormat(const JointLogDescription& description, const JointL
     }
     merged.drive_gains = description.drive_gains;
   }
+  if (description.transmission) {
+    // The description's transmission wins over the robot's (its URDF's).
+    if (format.transmission) {
+      notes->push_back(source + ": .transmission used, not the one of " + format.transmission->source);
+    }
+    merged.transmission = description.transmission;
+  }
   return merged;
 }
 
@@ -70,7 +78,8 @@ LogPart OpenPart(const JointLogDescription& description, size_t i, const RobotMo
   if (file.layout == JointLogFileDescription::Layout::kOneValuePerLine) {
     part.stride = file.stride;
     part.data_after = file.skip;
-    part.columns = internal::TargetsOf(ExpandColumnNames(file.columns), model.n_dof(), messages);
+    part.columns = internal::TargetsOf(ExpandColumnNames(file.columns), model.n_dof(), messages,
+                                       format.transmission.has_value());
     return part;
   }
   std::int64_t line_number = 0;
@@ -80,7 +89,7 @@ LogPart OpenPart(const JointLogDescription& description, size_t i, const RobotMo
   if (!part.named) file_messages.header_line = line_number;
   part.columns = internal::TargetsOf(
       internal::FileColumnNames(first_fields, part.header, model, columns_format, file_messages, line_number, notes),
-      model.n_dof(), file_messages);
+      model.n_dof(), file_messages, format.transmission.has_value());
   part.data_after = part.named && !part.header ? file.skip : line_number;
   return part;
 }
@@ -91,8 +100,16 @@ std::unique_ptr<JointLogSource> OpenDescribedJointLog(const JointLogDescription&
                                                       const JointLogFormat& format, TorqueColumns torques) {
   const std::string& source = description.source;
   const int n_dof = model.n_dof();
-  const JointLogFormat merged = MergedFormat(description, format);
+  std::vector<std::string> notes;
+  const JointLogFormat merged = MergedFormat(description, format, &notes);
   std::string why;
+  if (description.transmission && description.transmission->n_dof() != n_dof) {
+    throw std::invalid_argument(source + ": .transmission: " + std::to_string(description.transmission->n_dof()) +
+                                " actuators, the robot has " + std::to_string(n_dof) + " joints (one actuator each)");
+  }
+  if (description.transmission && !description.transmission->IsValid(n_dof, &why)) {
+    throw std::invalid_argument(source + ": .transmission." + why);
+  }
   if (!merged.IsValid(&why) || !merged.IsValidFor(n_dof, &why)) throw std::invalid_argument(source + ": " + why);
 
   // The files, each with its columns.
@@ -103,6 +120,7 @@ std::unique_ptr<JointLogSource> OpenDescribedJointLog(const JointLogDescription&
   options.source = source;
   options.rate_hz = description.rate_hz;
   options.time_window = description.time_window;
+  options.notes = std::move(notes);
   std::vector<LogPart> parts;
   for (size_t i = 0; i < description.files.size(); ++i) {
     parts.push_back(OpenPart(description, i, model, merged, &options.notes));
@@ -119,6 +137,8 @@ std::unique_ptr<JointLogSource> OpenDescribedJointLog(const JointLogDescription&
       }
       all.column_of.emplace(name, static_cast<int>(column));
     }
+    all.joint_kinds |= parts[p].columns.joint_kinds;
+    all.actuator_kinds |= parts[p].columns.actuator_kinds;
   }
   if (description.rate_hz && all.has("t")) {
     throw std::invalid_argument(source + ": .rate given and " + parts[part_of["t"]].label +

@@ -42,7 +42,7 @@ std::unique_ptr<JointLogSource> OpenCsvLines(LineReader lines, const RobotModel&
   LogPart part(std::move(lines));
   part.columns = internal::TargetsOf(
       internal::FileColumnNames(first_fields, header, model, format, messages, line_number, &options.notes), n_dof,
-      messages);
+      messages, format.transmission.has_value());
   options.use = internal::ChooseColumns(part.columns, n_dof, format, torques, messages, &options.warnings);
   part.label = options.source;
   part.named = named;

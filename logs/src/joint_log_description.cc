@@ -179,6 +179,54 @@ JointLogFileDescription ParseFile(const Field& file) {
   return out;
 }
 
+// {"reduction": [...]} or {"actuator_from_joint": [[...], ...]}, and an
+// optional "joint_offset": checked here as far as the robot is not needed
+// (square, finite, invertible, non-zero reductions; sizes against it when opened).
+Transmission ParseTransmission(const Field& field) {
+  field.Keys({"reduction", "actuator_from_joint", "joint_offset"});
+  const bool reduction = field.value.contains("reduction"), matrix = field.value.contains("actuator_from_joint");
+  if (reduction == matrix) {
+    field.Fail("expected \"reduction\": [N1, ...] (gear ratios) or \"actuator_from_joint\": [[...], ...] (a square "
+               "matrix A, θ̇m = A·q̇), one of them");
+  }
+  Transmission out;
+  out.source = field.source + ": " + field.path;
+  if (reduction) {
+    const Field n = field["reduction"];
+    const std::vector<double> ratios = n.Numbers();
+    if (ratios.empty() || static_cast<int>(ratios.size()) > JointLogFormat::kMaxJoints) {
+      n.Fail("expected 1 to " + std::to_string(JointLogFormat::kMaxJoints) + " gear ratios, got " + n.Shown());
+    }
+    for (size_t j = 0; j < ratios.size(); ++j) {
+      if (ratios[j] == 0.0) n.at(j).Fail("expected a non-zero gear ratio (θm = N·q), got 0");
+    }
+    out = Transmission::FromReduction(ratios);
+    out.source = field.source + ": " + field.path;
+  } else {
+    const Field a = field["actuator_from_joint"];
+    if (!a.value.is_array() || a.value.empty() || static_cast<int>(a.value.size()) > JointLogFormat::kMaxJoints) {
+      a.Fail("expected a square matrix as a list of rows [[...], ...], got " + a.Shown());
+    }
+    const Eigen::Index n = static_cast<Eigen::Index>(a.value.size());
+    out.actuator_from_joint.resize(n, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const std::vector<double> row = a.at(static_cast<size_t>(k)).Numbers();
+      if (static_cast<Eigen::Index>(row.size()) != n) {
+        a.at(static_cast<size_t>(k)).Fail("expected " + std::to_string(n) + " values (a square matrix, one row per "
+                                          "actuator), got " + std::to_string(row.size()));
+      }
+      for (Eigen::Index j = 0; j < n; ++j) out.actuator_from_joint(k, j) = row[static_cast<size_t>(j)];
+    }
+  }
+  if (field.value.contains("joint_offset")) {
+    const std::vector<double> offset = field["joint_offset"].Numbers();
+    out.joint_offset = Eigen::Map<const Eigen::VectorXd>(offset.data(), static_cast<Eigen::Index>(offset.size()));
+  }
+  std::string why;
+  if (!out.IsValid(out.n_dof(), &why)) throw std::invalid_argument(field.source + ": " + field.path + "." + why);
+  return out;
+}
+
 }  // namespace
 
 bool IsJointLogDescriptionPath(const std::string& path) {
@@ -214,7 +262,7 @@ JointLogDescription ParseJointLogDescription(const std::string& text, const std:
     throw std::invalid_argument(source + ": expected an object with \"files\" (and \"rate\", \"time_window\", ...), got " +
                                 top.Shown());
   }
-  top.Keys({"rate", "files", "time_window", "angle_unit", "drive_gains"});
+  top.Keys({"rate", "files", "time_window", "angle_unit", "drive_gains", "transmission"});
   JointLogDescription out;
   out.source = source;
   if (document.contains("rate")) {
@@ -255,6 +303,7 @@ JointLogDescription ParseJointLogDescription(const std::string& text, const std:
     std::string why;
     if (!format.IsValid(&why)) top["drive_gains"].Fail(why.starts_with("drive_gains: ") ? why.substr(13) : why);
   }
+  if (document.contains("transmission")) out.transmission = ParseTransmission(top["transmission"]);
   return out;
 }
 

@@ -72,6 +72,10 @@ bool JointLogFormat::IsValidFor(int n_dof, std::string* why) const {
     return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, the robot has " +
                 std::to_string(n_dof) + " joints");
   }
+  if (transmission && !transmission->IsValid(n_dof, why)) {
+    if (why) *why = "transmission." + *why;
+    return false;
+  }
   if (columns.empty()) return true;
   const std::vector<std::string> names = ExpandColumnNames(columns);
   for (size_t c = 0; c < names.size(); ++c) {

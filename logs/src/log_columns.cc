@@ -82,7 +82,8 @@ std::vector<std::string> FileColumnNames(const std::vector<std::string>& first_f
 }
 
 // Every column named once, from a known set, of a joint the robot has.
-FileColumns TargetsOf(std::vector<std::string> names, int n_dof, const ColumnMessages& messages) {
+FileColumns TargetsOf(std::vector<std::string> names, int n_dof, const ColumnMessages& messages,
+                      bool with_transmission) {
   if (static_cast<int>(names.size()) > JointLogFormat::kMaxColumns) {
     messages.Fail(std::to_string(names.size()) + " columns, at most " + std::to_string(JointLogFormat::kMaxColumns));
   }
@@ -92,15 +93,33 @@ FileColumns TargetsOf(std::vector<std::string> names, int n_dof, const ColumnMes
     const std::string where = ColumnLabel(c, name);
     ColumnTarget target{};
     if (const char* what = ActuatorColumn(name)) {
-      messages.Fail(where + ": " + what + " (an actuator-side column): reading it needs the transmission (gear "
-                    "ratios, coupling) from motor to joint, which idbench does not model yet; give joint-side "
-                    "columns (q, qd, qdd, tau, i)");
+      if (!with_transmission) {
+        messages.Fail(where + ": " + what + " (an actuator-side column): reading it needs the transmission (gear "
+                      "ratios, coupling) from motor to joint: give \"transmission\" in a log description (or the "
+                      "URDF's <transmission>), or joint-side columns (q, qd, qdd, tau, i)");
+      }
+      ParseActuatorColumnName(name, &target);
+      if (target.joint >= n_dof) {
+        messages.Fail(where + ": actuator " + std::to_string(target.joint + 1) + " but the robot has " +
+                      std::to_string(n_dof) + " joints (one actuator each)");
+      }
+      const std::string joint_name = std::string(kKindPrefix[target.kind]) + std::to_string(target.joint + 1);
+      if (!columns.column_of.emplace(joint_name, static_cast<int>(c)).second) {
+        messages.Fail(where + ": " + what + " " + std::to_string(target.joint + 1) + " given twice, or with '" +
+                      joint_name + "': give each kind of column on one side, actuator or joint");
+      }
+      columns.actuator_kinds |= 1u << target.kind;
+      columns.targets.push_back(target);
+      continue;
     }
     if (!ParseColumnName(name, &target)) {
       messages.Fail(where + ": unknown column; expected t, q1..q" + std::to_string(n_dof) +
                     ", qd*, qdd*, tau*, i* (motor current)" + (messages.named ? ", or _" : ""));
     }
-    if (name != "_" && !columns.column_of.emplace(name, static_cast<int>(c)).second) messages.Fail(where + ": repeated");
+    if (name != "_" && !columns.column_of.emplace(name, static_cast<int>(c)).second) {
+      messages.Fail(where + ": repeated" + (with_transmission ? " (or given on the actuator side too)" : ""));
+    }
+    if (target.kind > 0) columns.joint_kinds |= 1u << target.kind;
     if (target.kind > 0 && target.joint >= n_dof) {
       messages.Fail(where + ": joint " + std::to_string(target.joint + 1) + " but the robot has " +
                     std::to_string(n_dof) + " joints");
@@ -145,6 +164,16 @@ bool CompleteSet(const FileColumns& columns, const char* prefix, int n_dof, cons
 ColumnUse ChooseColumns(const FileColumns& columns, int n_dof, const JointLogFormat& format, TorqueColumns torques,
                         const ColumnMessages& messages, std::vector<std::string>* warnings, bool need_t) {
   if (need_t && !columns.has("t")) messages.Fail("missing column 't'");
+  for (int kind = 1; kind < kKinds; ++kind) {
+    const unsigned bit = 1u << kind;
+    if ((columns.joint_kinds & bit) && (columns.actuator_kinds & bit)) {
+      messages.Fail(std::string("columns ") + kKindPrefix[kind] + "* on the joint side and on the actuator side: give "
+                    "each kind on one side");
+    }
+  }
+  if ((columns.actuator_kinds & (1u << 5)) && torques == TorqueColumns::kCurrents) {
+    messages.Fail("motor currents im*: drive gains are estimated from joint-side currents i*");
+  }
   for (int j = 1; j <= n_dof; ++j) {
     if (!columns.has("q" + std::to_string(j))) {
       messages.Fail("missing column 'q" + std::to_string(j) + "' (robot has " + std::to_string(n_dof) + " joints)");

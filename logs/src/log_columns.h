@@ -36,7 +36,8 @@ struct ColumnMessages {
 struct FileColumns {
   std::vector<std::string> names;
   std::vector<ColumnTarget> targets;
-  std::map<std::string, int> column_of;
+  std::map<std::string, int> column_of;  // actuator-side columns under their kind's joint-side name (qm2: q2)
+  unsigned joint_kinds = 0, actuator_kinds = 0;  // bit `kind`: a column of that kind on that side
   bool has(const std::string& name) const { return column_of.count(name) > 0; }
 };
 
@@ -58,9 +59,10 @@ std::vector<std::string> FileColumnNames(const std::vector<std::string>& first_f
                                          std::vector<std::string>* notes);
 
 // Every column named once, from a known set, of a joint the robot has;
-// actuator-side names (qm, qdm, taum, im) are refused as needing a
-// transmission.
-FileColumns TargetsOf(std::vector<std::string> names, int n_dof, const ColumnMessages& messages);
+// actuator-side names (qm, qdm, taum, im) are read with a transmission
+// (as their kind's joint-side name in column_of), else refused as needing one.
+FileColumns TargetsOf(std::vector<std::string> names, int n_dof, const ColumnMessages& messages,
+                      bool with_transmission = false);
 
 // Required columns (t unless `need_t` is false), each other kind as a
 // complete set or not at all, and which torque columns fill log.tau as

@@ -56,6 +56,11 @@ TableLogSource::TableLogSource(std::vector<LogPart> parts, Options options)
   for (size_t p = 0; p < parts_.size(); ++p) {
     values_.emplace_back(parts_[p].columns.names.size(), 0.0);
     if (parts_[p].columns.has("t")) t_part_ = p;
+    if (parts_[p].columns.has("q1")) q_source_ = parts_[p].lines.source();
+    actuator_kinds_ |= parts_[p].columns.actuator_kinds;
+  }
+  if (actuator_kinds_ != 0 && !options_.format.transmission) {
+    throw std::logic_error("TableLogSource: actuator-side columns without a transmission");
   }
   if (!t_part_ && !options_.rate_hz) throw std::logic_error("TableLogSource: no t column and no rate");
   layout_.source = options_.source;
@@ -69,6 +74,17 @@ TableLogSource::TableLogSource(std::vector<LogPart> parts, Options options)
   layout_.time_window = options_.time_window;
   layout_.notes = options_.notes;
   layout_.warnings = options_.warnings;
+  if (actuator_kinds_ != 0) {
+    layout_.transmission = options_.format.transmission;
+    std::string kinds;
+    const std::pair<int, const char*> kActuatorKinds[] = {{1, "qm*"}, {2, "qdm*"}, {4, "taum*"}, {5, "im*"}};
+    for (const auto& [kind, name] : kActuatorKinds) {
+      if (actuator_kinds_ & (1u << kind)) kinds += (kinds.empty() ? "" : ", ") + std::string(name);
+    }
+    layout_.notes.push_back(options_.source + ": " + kinds + " read on the actuator side, mapped to the joints through "
+                            "the transmission of " + options_.format.transmission->source +
+                            " (q = A⁻¹·θm + q0, q̇ = A⁻¹·θ̇m, τ = Aᵀ·τm)");
+  }
   Rewind();
 }
 
@@ -92,7 +108,7 @@ void TableLogSource::ReadValue(size_t p, size_t c, std::string_view f, std::int6
   }
   if (!std::isfinite(value)) FailAt(source, line, ColumnLabel(c, part.columns.names[c]) + ": " + std::string(f) + " is not finite");
   if (target.kind >= 1 && target.kind <= 3) value *= to_rad_;
-  if (target.kind == 1) {
+  if (target.kind == 1 && !target.actuator) {
     const JointLimits& limits = options_.model->link(target.joint).limits;
     if (value < limits.q_min || value > limits.q_max) {
       FailAt(source, line,
@@ -169,6 +185,31 @@ void TableLogSource::FailLengths(const std::vector<bool>& got) {
                               ": the files are joined sample by sample and must have as many each");
 }
 
+void TableLogSource::ToJointSide(Eigen::Index n, JointLogChunk* chunk) {
+  if (n == 0) return;
+  const Transmission& transmission = *options_.format.transmission;
+  JointLog& out = chunk->samples;
+  const bool tau_actuator = (options_.use.use_tau && (actuator_kinds_ & (1u << 4))) ||
+                            (options_.use.use_i && (actuator_kinds_ & (1u << 5)));
+  if (actuator_kinds_ & (1u << 1)) out.q.topRows(n) = transmission.JointPositions(out.q.topRows(n));
+  if (actuator_kinds_ & (1u << 2)) out.qd.topRows(n) = transmission.JointRates(out.qd.topRows(n));
+  if (tau_actuator && out.tau.size() > 0) out.tau.topRows(n) = transmission.JointTorques(out.tau.topRows(n));
+  if (!(actuator_kinds_ & (1u << 1))) return;
+  // The joint positions the motors give, inside the joint limits.
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (int j = 0; j < out.q.cols(); ++j) {
+      const JointLimits& limits = options_.model->link(j).limits;
+      const double q = out.q(r, j);
+      if (q < limits.q_min || q > limits.q_max) {
+        FailAt(q_source_.empty() ? options_.source : q_source_, chunk->records[static_cast<size_t>(r)],
+               "joint " + std::to_string(j + 1) + " at " + Shortest(q) + " rad from the motor positions (through "
+               "the transmission) is outside its limits [" + std::to_string(limits.q_min) + ", " +
+               std::to_string(limits.q_max) + "] rad: check the reductions and joint_offset");
+      }
+    }
+  }
+}
+
 bool TableLogSource::Next(Eigen::Index max_samples, JointLogChunk* chunk) {
   if (max_samples < 1) throw std::invalid_argument("JointLogSource::Next: max_samples must be at least 1");
   const int n_dof = options_.model->n_dof();
@@ -224,13 +265,16 @@ bool TableLogSource::Next(Eigen::Index max_samples, JointLogChunk* chunk) {
             target.kind == 5 && scale ? gains[static_cast<size_t>(target.joint)] * v[c] : v[c];
       }
     }
-    for (int j = 0; j < n_dof; ++j) {
-      q_min_[j] = std::min(q_min_[j], out.q(s, j));
-      q_max_[j] = std::max(q_max_[j], out.q(s, j));
-    }
     chunk->records.push_back(lines[0]);
     ++n_read_;
     ++s;
+  }
+  if (actuator_kinds_ != 0) ToJointSide(s, chunk);
+  for (Eigen::Index r = 0; r < s; ++r) {
+    for (int j = 0; j < n_dof; ++j) {
+      q_min_[j] = std::min(q_min_[j], out.q(r, j));
+      q_max_[j] = std::max(q_max_[j], out.q(r, j));
+    }
   }
   if (ended_ && n_read_ == 0) {
     const LogPart& part = parts_[0];

@@ -59,6 +59,9 @@ class TableLogSource final : public JointLogSource {
  private:
   // Reads part p's next sample into values_[p]; false at its end.
   bool ReadSample(size_t p, std::int64_t* line);
+  // Samples [0, n) of *out from the actuator side to the joint side, then
+  // the positions checked against the joint limits.
+  void ToJointSide(Eigen::Index n, JointLogChunk* chunk);
   // Parses one field of part p, column c, into values_[p][c] with the checks.
   void ReadValue(size_t p, size_t c, std::string_view field, std::int64_t line);
   // The error for parts of different lengths (part p ended first or last).
@@ -75,6 +78,8 @@ class TableLogSource final : public JointLogSource {
   double last_t_ = 0.0;
   Eigen::VectorXd q_min_, q_max_;            // each joint's range so far [rad]
   bool ended_ = false, warned_ = false;
+  unsigned actuator_kinds_ = 0;              // bit `kind`: read on the actuator side, mapped through the transmission
+  std::string q_source_;                     // the file with the positions, for limit messages
 };
 
 }  // namespace idbench::internal

@@ -108,6 +108,70 @@ TEST_P(JointTorqueRegressorTest, ContractionEqualsTheEntrywiseSum) {
   }
 }
 
+// A coupled actuator side: each motor k's terms on θ̇m_k = A_k·q̇ reach the
+// joints through A_kᵀ, computed here motor by motor; the contraction agrees.
+TEST_P(JointTorqueRegressorTest, ActuatorSideTermsEnterThroughTheTransposedTransmission) {
+  RobotData d(model_);
+  const int n = model_.n_dof();
+  std::mt19937 rng(44);
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.offset = friction.rotor_inertia = true;
+  friction.actuator_from_joint = Eigen::MatrixXd::Identity(n, n) * 30.0;
+  if (n >= 2) friction.actuator_from_joint(n - 1, n - 2) = 30.0;  // the last motor turns with the joint before
+  const int o = 10 * model_.n_links();
+  Eigen::VectorXd pi = StandardParameters(model_, friction);
+  const Eigen::VectorXd motor = RandomVector(4 * n, 1.0, &rng).cwiseAbs();
+  pi.tail(4 * n) = motor;
+  Eigen::MatrixXd Y;
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                          qdd = RandomVector(n, 5.0, &rng);
+    ComputeJointTorqueRegressor(model_, friction, q, qd, qdd, &d, &Y);
+    Eigen::VectorXd tau = InverseDynamics(model_, q, qd, qdd, &d);
+    const Eigen::VectorXd thd = friction.actuator_from_joint * qd, thdd = friction.actuator_from_joint * qdd;
+    Eigen::VectorXd tau_m(n);
+    for (int k = 0; k < n; ++k) {
+      tau_m[k] = motor[4 * k] * thd[k] + motor[4 * k + 1] * ((thd[k] > 0) - (thd[k] < 0)) + motor[4 * k + 2] +
+                 motor[4 * k + 3] * thdd[k];
+    }
+    tau += friction.actuator_from_joint.transpose() * tau_m;
+    EXPECT_LT(testing::RelativeError(Y * pi, tau), 1e-12) << "trial " << trial;
+    Eigen::MatrixXd G(Y.rows(), Y.cols());
+    for (Eigen::Index k = 0; k < G.size(); ++k) G.data()[k] = RandomVector(1, 1.0, &rng)[0];
+    EXPECT_NEAR(ContractJointTorqueRegressorT<double>(model_, friction, q, qd, qdd, G, &d), (G.array() * Y.array()).sum(),
+                1e-12 * (G.array().abs() * Y.array().abs()).sum());
+  }
+  EXPECT_EQ(StandardParameterNames(model_, friction)[static_cast<size_t>(o)], "Fvm1");
+}
+
+// A diagonal A: the motor terms act as the joint-side ones Ia·N², Fv·N²,
+// Fc·|N| (what ModelWithStandardParameters gives the joints).
+TEST_P(JointTorqueRegressorTest, DiagonalActuatorSideEqualsItsJointSideEquivalents) {
+  RobotData d(model_);
+  const int n = model_.n_dof();
+  std::mt19937 rng(45);
+  FrictionModel joint;
+  joint.viscous = joint.coulomb = joint.rotor_inertia = true;
+  FrictionModel actuator = joint;
+  const Eigen::VectorXd N = RandomVector(n, 50.0, &rng);
+  actuator.actuator_from_joint = N.asDiagonal();
+  Eigen::VectorXd pi_motor = StandardParameters(model_, actuator);
+  pi_motor.tail(3 * n) = RandomVector(3 * n, 1e-3, &rng).cwiseAbs();
+  const RobotModel equivalent = ModelWithStandardParameters(model_, actuator, pi_motor);
+  const Eigen::VectorXd pi_joint = StandardParameters(equivalent, joint);
+  for (int j = 0; j < n; ++j) {
+    EXPECT_NEAR(pi_joint[10 * n + 3 * j + 2], pi_motor[10 * n + 3 * j + 2] * N[j] * N[j], 1e-15 * N[j] * N[j]);
+  }
+  Eigen::MatrixXd Y_motor, Y_joint;
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                          qdd = RandomVector(n, 5.0, &rng);
+    ComputeJointTorqueRegressor(model_, actuator, q, qd, qdd, &d, &Y_motor);
+    ComputeJointTorqueRegressor(model_, joint, q, qd, qdd, &d, &Y_joint);
+    EXPECT_LT(testing::RelativeError(Y_motor * pi_motor, Y_joint * pi_joint), 1e-12) << "trial " << trial;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Range(0, testing::kNumTestRobots),
                          testing::TestRobotName);
 

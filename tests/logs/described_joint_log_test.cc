@@ -67,6 +67,66 @@ class DescribedJointLogTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// Motor-side columns through a coupled transmission (the TX40's wrist:
+// θm6 = N6·(q5 + q6), offsets on joints 2 and 3), currents times drive gains:
+// read back as the joint-side truth. The writer applies A and A⁻ᵀ by hand.
+TEST_F(DescribedJointLogTest, MotorSideColumnsAreMappedThroughTheTransmission) {
+  const RobotModel puma = MakePuma560();
+  const double N[6] = {32, 32, 45, -48, 45, 32}, K[6] = {0.5, 0.5, 0.4, 0.3, 0.3, 0.2};
+  const double q0[6] = {0, -1.5707963267948966, 1.5707963267948966, 0, 0, 0};
+  constexpr int n = 50;
+  std::string csv = "t,qm1,qm2,qm3,qm4,qm5,qm6,qdm1,qdm2,qdm3,qdm4,qdm5,qdm6,im1,im2,im3,im4,im5,im6\n";
+  for (int k = 0; k < n; ++k) {
+    double qm[6], qdm[6], im[6];
+    for (int j = 0; j < 6; ++j) {
+      qm[j] = N[j] * (Q(k, j) - q0[j]);
+      qdm[j] = N[j] * Qd(k, j);
+      im[j] = Tau(k, j) / N[j] / K[j];
+    }
+    qm[5] = N[5] * (Q(k, 4) + Q(k, 5));
+    qdm[5] = N[5] * (Qd(k, 4) + Qd(k, 5));
+    im[4] = (Tau(k, 4) - Tau(k, 5)) / N[4] / K[4];  // τ5 = N5·τm5 + N6·τm6
+    csv += Number(0.01 * k);
+    for (const double* v : {qm, qdm, im}) {
+      for (int j = 0; j < 6; ++j) csv += "," + Number(v[j]);
+    }
+    csv += "\n";
+  }
+  Write("motor.csv", csv);
+  const fs::path desc = Write("motor.yaml", R"(files: [{path: motor.csv}]
+drive_gains: [0.5, 0.5, 0.4, 0.3, 0.3, 0.2]
+transmission:
+  actuator_from_joint: [[32, 0, 0, 0, 0, 0], [0, 32, 0, 0, 0, 0], [0, 0, 45, 0, 0, 0],
+                        [0, 0, 0, -48, 0, 0], [0, 0, 0, 0, 45, 0], [0, 0, 0, 0, 32, 32]]
+  joint_offset: [0, -1.5707963267948966, 1.5707963267948966, 0, 0, 0]
+)");
+  const auto source = OpenJointLog(desc.string(), puma, {}, TorqueColumns::kRequired);
+  ASSERT_TRUE(source->layout().transmission.has_value());
+  const RecordedJointLog log = ReadWholeLog(*source, 7);
+  ASSERT_EQ(log.log.n_samples(), n);
+  double q_error = 0.0, qd_error = 0.0, tau_error = 0.0;
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < 6; ++j) {
+      q_error = std::max(q_error, std::abs(log.log.q(k, j) - Q(k, j)));
+      qd_error = std::max(qd_error, std::abs(log.log.qd(k, j) - Qd(k, j)));
+      tau_error = std::max(tau_error, std::abs(log.log.tau(k, j) - Tau(k, j)) / 60.0);
+    }
+  }
+  EXPECT_LT(q_error, 1e-14);
+  EXPECT_LT(qd_error, 1e-14);
+  EXPECT_LT(tau_error, 1e-14);
+  bool noted = false;
+  for (const std::string& note : source->layout().notes) noted = noted || note.find("qm*, qdm*, im* read on the actuator side") != std::string::npos;
+  EXPECT_TRUE(noted);
+
+  // A joint outside its limits after the mapping names the file, line and joint.
+  // (θm2, θm3 put joints 2 and 3 at 0.)
+  Write("motor.csv", "t,qm1,qm2,qm3,qm4,qm5,qm6,im1,im2,im3,im4,im5,im6\n0,0,50.26548245743669,-70.68583470577035,0,0,0,"
+                     "1,1,1,1,1,1\n0.01,0,50.26548245743669,-70.68583470577035,0,0,640,1,1,1,1,1,1\n");
+  const std::string what = ExpectInvalid([&] { ReadWholeLog(*OpenJointLog(desc.string(), puma, {}, TorqueColumns::kRequired), 7); });
+  EXPECT_EQ(what.rfind((dir_ / "motor.csv").string() + ":3: joint 6 at 20 rad from the motor positions", 0), 0u) << what;
+}
+
 // The Panda set of Gaz et al.: time, positions, velocities, torques, one
 // number per line, 7 lines per sample (time 1); read back exactly.
 TEST_F(DescribedJointLogTest, PandaShapedOneValuePerLineFilesReadBackExactly) {
@@ -199,6 +259,22 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
        d + ": .files[0].columns: column 1 ('qm1'): motor position (an actuator-side column): reading it needs the "
            "transmission"},
       {R"({"files": [)" + q + "," + tau + "]}", d + ": no time: give .rate"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reductions": [1]}})",
+       d + ": .transmission.reductions: unknown key; expected reduction, actuator_from_joint, joint_offset"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"joint_offset": [0]}})",
+       d + ": .transmission: expected \"reduction\": [N1, ...] (gear ratios) or \"actuator_from_joint\""},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, 0, 1, 1, 1]}})",
+       d + ": .transmission.reduction[2]: expected a non-zero gear ratio (θm = N·q), got 0"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, 45]}})",
+       d + ": .transmission: 3 actuators, the robot has 6 joints (one actuator each)"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"actuator_from_joint": [[1, 2], [3]]}})",
+       d + ": .transmission.actuator_from_joint[1]: expected 2 values (a square matrix, one row per actuator), got 1"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"actuator_from_joint": [[1, 2], [2, 4]]}})",
+       d + ": .transmission.actuator_from_joint: not invertible"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [1, 1, 1, 1, 1, 1], "joint_offset": [0, "x"]}})",
+       d + ": .transmission.joint_offset[1]: expected a number, got \"x\""},
+      {R"({"rate": 100, "files": [{"path": "motor.csv", "columns": "qm1..qm5,q6"}, )" + tau + R"(], "transmission": {"reduction": [1, 1, 1, 1, 1, 1]}})",
+       d + ": .files: columns q* on the joint side and on the actuator side: give each kind on one side"},
       {R"({"rate": 100, "files": [)" + q + "]}", d + ": .files: missing column 'tau1' (robot has 6 joints)"},
       {R"({"rate": 100, "files": [)" + q + "," + q + "]}", d + ": column 'q1' is in both .files[0] (q.csv) and .files[1] (q.csv)"},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "angle_unit": "grad"})", d + ": .angle_unit: expected \"rad\" or \"deg\", got \"grad\""},

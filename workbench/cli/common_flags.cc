@@ -35,13 +35,15 @@ void AddRobotFlags(CLI::App* command, std::string* robot, UrdfLoadOptions* load,
   AddRobotLoadFlags(command, load);
 }
 
-RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptions& load) {
+RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptions& load,
+                            std::optional<Transmission>* transmission) {
   const std::vector<std::string> builtins = BuiltinRobotNames();
   if (!load.empty() && std::find(builtins.begin(), builtins.end(), name_or_path) != builtins.end()) {
     throw UsageException("--lock and --tip apply to URDF files, not to the built-in robot '" + name_or_path + "'");
   }
   UrdfLoadResult loaded = LoadRobot(name_or_path, load);
   for (const std::string& w : loaded.warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
+  if (transmission) *transmission = loaded.transmission;
   return std::move(loaded.model);
 }
 

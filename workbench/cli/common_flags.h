@@ -6,6 +6,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,9 @@ void AddRobotFlags(CLI::App* command, std::string* robot, UrdfLoadOptions* load,
 
 // A robot by name or path; warnings go to stderr. Throws UsageException for
 // --lock/--tip with a built-in robot; what LoadRobot throws otherwise.
-RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptions& load);
+// transmission (optional): gets the URDF's <transmission> reductions.
+RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptions& load,
+                            std::optional<Transmission>* transmission = nullptr);
 
 // --out PATH (a directory or a file: the help says which). The caller shows
 // the default (capture_default_str) or requires it.

@@ -28,11 +28,12 @@ struct IdentifyFlags {
   bool report = false;                // --report
 };
 
-int IdentifyCommand(const IdentifyOptions& options, const UrdfLoadOptions& load, bool with_report,
+int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool with_report,
                     const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  // The URDF's <transmission>, for actuator-side columns (a log description's wins).
+  const RobotModel model = LoadRobotOrThrow(options.robot, load, &options.format.transmission);
   if (!options.format.IsValidFor(model.n_dof(), &why)) return context.UsageError(why);
   if (!options.plausibility.IsValidFor(model, &why)) return context.UsageError(why);
   const IdentifyReport report = RunIdentify(model, options);
@@ -110,6 +111,9 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
       ->capture_default_str();
   AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
                      &identify.max_gap_s);
+  command->add_option("--friction-side", identify.friction_side,
+                      "joint, or actuator: friction and rotor terms per motor, through the transmission "
+                      "(log description or URDF <transmission>)")->capture_default_str();
   command->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   command->add_option("--validate", identify.validate, "Held-out joint log to validate on");

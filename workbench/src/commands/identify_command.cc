@@ -12,6 +12,7 @@
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/logs/joint_log_csv_reader.h"
+#include "idbench/logs/joint_log_description.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -19,7 +20,22 @@ namespace idbench {
 FrictionModel IdentifyOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
+  if (friction_side == "actuator") {
+    const std::optional<Transmission> t = transmission();
+    if (!t) {
+      throw std::invalid_argument("friction_side \"actuator\": no transmission to act through: give \"transmission\" "
+                                  "in the log description, or a robot URDF with <transmission> elements");
+    }
+    f.actuator_from_joint = t->actuator_from_joint;
+  }
   return f;
+}
+
+std::optional<Transmission> IdentifyOptions::transmission() const {
+  if (IsJointLogDescriptionPath(data) && std::filesystem::is_regular_file(data)) {
+    if (std::optional<Transmission> described = ReadJointLogDescription(data).transmission) return described;
+  }
+  return format.transmission;
 }
 
 LogPreparationOptions IdentifyOptions::preparation(bool with_window) const {
@@ -49,6 +65,9 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   if (!ParseTorqueEstimator(estimator)) return fail("--estimator: expected ols, wls or pc, got '" + estimator + "'");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (friction_side != "joint" && friction_side != "actuator") {
+    return fail("--friction-side: expected joint or actuator, got '" + friction_side + "'");
+  }
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;

@@ -53,6 +53,25 @@ nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions&
   return joints;
 }
 
+// Actuator-side terms as joint-side equivalents (Ia·N², Fv·N², Fc·|N|) per
+// joint a motor drives alone (null for a coupled joint, or a term not in
+// the model), from the physically consistent estimate.
+nlohmann::json JointSideEquivalentsJson(const RobotModel& model, const IdentifyOptions& options,
+                                        const IdentifyReport& report) {
+  const FrictionModel friction = options.friction_model();
+  const RobotModel equivalent = ModelWithStandardParameters(model, friction, report.identification.consistent.pi);
+  nlohmann::json Ia = nlohmann::json::array(), Fv = Ia, Fc = Ia;
+  for (int j = 0; j < model.n_dof(); ++j) {
+    const bool single = SingleMotorOf(friction, j).has_value();
+    const JointDynamics& d = equivalent.link(j).dynamics;
+    auto value = [&](bool in_model, double v) { return single && in_model ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    Ia.push_back(value(friction.rotor_inertia, d.rotor_inertia));
+    Fv.push_back(value(friction.viscous, d.viscous));
+    Fc.push_back(value(friction.coulomb, d.coulomb));
+  }
+  return {{"Ia", Ia}, {"Fv", Fv}, {"Fc", Fc}};
+}
+
 }  // namespace
 
 std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
@@ -184,6 +203,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
         {"links", links}}},
       {"joints", JointDynamicsJson(model, options, report)},
   };
+  if (options.friction_side == "actuator") result["joint_side"] = JointSideEquivalentsJson(model, options, report);
   if (report.validation) {
     result["validation"] = {{"data", options.validate},
                             {"joint_rms", ToStdVector(report.validation->joint_rms)},

@@ -15,10 +15,12 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "idbench/engine/robot_model.h"
+#include "idbench/engine/transmission.h"
 
 namespace idbench {
 
@@ -30,6 +32,10 @@ struct UrdfLoadResult {
   // inertias that are not positive definite (replaced, see LoadUrdfString) or
   // break the triangle inequality (not physically realisable, still loaded).
   std::vector<std::string> warnings;
+  // The ros_control <transmission> elements of the chain's joints
+  // (SimpleTransmission, <mechanicalReduction>) as a diagonal A; nullopt when
+  // the file has none (urdf_transmissions.cc).
+  std::optional<Transmission> transmission;
 };
 
 // How a URDF becomes a chain: which link ends it, which joints are held still.

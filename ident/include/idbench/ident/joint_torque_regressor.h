@@ -9,6 +9,12 @@
 // terms: Fv (viscous, τ += Fv·qd), Fc (Coulomb, τ += Fc·sign(qd), or
 // tanh(qd/v) with a smoothing velocity v > 0), offset (τ += τ0), Ia (rotor
 // inertia, τ += Ia·qdd).
+//
+// Actuator side (FrictionModel::actuator_from_joint set, transmission.h):
+// the same terms act per motor k on its θ̇m_k = A_k·q̇ (A_k row k of A) and
+// enter the joint torques through Aᵀ: τ += A_kᵀ (Fv_k·θ̇m_k + Fc_k·sign(θ̇m_k)
+// + τ0_k + Ia_k·θ̈m_k). Then the terms are named per motor: "Fvm1", "Fcm1",
+// "offsetm1", "Iam1".
 #pragma once
 
 #include <Eigen/Core>
@@ -18,6 +24,7 @@
 
 #include "idbench/engine/kinematics.h"
 #include "idbench/engine/robot_model.h"
+#include "idbench/engine/transmission.h"
 
 namespace idbench {
 
@@ -28,10 +35,19 @@ struct FrictionModel {
   bool coulomb = false;               // Fc per joint [N m]
   bool offset = false;                // τ0 per joint [N m]
   bool rotor_inertia = false;         // Ia per joint [kg m²]
-  double coulomb_smoothing = 0.0;     // v [rad/s]; 0 = sign(qd)
+  double coulomb_smoothing = 0.0;     // v [rad/s]; 0 = sign(qd) (θ̇m on the actuator side)
+  // A (n_dof × n_dof, transmission.h): the terms act on the actuators, per
+  // motor; empty: on the joints.
+  Eigen::MatrixXd actuator_from_joint{};
+
+  bool actuator_side() const { return actuator_from_joint.size() > 0; }
 
   int per_joint() const { return int(viscous) + int(coulomb) + int(offset) + int(rotor_inertia); }
 };
+
+// Actuator side: the motor that drives joint j alone and its ratio
+// (Transmission::SingleMotorOf); nullopt for a coupled joint, or on the joint side.
+std::optional<Transmission::SingleMotor> SingleMotorOf(const FrictionModel& friction, int j);
 
 // Friction terms by name: any of "viscous", "coulomb", "offset", "rotor", or
 // just "none". Returns nullopt and names the bad term in *why.
@@ -49,7 +65,10 @@ Eigen::VectorXd StandardParameters(const RobotModel& model, const FrictionModel&
 
 // The model with its links' inertias and joint dynamics replaced by standard
 // parameters π (layout as above; absent friction terms keep the model's
-// values, offsets are dropped). Throws std::invalid_argument (from
+// values, offsets are dropped). Actuator side: a joint driven by one motor
+// (Transmission::SingleMotorOf) gets the joint-side equivalents Ia·N²,
+// Fv·N², Fc·|N|; a coupled joint's terms cannot be held per joint and are
+// zero (the actuator-side values are the model). Throws std::invalid_argument (from
 // RobotModel) naming a link whose parameters are not a physical body.
 RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionModel& friction,
                                        const Eigen::VectorXd& pi);

@@ -5,7 +5,10 @@
 //   {"rate": 5000,
 //    "files": [{"path": "pos.csv", "columns": "q1..q6"},
 //              {"path": "tau.txt", "layout": "one-value-per-line", "stride": 6, "columns": "tau1..tau6"}],
-//    "time_window": [0.5, 8.5], "angle_unit": "rad", "drive_gains": [...]}
+//    "time_window": [0.5, 8.5], "angle_unit": "rad", "drive_gains": [...],
+//    "transmission": {"reduction": [32, 32, 45, -48, 45, 32]}}
+// With a transmission, actuator-side columns (qm*, qdm*, taum*, im*) are read
+// and mapped to the joint side (JointLogFormat::transmission).
 // The files are joined sample by sample (same number of samples each).
 #pragma once
 
@@ -36,7 +39,10 @@ struct JointLogDescription {
   std::vector<JointLogFileDescription> files;
   std::vector<double> time_window;    // {T0, T1} [s]; empty: the whole log
   std::optional<std::string> angle_unit;  // "rad" or "deg"
-  std::vector<double> drive_gains;    // [N m/A] τ = K·i, one per joint
+  std::vector<double> drive_gains;    // [N m/A] τ = K·i, one per joint (per motor for im*)
+  // {"reduction": [N1, ...]} (A = diag(N)) or {"actuator_from_joint": [[...], ...]},
+  // either with "joint_offset": [q0_1, ...] [rad]; its source names the description.
+  std::optional<Transmission> transmission;
 
   static constexpr int kMaxFiles = 16;
   static constexpr int kMaxStride = JointLogFormat::kMaxColumns;

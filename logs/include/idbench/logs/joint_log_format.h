@@ -2,8 +2,11 @@
 // names, the angle unit, the drive gains, and what the torque columns must be.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "idbench/engine/transmission.h"
 
 namespace idbench {
 
@@ -29,6 +32,11 @@ struct JointLogFormat {
   // For a rosbag2 bag: the sensor_msgs/msg/JointState topic to read;
   // empty: the bag's only one.
   std::string topic;
+  // Actuator to joint (transmission.h): with it, actuator-side columns qm<k>
+  // (motor position), qdm<k>, taum<k> and im<k> (motor current, × drive
+  // gain k) are read and mapped to the joint side (q = A⁻¹·θm + q0,
+  // q̇ = A⁻¹·θ̇m, τ = Aᵀ·τm). A log description's own wins (a note says so).
+  std::optional<Transmission> transmission;
 
   static constexpr int kMaxColumns = 1024;  // named columns, ranges expanded
   // Bounds on |K| [N m/A]: a joint-side gain (motor constant × gear ratio)

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "idbench/engine/measurements.h"
+#include "idbench/engine/transmission.h"
 
 namespace idbench {
 
@@ -26,6 +27,9 @@ struct JointLogLayout {
   std::optional<double> rate_hz;      // set when t comes from a rate (no time column)
   std::string record_name = "line";   // what JointLogChunk::records counts: "line", "row", "message", "sample"
   std::vector<double> time_window;    // {T0, T1} [s] a log description asks for (the reader keeps T0 <= t <= T1)
+  // Set when actuator-side columns were read through it: the samples are
+  // joint-side already; what the actuator-side model terms need (A).
+  std::optional<Transmission> transmission;
   std::vector<std::string> notes;     // how columns/joints were mapped, for stdout
   std::vector<std::string> warnings;  // for stderr
 };

@@ -22,6 +22,11 @@ struct IdentifyOptions {
   std::string estimator = "ols";   // ols | wls | pc
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
+  // Where the friction and rotor terms act: "joint" (per joint, on q̇), or
+  // "actuator" (per motor, on θ̇m = A·q̇, into the joints through Aᵀ; needs
+  // the transmission: the data's log description's, else format.transmission,
+  // the robot's URDF's).
+  std::string friction_side = "joint";
   LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
   PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
   std::string validate;            // held-out joint log (optional)
@@ -41,6 +46,9 @@ struct IdentifyOptions {
   std::string command_line;        // recorded in identified.json
 
   FrictionModel friction_model() const;
+  // The transmission the data is read with: its log description's, else
+  // format.transmission (the robot's); nullopt when neither gives one.
+  std::optional<Transmission> transmission() const;
   // How --data (with_window: time_window) or --validate (validate_window) is read.
   LogPreparationOptions preparation(bool with_window) const;
   // Checks the options alone; *why names the bad one.

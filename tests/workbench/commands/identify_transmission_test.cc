@@ -1,0 +1,204 @@
+// Identification through a transmission (issue 21): a 6-joint arm with a
+// coupled wrist like the Stäubli TX40's (N = [32, 32, 45, −48, 45, 32],
+// motor 6 turns with joint 5: θm6 = N6·(q5 + q6)), simulated noise-free on
+// the joint side by idbench's inverse dynamics plus each motor's rotor
+// inertia and friction entered through Aᵀ, then written on the motor side by
+// the small independent writer below (the TX40's relations by hand, not
+// Transmission). identify reads the motor-side log through the description's
+// transmission and must recover the truth, and fit as the joint-side log does.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include "idbench/engine/puma560.h"
+#include "idbench/excitation/builtin_motions.h"
+#include "idbench/workbench/commands/identify_command.h"
+#include "ident/synthetic_log.h"
+
+namespace idbench {
+namespace {
+
+constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
+const double kOffset[6] = {0.0, -M_PI / 2, M_PI / 2, 0.0, 0.0, 0.0};  // q = A⁻¹θm + q0
+// Per motor: rotor inertia [kg m²], viscous [N m s/rad], Coulomb [N m], on θm.
+constexpr double kIa[6] = {3e-4, 2.5e-4, 1.2e-4, 4e-5, 3.5e-5, 3e-5};
+constexpr double kFv[6] = {1.5e-3, 2e-3, 1e-3, 4e-4, 3e-4, 2.5e-4};
+constexpr double kFc[6] = {0.05, 0.08, 0.04, 0.02, 0.015, 0.012};
+
+// θ̇m = A·q̇ for the TX40's A (motor 6 with joint 5).
+Eigen::VectorXd MotorRates(const Eigen::VectorXd& qd) {
+  Eigen::VectorXd out(6);
+  for (int j = 0; j < 5; ++j) out[j] = kN[j] * qd[j];
+  out[5] = kN[5] * (qd[4] + qd[5]);
+  return out;
+}
+// τ = Aᵀ·τm, written out: τ5 = N5·τm5 + N6·τm6.
+Eigen::VectorXd JointFromMotorTorques(const Eigen::VectorXd& tau_m) {
+  Eigen::VectorXd out(6);
+  for (int j = 0; j < 6; ++j) out[j] = kN[j] * tau_m[j];
+  out[4] += kN[5] * tau_m[5];
+  return out;
+}
+// τm = A⁻ᵀ·τ, written out: τm6 = τ6/N6, τm5 = (τ5 − τ6)/N5.
+Eigen::VectorXd MotorFromJointTorques(const Eigen::VectorXd& tau) {
+  Eigen::VectorXd out(6);
+  for (int j = 0; j < 6; ++j) out[j] = tau[j] / kN[j];
+  out[4] = (tau[4] - tau[5]) / kN[4];
+  return out;
+}
+
+class IdentifyTransmissionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("idbench_transmission_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+    // The arm without joint-side friction: the motors' terms are the truth.
+    std::vector<Link> links = MakePuma560().links();
+    for (Link& link : links) link.dynamics = JointDynamics{};
+    model_.emplace("tx40_like", links);
+    const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 20.0});
+    log_ = testing::SyntheticJointLog(*model_, *motion, Eigen::VectorXd::LinSpaced(4001, 0.0, 20.0));
+    for (Eigen::Index s = 0; s < log_.n_samples(); ++s) {
+      const Eigen::VectorXd thd = MotorRates(log_.qd.row(s).transpose());
+      const Eigen::VectorXd thdd = MotorRates(log_.qdd.row(s).transpose());
+      Eigen::VectorXd tau_m(6);
+      for (int k = 0; k < 6; ++k) {
+        tau_m[k] = kIa[k] * thdd[k] + kFv[k] * thd[k] + kFc[k] * ((thd[k] > 0) - (thd[k] < 0));
+      }
+      log_.tau.row(s) += JointFromMotorTorques(tau_m).transpose();
+    }
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // t, qm1..6, qdm1..6, qdd1..6, taum1..6 and a description with A.
+  std::string WriteMotorSideLog() const {
+    std::FILE* f = std::fopen((dir_ / "motor.csv").c_str(), "w");
+    std::fprintf(f, "t,qm1,qm2,qm3,qm4,qm5,qm6,qdm1,qdm2,qdm3,qdm4,qdm5,qdm6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6,"
+                    "taum1,taum2,taum3,taum4,taum5,taum6\n");
+    for (Eigen::Index s = 0; s < log_.n_samples(); ++s) {
+      Eigen::VectorXd q_minus_offset(6);
+      for (int j = 0; j < 6; ++j) q_minus_offset[j] = log_.q(s, j) - kOffset[j];
+      const Eigen::VectorXd qm = MotorRates(q_minus_offset), qdm = MotorRates(log_.qd.row(s).transpose());
+      const Eigen::VectorXd taum = MotorFromJointTorques(log_.tau.row(s).transpose());
+      std::fprintf(f, "%.17g", log_.t[s]);
+      for (const Eigen::VectorXd* v : {&qm, &qdm}) {
+        for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.17g", (*v)[j]);
+      }
+      for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.17g", log_.qdd(s, j));
+      for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.17g", taum[j]);
+      std::fprintf(f, "\n");
+    }
+    std::fclose(f);
+    std::ofstream(dir_ / "motor.json") << R"({"files": [{"path": "motor.csv"}], "transmission": {
+      "actuator_from_joint": [[32, 0, 0, 0, 0, 0], [0, 32, 0, 0, 0, 0], [0, 0, 45, 0, 0, 0],
+                              [0, 0, 0, -48, 0, 0], [0, 0, 0, 0, 45, 0], [0, 0, 0, 0, 32, 32]],
+      "joint_offset": [0, -1.5707963267948966, 1.5707963267948966, 0, 0, 0]}})";
+    return (dir_ / "motor.json").string();
+  }
+  std::string WriteJointSideLog() const {
+    std::FILE* f = std::fopen((dir_ / "joint.csv").c_str(), "w");
+    std::fprintf(f, "t,q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6,tau1,tau2,tau3,tau4,"
+                    "tau5,tau6\n");
+    for (Eigen::Index s = 0; s < log_.n_samples(); ++s) {
+      std::fprintf(f, "%.17g", log_.t[s]);
+      for (const Eigen::MatrixXd* m : {&log_.q, &log_.qd, &log_.qdd, &log_.tau}) {
+        for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.17g", (*m)(s, j));
+      }
+      std::fprintf(f, "\n");
+    }
+    std::fclose(f);
+    return (dir_ / "joint.csv").string();
+  }
+  IdentifyOptions Options(const std::string& data) const {
+    IdentifyOptions options;
+    options.data = data;
+    options.friction = {"viscous", "coulomb", "rotor"};
+    options.friction_side = "actuator";
+    options.out_dir = (dir_ / "out").string();
+    return options;
+  }
+  // The truth as standard parameters: the links', then per motor Fv, Fc, Ia.
+  Eigen::VectorXd TruePi(const FrictionModel& friction) const {
+    Eigen::VectorXd pi = StandardParameters(*model_, friction);
+    const int o = kInertialParametersPerLink * 6;
+    for (int k = 0; k < 6; ++k) pi.segment<3>(o + 3 * k) << kFv[k], kFc[k], kIa[k];
+    return pi;
+  }
+
+  std::filesystem::path dir_;
+  std::optional<RobotModel> model_;
+  JointLog log_;
+};
+
+TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJointSideLog) {
+  const IdentifyOptions motor = Options(WriteMotorSideLog());
+  const IdentifyReport from_motor = RunIdentify(*model_, motor);
+  const JointTorqueIdentification& id = from_motor.identification;
+  const Eigen::VectorXd beta_true = id.base.combination * TruePi(motor.friction_model());
+  const double beta_error = (id.beta - beta_true).cwiseAbs().maxCoeff() / beta_true.cwiseAbs().maxCoeff();
+  std::printf("motor-side log: max |β − β_true| / max |β_true| = %.3g, fit relative error %.3g\n", beta_error,
+              id.fit.relative_error);
+  EXPECT_LT(beta_error, 1e-8);
+  EXPECT_LT(id.fit.relative_error, 1e-8);
+  // Each motor's viscous and Coulomb friction is a base parameter of its own.
+  for (int k = 1; k <= 6; ++k) {
+    for (const char* term : {"Fvm", "Fcm"}) {
+      const std::string name = term + std::to_string(k);
+      const auto at = std::find(id.base.names.begin(), id.base.names.end(), name);
+      ASSERT_NE(at, id.base.names.end()) << name;
+      const double truth = term[1] == 'v' ? kFv[k - 1] : kFc[k - 1];
+      EXPECT_NEAR(id.beta[at - id.base.names.begin()], truth, 1e-8 * truth) << name;
+    }
+  }
+
+  // Each motor's rotor inertia where the arm's geometry separates it from the links'.
+  for (size_t b = 0; b < id.base.names.size(); ++b) {
+    if (id.base.names[b].rfind("Iam", 0) == 0) std::printf("  base parameter %s = %.9g\n", id.base.names[b].c_str(), id.beta[b]);
+  }
+  // Friction on the joint side cannot model the coupled motor: the fit is
+  // clearly worse on the same log.
+  IdentifyOptions joint_friction = motor;
+  joint_friction.friction_side = "joint";
+  const double joint_side_error = RunIdentify(*model_, joint_friction).identification.fit.relative_error;
+  std::printf("motor-side log, friction on the joints: fit relative error %.3g\n", joint_side_error);
+  EXPECT_GT(joint_side_error, 1e-4);
+
+  // The joint-side log, with the same transmission given as a URDF would.
+  IdentifyOptions joint = Options(WriteJointSideLog());
+  joint.format.transmission = Transmission{};
+  joint.format.transmission->actuator_from_joint = motor.friction_model().actuator_from_joint;
+  const IdentifyReport from_joint = RunIdentify(*model_, joint);
+  const double same = (from_joint.identification.beta - id.beta).cwiseAbs().maxCoeff() / beta_true.cwiseAbs().maxCoeff();
+  std::printf("joint-side log: max |β_joint − β_motor| / max |β_true| = %.3g\n", same);
+  EXPECT_LT(same, 1e-8);
+  EXPECT_LT((from_joint.identification.fit.joint_rms - id.fit.joint_rms).norm(), 1e-8 * log_.tau.norm() / 100);
+
+  // identified.json: joint-side equivalents for joints 1-4, null for the coupled wrist.
+  const nlohmann::json out = nlohmann::json::parse(FormatIdentifiedJson(*model_, motor, from_motor));
+  for (int j = 0; j < 4; ++j) {
+    EXPECT_NEAR(out["joint_side"]["Fv"][j].get<double>(), kFv[j] * kN[j] * kN[j], 1e-3 * kFv[j] * kN[j] * kN[j]);
+    EXPECT_NEAR(out["joint_side"]["Fc"][j].get<double>(), kFc[j] * std::abs(kN[j]), 1e-3 * kFc[j] * std::abs(kN[j]));
+  }
+  for (int j = 4; j < 6; ++j) {
+    for (const char* key : {"Ia", "Fv", "Fc"}) EXPECT_TRUE(out["joint_side"][key][j].is_null()) << key << j;
+  }
+}
+
+TEST_F(IdentifyTransmissionTest, ActuatorSideFrictionNeedsATransmission) {
+  IdentifyOptions options = Options(WriteJointSideLog());
+  try {
+    RunIdentify(*model_, options);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("friction_side \"actuator\": no transmission"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace idbench
