@@ -17,8 +17,8 @@ UrdfLoadResult LoadRobot(const std::string& name_or_path, const UrdfLoadOptions&
     throw std::invalid_argument("robot '" + name_or_path +
                                 "': --lock and --tip apply to URDF files only, not to a built-in robot");
   }
-  if (name_or_path == "paper6r") return {MakePaper6r(), {}};
-  if (name_or_path == "puma560") return {MakePuma560(), InertiaWarnings(MakePuma560())};
+  if (name_or_path == "paper6r") return {MakePaper6r(), {}, {}};
+  if (name_or_path == "puma560") return {MakePuma560(), InertiaWarnings(MakePuma560()), {}};
   if (std::filesystem::exists(name_or_path)) return LoadUrdfFile(name_or_path, options);
   std::string names;
   for (const std::string& n : BuiltinRobotNames()) names += (names.empty() ? "" : ", ") + n;

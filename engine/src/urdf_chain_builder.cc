@@ -134,7 +134,7 @@ class UrdfChainBuilder {
                             Format(check->tolerance) + " m): the shapes may not be placed in the frame of its "
                             "inertial; identification does not bound this link's centre of mass by its shapes");
       }
-      return UrdfLoadResult{std::move(model), std::move(warnings_)};
+      return UrdfLoadResult{std::move(model), std::move(warnings_), {}};
     } catch (const std::invalid_argument& e) {
       Fail(e.what());
     }
