@@ -58,11 +58,13 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   if (!preparation(false).IsValid(why)) return false;
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(InFrontEndTerms(plausibility_why, OptionNames::kCommandLine));
+  if (!base_pose.IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 
-IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
+IdentifyReport RunIdentify(const RobotModel& loaded, const IdentifyOptions& options) {
+  const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
   std::optional<PreparedLog> held_out;
   std::optional<PreparedLog> held_out_whole;
