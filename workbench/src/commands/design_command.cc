@@ -107,11 +107,11 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
 DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptions& options,
                               const std::vector<JointLimits>& limits, const DesignControl& observer) {
   const RobotModel model = MountRobot(loaded, options.design.base_pose);  // gravity seen from the base
+  DesignOptions design = options.Resolved();
+  if (!options.scene.empty()) design.scene = ReadSceneFile(options.scene);  // a bad file before anything else
   CheckDesignLimits(model, limits);
   CheckTrajectoryCsvRate(options.design.period_duration(), options.csv_rate_hz, model.n_dof());  // before the design
   const DesignRegressor regressor = options.MakeRegressor(model);
-  DesignOptions design = options.Resolved();
-  if (!options.scene.empty()) design.scene = ReadSceneFile(options.scene);
   CheckDesignFitsInMemory(regressor, design);  // before the progress state per start
 
   // Progress: at most one line per start every second.
