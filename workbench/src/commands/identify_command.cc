@@ -63,8 +63,12 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   return true;
 }
 
-IdentifyReport RunIdentify(const RobotModel& loaded, const IdentifyOptions& options) {
-  const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
+  // The report keeps references to the model: the caller mounts it (MountRobot).
+  if (!IsMountedAt(model, options.base_pose)) {
+    throw std::invalid_argument("base_pose: the model's gravity is not the world's -z seen from this base; mount the "
+                                "model (MountRobot)");
+  }
   PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
   std::optional<PreparedLog> held_out;
   std::optional<PreparedLog> held_out_whole;
