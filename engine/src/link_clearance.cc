@@ -29,9 +29,11 @@ btTransform ToBt(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
 
 }  // namespace
 
-std::string ClearancePair::Name(const RobotModel& model) const {
-  return model.link(link_a).name + "–" + (link_b < 0 ? std::string("ground") : model.link(link_b).name);
+std::string ClearancePair::Other(const RobotModel& model) const {
+  return link_b >= 0 ? model.link(link_b).name : obstacle >= 0 ? obstacle_name : std::string("ground");
 }
+
+std::string ClearancePair::Name(const RobotModel& model) const { return model.link(link_a).name + "–" + Other(model); }
 
 struct ClearanceModel::Impl {
   struct LinkShape {
@@ -40,6 +42,13 @@ struct ClearanceModel::Impl {
     double bounding_radius = 0.0;  // of the sphere about G's origin holding the shape
   };
   std::vector<std::vector<LinkShape>> shapes;  // per link
+  std::vector<LinkShape> obstacles;            // X_BG is X_RO: the obstacle in the base frame
+  Eigen::Vector3d n_R = Eigen::Vector3d::UnitZ();  // the floor's normal in R (up)
+  double floor_h = 0.0;                            // [m] height of R's origin above the floor
+
+  // A shape as GJK checks it (1 mm inflated but a sphere, see the
+  // constructor) and the radius of a sphere about its origin holding it.
+  static LinkShape Convex(const Shape& s, const Eigen::Isometry3d& X_BG);
 
   // Closest points of two placed convex shapes; distance < 0 when overlapping.
   static Clearance Pair(const btConvexShape* a, const btTransform& X_WA, const btConvexShape* b,
@@ -94,13 +103,13 @@ struct ClearanceModel::Impl {
   // Lowest point of a placed shape: the support point of its core along −z,
   // lowered by the margin (the rounded shell GJK sees, also for boxes, whose
   // own support point with margin is a larger box).
-  static Clearance Ground(const btConvexShape* a, const btTransform& X_WA) {
-    const btVector3 down_A = X_WA.getBasis().transpose() * btVector3(0, 0, -1);
+  Clearance Ground(const btConvexShape* a, const btTransform& X_WA) const {
+    const btVector3 down_A = X_WA.getBasis().transpose() * ToBt(-n_R);
     const btVector3 lowest = X_WA * (a->localGetSupportingVertexWithoutMargin(down_A) + a->getMargin() * down_A);
     Clearance c;
     c.p_a_W = FromBt(lowest);
-    c.distance = lowest.z();
-    c.n_W = Eigen::Vector3d::UnitZ();
+    c.distance = n_R.dot(c.p_a_W) + floor_h;
+    c.n_W = n_R;
     return c;
   }
 
@@ -121,8 +130,20 @@ struct ClearanceModel::Impl {
     };
     for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
       const Eigen::Vector3d c_a = centre(pair.link_a, sa);
+      if (pair.obstacle >= 0) {
+        const LinkShape& so = obstacles[static_cast<size_t>(pair.obstacle)];
+        const double lower = (c_a - so.X_BG.translation()).norm() - sa.bounding_radius - so.bounding_radius;
+        if (lower >= std::min(at_least, best.distance)) {
+          bound = std::min(bound, lower);
+          continue;
+        }
+        const Clearance c = Pair(sa.shape.get(), placed(pair.link_a, sa), so.shape.get(),
+                                 ToBt(so.X_BG.linear(), so.X_BG.translation()));
+        if (c.distance < best.distance) best = c;
+        continue;
+      }
       if (pair.link_b < 0) {
-        const double lower = c_a.z() - sa.bounding_radius;
+        const double lower = n_R.dot(c_a) + floor_h - sa.bounding_radius;
         if (lower >= std::min(at_least, best.distance)) {
           bound = std::min(bound, lower);
           continue;
@@ -146,51 +167,64 @@ struct ClearanceModel::Impl {
   }
 };
 
-ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
+// Bullet keeps a margin around convex shapes (GJK works on the core and
+// rounds it by the margin). Every shape but a sphere gets a 1 mm margin
+// outside its true surface: boxes and cylinders are built 1 mm larger (Bullet
+// takes the margin off their extents), mesh hulls are rounded by it. So each
+// is its Minkowski sum with a 1 mm ball: never smaller than the shape, every
+// distance at most 1 mm short per shape (conservative), corners included.
+ClearanceModel::Impl::LinkShape ClearanceModel::Impl::Convex(const Shape& s, const Eigen::Isometry3d& X_BG) {
+  constexpr double kMargin = 1e-3;
+  std::unique_ptr<btConvexShape> shape;
+  double gap = 0.0;  // a reduced mesh hull's extra margin
+  switch (s.kind) {
+    case Shape::Kind::kCylinder:
+      shape = std::make_unique<btCylinderShapeZ>(
+          btVector3(s.size.x() + kMargin, s.size.y() + kMargin, 0.5 * s.size.z() + kMargin));
+      break;
+    case Shape::Kind::kBox:
+      shape = std::make_unique<btBoxShape>(ToBt(0.5 * s.size + Eigen::Vector3d::Constant(kMargin)));
+      break;
+    case Shape::Kind::kSphere:
+      shape = std::make_unique<btSphereShape>(s.size.x());
+      break;
+    case Shape::Kind::kMesh:  // its convex hull (reduced, with the gap added to the margin)
+      shape = Impl::MeshHull(*s.mesh, &gap);
+      break;
+  }
+  if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin + gap);
+  double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
+                  : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm() + kMargin
+                                                 : std::hypot(s.size.x(), 0.5 * s.size.z()) + kMargin;
+  if (s.kind == Shape::Kind::kMesh) {
+    radius = 0.0;
+    for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm());
+    radius += kMargin + gap;  // the inner hull's points are vertices of the mesh
+  }
+  return {std::move(shape), X_BG, radius};
+}
+
+ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, const Cell& scene,
+                               const BasePose& base)
     : impl_(std::make_unique<Impl>()), min_clearance_(min_clearance) {
   if (!(min_clearance >= 0.0) || !std::isfinite(min_clearance)) {
     throw std::invalid_argument("clearance must be finite and >= 0 m");
   }
-  // Bullet keeps a margin around convex shapes (GJK works on the core and
-  // rounds it by the margin). Every shape but a sphere gets a 1 mm margin
-  // outside its true surface: boxes and cylinders are built 1 mm larger (Bullet
-  // takes the margin off their extents), mesh hulls are rounded by it. So each
-  // is its Minkowski sum with a 1 mm ball: never smaller than the shape, every
-  // distance at most 1 mm short per shape (conservative), corners included.
-  constexpr double kMargin = 1e-3;
+  std::string why;
+  if (!scene.IsValid(&why)) throw std::invalid_argument("scene: " + why);
+  if (!base.IsValid(&why)) throw std::invalid_argument(why);
   impl_->shapes.resize(static_cast<size_t>(model.n_links()));
   for (int i = 0; i < model.n_links(); ++i) {
     for (const Shape& s : model.link(i).CollisionShapes()) {
       if (s.kind == Shape::Kind::kMesh && (s.mesh == nullptr || s.mesh->vertices.empty())) continue;
-      std::unique_ptr<btConvexShape> shape;
-      double gap = 0.0;  // a reduced mesh hull's extra margin
-      switch (s.kind) {
-        case Shape::Kind::kCylinder:
-          shape = std::make_unique<btCylinderShapeZ>(
-              btVector3(s.size.x() + kMargin, s.size.y() + kMargin, 0.5 * s.size.z() + kMargin));
-          break;
-        case Shape::Kind::kBox:
-          shape = std::make_unique<btBoxShape>(ToBt(0.5 * s.size + Eigen::Vector3d::Constant(kMargin)));
-          break;
-        case Shape::Kind::kSphere:
-          shape = std::make_unique<btSphereShape>(s.size.x());
-          break;
-        case Shape::Kind::kMesh:  // its convex hull (reduced, with the gap added to the margin)
-          shape = Impl::MeshHull(*s.mesh, &gap);
-          break;
-      }
-      if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin + gap);
-      double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
-                      : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm() + kMargin
-                                                     : std::hypot(s.size.x(), 0.5 * s.size.z()) + kMargin;
-      if (s.kind == Shape::Kind::kMesh) {
-        radius = 0.0;
-        for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm());
-        radius += kMargin + gap;  // the inner hull's points are vertices of the mesh
-      }
-      impl_->shapes[static_cast<size_t>(i)].push_back({std::move(shape), s.X_BG, radius});
+      impl_->shapes[static_cast<size_t>(i)].push_back(Impl::Convex(s, s.X_BG));
     }
   }
+  // The cell in the base frame R.
+  const Eigen::Isometry3d X_WR = base.X_WR(), X_RW = X_WR.inverse();
+  impl_->n_R = X_WR.linear().transpose() * Eigen::Vector3d::UnitZ();
+  impl_->floor_h = X_WR.translation().z();
+  for (const Obstacle& o : scene.obstacles) impl_->obstacles.push_back(Impl::Convex(o.shape, X_RW * o.X_WO));
   // Candidate pairs: every pair of links with shapes, and each with the
   // ground, but those in contact by construction (link_clearance.h).
   KinematicsData<double> home(model);
@@ -198,19 +232,27 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
   ComputeKinematicsT<double>(model, zero, zero, zero, &home);
   constexpr double kTouching = 0.0;  // [m] measured (1 mm inflated shapes): a true gap under 2 mm
   // Whether no joint can change link a's height: all joints to it turn about
-  // the vertical (then every point of it keeps its z).
+  // the world's vertical (then every point of it keeps its height).
   auto height_fixed = [&](int a) {
     for (int j = a; j >= 0; j = model.link(j).parent) {
-      if (std::abs(home.axis_W[static_cast<size_t>(j)].z()) < 1.0 - 1e-9) return false;
+      if (std::abs(home.axis_W[static_cast<size_t>(j)].dot(impl_->n_R)) < 1.0 - 1e-9) return false;
     }
     return true;
   };
   char buf[160];
   for (int a = 0; a < model.n_links(); ++a) {
     if (impl_->shapes[static_cast<size_t>(a)].empty()) continue;
-    for (int b = -1; b < a; ++b) {
+    // Obstacles first (−1 − o), then the floor (−1), then the links.
+    for (int b = -1 - static_cast<int>(scene.obstacles.size()); b < a; ++b) {
       if (b >= 0 && impl_->shapes[static_cast<size_t>(b)].empty()) continue;
-      ClearancePair pair{a, b};
+      if (b == -1 && !scene.floor) continue;
+      ClearancePair pair;
+      pair.link_a = a;
+      pair.link_b = std::max(b, -1);
+      if (b < -1) {
+        pair.obstacle = -2 - b;
+        pair.obstacle_name = scene.ObstacleName(pair.obstacle);
+      }
       if (b >= 0 && model.link(a).parent == b) {
         excluded_.push_back(pair.Name(model) + ": joined by joint '" + model.link(a).joint_name + "'");
         continue;
@@ -222,13 +264,15 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance)
         continue;
       }
       if (d <= kTouching && height_fixed(a)) {
-        std::snprintf(buf, sizeof buf, ": on the ground at q = 0 (%.3g m) and no joint raises it (a base on the floor)",
-                      d);
+        std::snprintf(buf, sizeof buf, ": on the %s at q = 0 (%.3g m) and no joint raises it (a base on %s)",
+                      pair.obstacle >= 0 ? "obstacle" : "ground", d, pair.obstacle >= 0 ? "it" : "the floor");
         excluded_.push_back(pair.Name(model) + buf);
         continue;
       }
       pair.home_distance = d;
-      pair.minimum = std::min(min_clearance, d - kHomeTolerance);
+      // An obstacle is where the cell puts it, not a part of the robot that
+      // q = 0 may overlap by construction: its pairs keep the full clearance.
+      pair.minimum = pair.obstacle >= 0 ? min_clearance : std::min(min_clearance, d - kHomeTolerance);
       pairs_.push_back(pair);
     }
   }

@@ -66,9 +66,8 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
     row_times_ = DesignSampleTimes(row_grid);
   }
   BuildLinearRows();
-  if (options.clearance >= 0.0 && std::any_of(regressor.model().links().begin(), regressor.model().links().end(),
-                                              [](const Link& l) { return !l.CollisionShapes().empty(); })) {
-    clearance_.emplace(regressor.model(), options.clearance);
+  clearance_ = options.MakeClearance(regressor.model());
+  if (clearance_) {
     clearance_stride_ = (options.samples + 99) / 100;
     set_home(home_);
   }

@@ -61,10 +61,20 @@ bool DesignOptions::IsValid(std::string* why) const {
   if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
   if (!std::isfinite(clearance) || clearance > 1.0) return fail(Format("--clearance must be at most 1 m, got %g", clearance));
   if (!(check_rate_hz > 0.0)) return fail("the check rate must be > 0 Hz");
+  if (std::string scene_why; !scene.IsValid(&scene_why)) return fail("scene." + scene_why);
+  if (!base_pose.IsValid(why)) return false;
   if (!(ramp_seconds >= 0.0 && ramp_seconds <= kMaxRampSeconds)) {
     return fail(Format("--ramp must be in [0, %g] s, got ", kMaxRampSeconds) + Format("%g", ramp_seconds));
   }
   return true;
+}
+
+std::optional<ClearanceModel> DesignOptions::MakeClearance(const RobotModel& model) const {
+  if (clearance < 0.0 || std::none_of(model.links().begin(), model.links().end(),
+                                      [](const Link& l) { return !l.CollisionShapes().empty(); })) {
+    return std::nullopt;
+  }
+  return std::optional<ClearanceModel>(std::in_place, model, clearance, scene, base_pose);
 }
 
 std::vector<double> DesignSampleTimes(const DesignOptions& options) {
@@ -173,6 +183,12 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                               const DesignOptions& options, const DesignControl& control) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  if (!IsMountedAt(regressor.model(), options.base_pose)) {
+    const Eigen::Vector3d g = regressor.model().gravity_W(), want = MountedGravity(regressor.model(), options.base_pose);
+    throw std::invalid_argument(Format("base_pose: the model's gravity (%g, %g, %g)", g.x(), g.y(), g.z()) +
+                                Format(" is not the world's -z seen from this base (%g, %g, %g); mount the model "
+                                       "(MountRobot)", want.x(), want.y(), want.z()));
+  }
   CheckDesignLimits(regressor.model(), limits);
   CheckDesignFitsInMemory(regressor, options);
   const auto t_begin = std::chrono::steady_clock::now();

@@ -42,6 +42,21 @@ std::string FeasibilityCheck::Explain() const {
   return out;
 }
 
+const ConstraintMargin* FeasibilityCheck::ClosestObstacle() const {
+  const ConstraintMargin* closest = nullptr;
+  for (const ConstraintMargin& m : margins) {
+    if (!m.obstacle.empty() && (!closest || m.value < closest->value)) closest = &m;
+  }
+  return closest;
+}
+
+std::string FeasibilityCheck::ClosestObstacleLine() const {
+  const ConstraintMargin* m = ClosestObstacle();
+  if (!m) return "";
+  return "closest obstacle: " + m->obstacle + Format(", %.4g m from ", m->value) + m->link +
+         Format(" at t = %.4g s (minimum %.4g m)", m->time, m->limit);
+}
+
 FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
                                        const Trajectory& trajectory, double rate_hz, const ClearanceModel* clearance) {
   const int n = model.n_dof();
@@ -72,6 +87,9 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.pair = clearance->pairs()[i].Name(model);
     m.limit = clearance->pairs()[i].minimum;
     m.held_at_home = m.limit < clearance->min_clearance();
+    const ClearancePair& pair = clearance->pairs()[i];
+    if (pair.link_b < 0) m.obstacle = pair.Other(model);
+    m.link = model.link(pair.link_a).name;
     m.value = kInf;  // the closest distance so far
     m.margin = kInf;
     worst.push_back(m);
@@ -139,7 +157,14 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
       continue;
     }
     in_motion = true;
-    if (m.quantity == "clearance") {
+    if (m.quantity == "clearance" && !m.obstacle.empty()) {
+      add(m.obstacle == "ground"
+              ? Format("--clearance (now %g m), a --home pose or a base pose with ", options.clearance) + m.link +
+                    " further from the floor, or \"floor\": false in the scene"
+              : "the scene's obstacle '" + m.obstacle + "' (" + m.link +
+                    Format(" comes within %.3g m of it, %.3g m asked): move or remove it, or a base pose further "
+                           "from it", m.value, m.limit));
+    } else if (m.quantity == "clearance") {
       add(Format("--clearance (now %g m), or a --home pose with the links further apart", options.clearance));
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
       add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a --home inside it" : ""));

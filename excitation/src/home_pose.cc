@@ -1,6 +1,7 @@
 #include "idbench/excitation/home_pose.h"
 
 #include <algorithm>
+#include <numbers>
 #include <cmath>
 #include <limits>
 
@@ -82,42 +83,63 @@ double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits,
 HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
                       const ClearanceModel* clearance) {
   const int n = model.n_dof();
-  HomePose home;
-  home.q = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd step = Eigen::VectorXd::Constant(n, 0.5);  // [rad]
+  Eigen::VectorXd middle = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd first_step = Eigen::VectorXd::Constant(n, 0.5);  // [rad]
   for (int j = 0; j < n; ++j) {
     const JointLimits& l = limits[static_cast<size_t>(j)];
     if (!FiniteRange(l)) continue;
-    home.q[j] = 0.5 * (l.q_min + l.q_max);
-    step[j] = std::min(0.5, 0.25 * (l.q_max - l.q_min));
+    middle[j] = 0.5 * (l.q_min + l.q_max);
+    first_step[j] = std::min(0.5, 0.25 * (l.q_max - l.q_min));
   }
-  home.source = "mid-range";
-  const std::vector<double> asked = ClearanceRoomAsked(model, limits, home.q, clearance);
-  home.room = HomeRoom(model, limits, margin, home.q, clearance, &asked);
-  // Pattern search: per joint, a step either way while it adds room; the
-  // steps halve when none does. The first pose with room ends it.
-  constexpr double kSmallestStep = 1e-3;  // [rad]
-  while (home.room < 0.0 && step.maxCoeff() >= kSmallestStep) {
-    bool moved = false;
-    for (int j = 0; j < n && home.room < 0.0; ++j) {
-      for (double sign : {1.0, -1.0}) {
-        Eigen::VectorXd q = home.q;
-        q[j] += sign * step[j];
-        const JointLimits& l = limits[static_cast<size_t>(j)];
-        if (FiniteRange(l)) {
-          const double inset = kRangeRoom * (l.q_max - l.q_min);
-          q[j] = std::clamp(q[j], l.q_min + inset, l.q_max - inset);
-        }
-        const double room = HomeRoom(model, limits, margin, q, clearance, &asked);
-        if (room > home.room) {
-          home.q = q, home.room = room, home.source = "searched", moved = true;
-          break;
+  // Pattern search from `start`: per joint, a step either way while it adds
+  // room; the steps halve when none does. The first pose with room ends it.
+  auto search = [&](const Eigen::VectorXd& start, const std::string& source) {
+    HomePose home;
+    home.q = start;
+    home.source = source;
+    Eigen::VectorXd step = first_step;
+    const std::vector<double> asked = ClearanceRoomAsked(model, limits, home.q, clearance);
+    home.room = HomeRoom(model, limits, margin, home.q, clearance, &asked);
+    constexpr double kSmallestStep = 1e-3;  // [rad]
+    while (home.room < 0.0 && step.maxCoeff() >= kSmallestStep) {
+      bool moved = false;
+      for (int j = 0; j < n && home.room < 0.0; ++j) {
+        for (double sign : {1.0, -1.0}) {
+          Eigen::VectorXd q = home.q;
+          q[j] += sign * step[j];
+          const JointLimits& l = limits[static_cast<size_t>(j)];
+          if (FiniteRange(l)) {
+            const double inset = kRangeRoom * (l.q_max - l.q_min);
+            q[j] = std::clamp(q[j], l.q_min + inset, l.q_max - inset);
+          }
+          const double room = HomeRoom(model, limits, margin, q, clearance, &asked);
+          if (room > home.room) {
+            home.q = q, home.room = room, home.source = "searched", moved = true;
+            break;
+          }
         }
       }
+      if (!moved) step *= 0.5;
     }
-    if (!moved) step *= 0.5;
+    home.found = home.room >= 0.0;
+    return home;
+  };
+  HomePose home = search(middle, "mid-range");
+  // An obstacle on one side (a wall) can trap the search: again with the
+  // first joint turned a quarter, half and three quarters round, where its
+  // range allows; the first with room, else the one with most room.
+  const JointLimits& l0 = limits[0];
+  for (double turn : {0.5, -0.5, 1.0, -1.0}) {
+    if (home.found) break;
+    Eigen::VectorXd start = middle;
+    start[0] += turn * std::numbers::pi;
+    if (FiniteRange(l0)) {
+      const double inset = kRangeRoom * (l0.q_max - l0.q_min);
+      if (start[0] < l0.q_min + inset || start[0] > l0.q_max - inset) continue;
+    }
+    HomePose turned = search(start, "searched");
+    if (turned.room > home.room) home = turned;
   }
-  home.found = home.room >= 0.0;
   return home;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 
 #include "engine/test_meshes.h"
 #include "engine/test_util.h"
@@ -294,6 +295,127 @@ TEST(LinkClearanceTest, LargeMeshHullsAreReducedAndStayConservative) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace idbench
+
+namespace idbench {
+namespace {
+
+// Distance from a point to a box (full edges `size`, centred in its frame), ≥ 0 outside.
+double PointBoxDistance(const Eigen::Vector3d& p_O, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d outside = (p_O.cwiseAbs() - 0.5 * size).cwiseMax(0.0);
+  return outside.norm();
+}
+
+// The sphere robot in a cell, its base tilted and raised: distances to the
+// floor, a box and a sphere obstacle match the analytic ones computed in the
+// world (the box is 1 mm inflated, as every shape but a sphere).
+TEST(LinkClearanceTest, CellObstaclesAndBasePoseMatchTheAnalyticDistances) {
+  const double r = 0.1;
+  const RobotModel model = MakeSphereRobot(r);
+  Cell cell;
+  Obstacle box;
+  box.name = "wall";
+  box.shape.kind = Shape::Kind::kBox;
+  box.shape.size = Eigen::Vector3d(0.1, 3.0, 3.0);
+  box.X_WO.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  box.X_WO.translation() = Eigen::Vector3d(1.6, 0.2, 1.0);
+  Obstacle ball;
+  ball.shape.kind = Shape::Kind::kSphere;
+  ball.shape.size.setConstant(0.15);
+  ball.X_WO.translation() = Eigen::Vector3d(-0.9, 0.4, 1.6);
+  cell.obstacles = {box, ball};
+  const BasePose base{{0.1, -0.2, 0.4, 0.2, -0.15, 0.7}};
+  const ClearanceModel clearance(model, 0.01, cell, base);
+  // Per link: wall, obstacle 1, ground (L0 and L1: their link pair is joined), and L2–L0.
+  ASSERT_EQ(clearance.pairs().size(), 10u);
+  const Eigen::Isometry3d X_WR = base.X_WR();
+  KinematicsData<double> k(model);
+  std::vector<Clearance> out;
+  std::mt19937 rng(5);
+  int n_checked = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const Eigen::VectorXd q = RandomVector(3, 1.5, &rng), zero = Eigen::VectorXd::Zero(3);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    clearance.Compute(k, &out);
+    for (size_t i = 0; i < out.size(); ++i) {
+      const ClearancePair& p = clearance.pairs()[i];
+      const Eigen::Vector3d c_W = X_WR * ShapeCentre_W(model, k, p.link_a);  // "W" of kinematics is R
+      double expected = 0.0;
+      if (p.link_b >= 0) {
+        expected = (ShapeCentre_W(model, k, p.link_a) - ShapeCentre_W(model, k, p.link_b)).norm() - 2 * r;
+      } else if (p.obstacle == 0) {
+        const double d = PointBoxDistance(box.X_WO.inverse() * c_W, box.shape.size);
+        if (d <= r + 2e-3) continue;  // overlapping: EPA's depth, not this formula
+        expected = d - r - 1e-3;
+        EXPECT_EQ(p.Name(model), model.link(p.link_a).name + "–wall");
+      } else if (p.obstacle == 1) {
+        expected = (c_W - ball.X_WO.translation()).norm() - r - 0.15;
+        EXPECT_EQ(p.Other(model), "obstacle 1");
+      } else {
+        expected = c_W.z() - r;
+      }
+      EXPECT_NEAR(out[i].distance, expected, 1e-6) << p.Name(model) << " trial " << trial;
+      ++n_checked;
+    }
+  }
+  EXPECT_GT(n_checked, 250);
+  // Without the floor, no ground pairs.
+  cell.floor = false;
+  EXPECT_EQ(ClearanceModel(model, 0.01, cell, base).pairs().size(), 7u);
+}
+
+// ∂d/∂q of an obstacle pair against central differences, the base mounted upside down.
+TEST(LinkClearanceTest, ObstacleGradientMatchesFiniteDifferences) {
+  const RobotModel model = MakeSphereRobot(0.1);
+  Cell cell;
+  Obstacle box;
+  box.shape.kind = Shape::Kind::kBox;
+  box.shape.size = Eigen::Vector3d(0.4, 0.3, 0.2);
+  box.X_WO.translation() = Eigen::Vector3d(0.8, 0.7, 0.9);
+  cell.obstacles = {box};
+  cell.floor = false;
+  const BasePose ceiling{{0, 0, 2.0, std::numbers::pi, 0, 0}};
+  const ClearanceModel clearance(model, 0.01, cell, ceiling);
+  KinematicsData<double> k(model), kp(model), km(model);
+  std::mt19937 rng(9);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = RandomVector(3, 1.5, &rng);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    for (int i = 0; i < static_cast<int>(clearance.pairs().size()); ++i) {
+      const Clearance c = clearance.ComputePair(k, i);
+      if (c.distance < 0.01) continue;  // away from contact: a smooth distance
+      const Eigen::VectorXd g = clearance.DistanceGradient(model, k, clearance.pairs()[static_cast<size_t>(i)], c);
+      const double h = 1e-6;
+      for (int j = 0; j < 3; ++j) {
+        Eigen::VectorXd qp = q, qm = q;
+        qp[j] += h, qm[j] -= h;
+        ComputeKinematicsT<double>(model, qp, zero, zero, &kp);
+        ComputeKinematicsT<double>(model, qm, zero, zero, &km);
+        const double fd = (clearance.ComputePair(kp, i).distance - clearance.ComputePair(km, i).distance) / (2 * h);
+        EXPECT_NEAR(g[j], fd, 1e-4) << clearance.pairs()[static_cast<size_t>(i)].Name(model) << " q" << j;
+      }
+    }
+  }
+}
+
+TEST(LinkClearanceTest, AnInvalidCellIsRefusedNamingTheField) {
+  const RobotModel model = MakeSphereRobot(0.1);
+  Cell cell;
+  cell.obstacles.resize(1);
+  cell.obstacles[0].shape.kind = Shape::Kind::kSphere;  // size 0
+  try {
+    ClearanceModel(model, 0.01, cell);
+    FAIL() << "accepted a sphere of radius 0";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("obstacles[0].size"), std::string::npos) << e.what();
+  }
+  cell.obstacles.assign(Cell::kMaxObstacles + 1, Obstacle{});
+  for (Obstacle& o : cell.obstacles) o.shape.kind = Shape::Kind::kSphere, o.shape.size.setConstant(0.1);
+  EXPECT_THROW(ClearanceModel(model, 0.01, cell), std::invalid_argument);
 }
 
 }  // namespace

@@ -59,6 +59,27 @@ CLI::Option* AddFrictionFlag(CLI::App* command, std::vector<std::string>* fricti
   return command->add_option("--friction", *friction, help)->delimiter(',')->capture_default_str();
 }
 
+CLI::Option* AddBasePoseFlag(CLI::App* command, BasePose* pose) {
+  return command
+      ->add_option_function<std::string>(
+          "--base-pose",
+          [pose](const std::string& text) {
+            std::string why;
+            if (!ParseBasePose(text, pose, &why)) throw CLI::ValidationError(why);
+          },
+          "The robot's base in the world, x,y,z [m] and roll,pitch,yaw [rad] (URDF rpy); gravity along the "
+          "world's -z (ceiling: 0,0,2,3.14159265,0,0)")
+      ->type_name("X,Y,Z,R,P,Y");
+}
+
+CLI::Option* AddSceneFlag(CLI::App* command, std::string* scene) {
+  return command
+      ->add_option("--scene", *scene,
+                   "The cell: JSON {\"floor\": true, \"obstacles\": [boxes, cylinders, spheres, meshes with "
+                   "world poses]}; the clearance keeps the links off them")
+      ->type_name("FILE");
+}
+
 CLI::Option* AddReportFlag(CLI::App* command, bool* report) {
   return command->add_flag("--report", *report, kReportHelp);
 }

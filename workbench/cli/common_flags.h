@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/robot_library.h"
 #include "idbench/engine/urdf.h"
 
@@ -45,6 +46,13 @@ CLI::Option* AddSeedFlag(CLI::App* command, unsigned* seed, const std::string& h
 
 // --friction TERM,... (comma-separated), its default shown.
 CLI::Option* AddFrictionFlag(CLI::App* command, std::vector<std::string>* friction, const std::string& help);
+
+// --base-pose x,y,z,roll,pitch,yaw: the robot's base in the world (gravity
+// along the world's −z), into *pose.
+CLI::Option* AddBasePoseFlag(CLI::App* command, BasePose* pose);
+
+// --scene FILE: the cell's JSON (floor, obstacles; scene_file.h).
+CLI::Option* AddSceneFlag(CLI::App* command, std::string* scene);
 
 // --report: also the HTML/PDF report and its plots.
 CLI::Option* AddReportFlag(CLI::App* command, bool* report);

@@ -65,6 +65,8 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
       ->delimiter(',')->capture_default_str();
   command->add_option("--wrench-noise", compare.wrench_noise, "Hinge force, moment noise sigma [N, N m] (per-body)")
       ->delimiter(',')->capture_default_str();
+  AddSceneFlag(command, &compare.scene);
+  AddBasePoseFlag(command, &compare.base_pose);
   command->add_option("--clearance", compare.clearance, "Minimum link clearance in the limits check [m]; -1: off")
       ->capture_default_str();
   command->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();

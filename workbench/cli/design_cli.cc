@@ -100,7 +100,8 @@ void AddSearchFlags(CLI::App* command, DesignOptions* design) {
   command->add_option("--margin", design->margin, "Limits tightened by this fraction during the search")
       ->capture_default_str();
   command->add_option("--clearance", design->clearance,
-                      "Minimum distance between links no joint connects and to the ground z = 0 [m]; -1: off")
+                      "Minimum distance between links no joint connects, to the floor z = 0 and to the --scene's "
+                      "obstacles [m]; -1: off")
       ->capture_default_str();
 }
 
@@ -123,6 +124,8 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
   AddSearchFlags(command, &design.design);
   command->add_option("--limits", design.limits,
                       "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
+  AddSceneFlag(command, &design.scene);
+  AddBasePoseFlag(command, &design.design.base_pose);
   command->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
   command->add_option("--csv-columns", design.csv_columns, "trajectory.csv columns: q or q,qd,qdd")
       ->capture_default_str();

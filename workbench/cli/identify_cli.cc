@@ -32,8 +32,10 @@ int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool w
                     const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  // The URDF's <transmission>, for actuator-side columns (a log description's wins).
-  const RobotModel model = LoadRobotOrThrow(options.robot, load, &options.format.transmission);
+  // The URDF's <transmission>, for actuator-side columns (a log description's
+  // wins); the robot mounted as base_pose says (gravity in its base frame).
+  const RobotModel model =
+      MountRobot(LoadRobotOrThrow(options.robot, load, &options.format.transmission), options.base_pose);
   if (!options.format.IsValidFor(model.n_dof(), &why)) return context.UsageError(why);
   if (!options.plausibility.IsValidFor(model, &why)) return context.UsageError(why);
   const IdentifyReport report = RunIdentify(model, options);
@@ -101,6 +103,7 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
   identify.command_line = context->command_line();
   CLI::App* command = app->add_subcommand("identify", "Identify base parameters from a joint log (CSV)");
   AddRobotFlags(command, &identify.robot, context->robot_load());
+  AddBasePoseFlag(command, &identify.base_pose);
   command
       ->add_option("--data", identify.data,
                    "Joint log: CSV (t, q*, [qd*, qdd*], tau*), log description (.json/.yaml) or ROS 2 bag")

@@ -58,6 +58,7 @@ CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
       ->capture_default_str();
   command->add_flag("--no-derivatives", flags->no_derivatives,
                     "Log only t, q, tau (as a real robot); identify then filters q for qd, qdd");
+  AddBasePoseFlag(command, &simulate.base_pose);
   AddSeedFlag(command, &simulate.sensors.seed);
   AddOutFlag(command, &simulate.out, "Joint-log CSV to write")->capture_default_str();
   return {command, [flags, context] {

@@ -16,6 +16,7 @@
 #include "idbench/ident/least_squares.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/workbench/formats/limits_file.h"
+#include "idbench/workbench/formats/scene_file.h"
 #include "idbench/workbench/commands/montecarlo_command.h"
 #include "number_format.h"
 #include "idbench/workbench/formats/trajectory_file.h"
@@ -251,7 +252,8 @@ bool CompareOptions::IsValid(std::string* why) const {
   return true;
 }
 
-CompareReport RunCompare(const RobotModel& model, const CompareOptions& options) {
+CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options) {
+  const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   CheckRegressorSamples("--samples", options.samples, model.n_dof());
   const bool per_body = options.model == "per-body";
   const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
@@ -261,7 +263,10 @@ CompareReport RunCompare(const RobotModel& model, const CompareOptions& options)
   report.true_parameters = regressor.true_parameters();
   const std::vector<JointLimits> limits = RobotLimits(model);
   std::optional<ClearanceModel> clearance;
-  if (options.clearance >= 0.0) clearance.emplace(model, options.clearance);
+  if (options.clearance >= 0.0) {
+    clearance.emplace(model, options.clearance, options.scene.empty() ? Cell() : ReadSceneFile(options.scene),
+                      options.base_pose);
+  }
   const BuiltinMotionOptions builtin{.duration = options.duration, .paper_qdd = 0.5};
   // Every motion read and checked before any work: a designed motion's
   // duration fits one simulation, and its samples fall on whole simulation
@@ -373,6 +378,13 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
                   m.limits.feasible() ? "within" : "VIOLATED");
     out += line;
   }
+  std::string cell;  // how close each motion comes to the cell (floor, obstacles)
+  for (const MotionComparison& m : report.motions) {
+    if (const std::string closest = m.limits.ClosestObstacleLine(); !closest.empty()) {
+      cell += "  " + m.name + ": " + closest + "\n";
+    }
+  }
+  if (!cell.empty()) out += "\nclearance to the cell, per motion:\n" + cell;
   out += "\nrank: by cond(W), designed and recorded motions together (1: lowest).";
   if (any_recorded) {
     out += "\n¹ a recorded log shorter than samples x dt or longer than one simulation: not simulated, so no realised "
@@ -440,6 +452,10 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
               {"unexcited", m.unexcited},
               {"within_robot_limits", m.limits.feasible()},
               {"limit_violations", m.limits.Explain()}};
+    if (const ConstraintMargin* c = m.limits.ClosestObstacle()) {
+      j["closest_obstacle"] = {{"obstacle", c->obstacle}, {"link", c->link}, {"distance", c->value},
+                               {"time", c->time}, {"minimum", c->limit}};
+    }
     if (m.predicted_percent_sigma.size() > 0 && m.unexcited.empty()) {
       json percent = json::array();  // null where the true value is zero: see predicted_sigma
       for (Eigen::Index k = 0; k < m.predicted_percent_sigma.size(); ++k) {
@@ -456,6 +472,8 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
                     {"samples", options.samples},
                     {"trials", options.trials},
                     {"seed", options.seed},
+                    {"scene", options.scene.empty() ? json(nullptr) : json(options.scene)},
+                    {"base_pose", options.base_pose.xyz_rpy},
                     {"noise", options.model == "torque" ? json{{"tau", options.tau_noise}}
                                                         : json{{"force", options.wrench_noise[0]},
                                                                {"moment", options.wrench_noise[1]}}},

@@ -10,6 +10,7 @@
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/limits_file.h"
+#include "idbench/workbench/formats/scene_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "number_format.h"
 
@@ -103,12 +104,14 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   return RunDesign(model, options, DesignLimits(model, options), control);
 }
 
-DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
+DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptions& options,
                               const std::vector<JointLimits>& limits, const DesignControl& observer) {
+  const RobotModel model = MountRobot(loaded, options.design.base_pose);  // gravity seen from the base
+  DesignOptions design = options.Resolved();
+  if (!options.scene.empty()) design.scene = ReadSceneFile(options.scene);  // a bad file before anything else
   CheckDesignLimits(model, limits);
   CheckTrajectoryCsvRate(options.design.period_duration(), options.csv_rate_hz, model.n_dof());  // before the design
   const DesignRegressor regressor = options.MakeRegressor(model);
-  const DesignOptions design = options.Resolved();
   CheckDesignFitsInMemory(regressor, design);  // before the progress state per start
 
   // Progress: at most one line per start every second.
@@ -128,7 +131,7 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
   }
   std::vector<std::string> excluded, held;
   if (design.clearance >= 0.0) {  // the pairs left out and those held at q = 0, named once
-    const ClearanceModel clearance(model, design.clearance);
+    const ClearanceModel clearance(model, design.clearance, design.scene, design.base_pose);
     excluded = clearance.excluded();
     for (const ClearancePair& p : clearance.pairs()) {
       if (p.minimum < clearance.min_clearance()) held.push_back(p.Name(model) + Format(" >= %.4g m", p.minimum));
@@ -215,6 +218,7 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
     out += buf;
   }
   out += r.check.Explain();
+  if (const std::string closest = r.check.ClosestObstacleLine(); !closest.empty()) out += closest + "\n";
   if (!r.check.feasible()) {
     out += "to relax:\n";
     for (const std::string& a : RelaxationAdvice(r.check, design, false)) out += "  " + a + "\n";
@@ -256,6 +260,8 @@ nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions&
                   {"max_evaluations", design.max_evaluations}, {"margin", design.margin},
                   {"clearance", design.clearance >= 0.0 ? json(design.clearance) : json(nullptr)}}},
       {"limits", limits},
+      {"scene", options.scene.empty() ? json(nullptr) : json(options.scene)},
+      {"base_pose", design.base_pose.xyz_rpy},
   };
 }
 
@@ -266,8 +272,14 @@ nlohmann::json CheckJson(const FeasibilityCheck& check) {
     margins.push_back({{"joint", m.joint + 1}, {"quantity", m.quantity}, {"time", m.time}, {"value", m.value},
                        {"limit", m.limit}, {"margin", m.margin}});
     if (!m.pair.empty()) margins.back()["pair"] = m.pair;
+    if (!m.obstacle.empty()) margins.back()["obstacle"] = m.obstacle;
   }
-  return {{"rate_hz", check.rate_hz}, {"feasible", check.feasible()}, {"margins", margins}};
+  nlohmann::json out = {{"rate_hz", check.rate_hz}, {"feasible", check.feasible()}, {"margins", margins}};
+  if (const ConstraintMargin* c = check.ClosestObstacle()) {
+    out["closest_obstacle"] = {{"obstacle", c->obstacle}, {"link", c->link}, {"distance", c->value},
+                               {"time", c->time}, {"minimum", c->limit}};
+  }
+  return out;
 }
 
 }  // namespace

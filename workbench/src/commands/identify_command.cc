@@ -77,11 +77,17 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   if (!preparation(false).IsValid(why)) return false;
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(InFrontEndTerms(plausibility_why, OptionNames::kCommandLine));
+  if (!base_pose.IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
   return true;
 }
 
 IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
+  // The report keeps references to the model: the caller mounts it (MountRobot).
+  if (!IsMountedAt(model, options.base_pose)) {
+    throw std::invalid_argument("base_pose: the model's gravity is not the world's -z seen from this base; mount the "
+                                "model (MountRobot)");
+  }
   PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
   std::optional<PreparedLog> held_out;
   std::optional<PreparedLog> held_out_whole;

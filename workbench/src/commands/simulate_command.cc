@@ -26,11 +26,13 @@ bool SimulateOptions::IsValid(std::string* why) const {
   if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
   if (!std::isfinite(paper_accel_deg_s2) || paper_accel_deg_s2 <= 0.0)
     return fail("--accel: must be > 0 deg/s^2, got " + std::to_string(paper_accel_deg_s2));
+  if (!base_pose.IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
   return true;
 }
 
-JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options) {
+JointLog SimulateJointLog(const RobotModel& loaded, const SimulateOptions& options) {
+  const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   std::string why;
   if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) throw std::invalid_argument("sensors: " + why);
   const BuiltinMotionOptions builtin{.duration = options.duration,

@@ -1,6 +1,6 @@
 // Clearance of a robot's links: the distance between the shapes of two links
-// that no joint connects, and from each link to the ground (the plane z = 0
-// of W), by Bullet's GJK (and EPA when shapes overlap: negative distance) on
+// that no joint connects, from each link to the floor (the plane z = 0 of the
+// world) and to each obstacle of the cell (cell.h), by Bullet's GJK (and EPA when shapes overlap: negative distance) on
 // each link's collision shapes (Link::CollisionShapes: its <collision>
 // geometry, else what is drawn): cylinders, boxes, spheres, and meshes as
 // their convex hulls. Every shape but a sphere is checked 1 mm inflated (its
@@ -22,7 +22,16 @@
 //  - a link on the ground at q = 0 that no joint can raise or lower (every
 //    joint from the ground to it turns about the vertical: a base on the
 //    floor). A link on the ground at q = 0 that joints can move keeps its
-//    distance there as its minimum.
+//    distance there as its minimum. A link on an obstacle at q = 0 that no
+//    joint raises is left out the same way (a base standing on a table top);
+//    every other obstacle pair keeps min_clearance, never its distance at
+//    q = 0 (the cell is not the robot: a pose inside it is a violation).
+//
+// Frames. Kinematics run in the robot's base frame R (what RobotModel and
+// KinematicsData call W); the cell is given in the world and placed in R by
+// the base pose: the floor becomes the plane n_R·p + h = 0 with n_R = R_WRᵀ·ẑ,
+// an obstacle's pose X_RO = X_WR⁻¹·X_WO. Points and normals of a Clearance are
+// in R. Obstacles are inflated by 1 mm as the links' shapes are.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,18 +39,24 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/kinematics.h"
 #include "idbench/engine/robot_model.h"
+#include "idbench/engine/cell.h"
 
 namespace idbench {
 
 struct ClearancePair {
   int link_a = 0;
-  int link_b = -1;  // −1: the ground
+  int link_b = -1;    // −1: the floor or an obstacle (not a link)
+  int obstacle = -1;  // with link_b = −1: the scene's obstacle index; −1: the floor
+  std::string obstacle_name;  // Cell::ObstacleName(obstacle)
   double minimum = 0.0;        // [m] the least distance allowed: min_clearance, or the distance
                                // at q = 0 less kHomeTolerance when the pair starts closer
   double home_distance = 0.0;  // [m] at q = 0
-  std::string Name(const RobotModel& model) const;  // "link2–link5", "link4–ground"
+  std::string Name(const RobotModel& model) const;  // "link2–link5", "link4–ground", "link4–table"
+  // The other side's name: a link's, "ground" or the obstacle's.
+  std::string Other(const RobotModel& model) const;
 };
 
 struct Clearance {
@@ -56,8 +71,12 @@ class ClearanceModel {
   // accuracy, so that a pair whose distance no joint changes meets its minimum.
   static constexpr double kHomeTolerance = 1e-6;
 
-  // Throws std::invalid_argument if min_clearance < 0 (or is not finite).
-  ClearanceModel(const RobotModel& model, double min_clearance);
+  // The links against each other, the scene's floor (when scene.floor) and
+  // its obstacles, the base at `base` in the world. Throws
+  // std::invalid_argument if min_clearance < 0 (or is not finite), or naming
+  // the field of an invalid scene or base pose (Cell/BasePose::IsValid).
+  ClearanceModel(const RobotModel& model, double min_clearance, const Cell& scene = Cell(),
+                 const BasePose& base = BasePose());
   ~ClearanceModel();
   ClearanceModel(ClearanceModel&&) noexcept;
   ClearanceModel& operator=(ClearanceModel&&) noexcept;

@@ -22,7 +22,9 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/link_clearance.h"
+#include "idbench/engine/cell.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
@@ -50,8 +52,11 @@ struct DesignOptions {
   int max_evaluations = 300;       // per start
   double max_seconds = 0.0;        // whole design; 0 = no limit
   double margin = 0.02;            // limits tightened by this fraction during the search
-  double clearance = 0.01;         // [m] between links that no joint connects, and to the ground z = 0
-                                   // (link_clearance.h); negative: not checked
+  double clearance = 0.01;         // [m] between links that no joint connects, to the floor z = 0 and
+                                   // to the scene's obstacles (link_clearance.h); negative: not checked
+  Cell scene;                     // the cell in the world: floor on/off, obstacles (cell.h)
+  BasePose base_pose;              // the robot's base in the world; the regressor's model must have its
+                                   // gravity (MountRobot, base_pose.h)
   double check_rate_hz = 1000.0;   // re-check of the result
   Eigen::VectorXd home;            // [rad] (n_dof): the pose the starts oscillate about;
                                    // empty: FindHomePose (home_pose.h)
@@ -62,6 +67,9 @@ struct DesignOptions {
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
   // Checks ranges; names the bad option in *why.
   bool IsValid(std::string* why) const;
+  // The clearance model of a robot in this cell (scene, base_pose), or none
+  // when clearance < 0 or no link has a shape.
+  std::optional<ClearanceModel> MakeClearance(const RobotModel& model) const;
 };
 
 // One checked constraint: the worst instant of one joint's limit.
@@ -75,6 +83,8 @@ struct ConstraintMargin {
   double margin = 0.0;   // limit − value (for q_min: value − limit); < 0 is a violation
   bool held_at_home = false;  // clearance: limit is the pair's distance at q = 0, closer than
                               // the clearance asked (link_clearance.h)
+  std::string obstacle;       // clearance to the cell: "ground" or the obstacle's name; "" between links
+  std::string link;           // clearance: the robot's link of the pair
 };
 
 struct FeasibilityCheck {
@@ -84,6 +94,11 @@ struct FeasibilityCheck {
   // One line per violated constraint: "joint 2 qd: |qd| = 1.62 rad/s at t = 3.41 s
   // exceeds the limit 1.5 rad/s by 0.12 rad/s"; "" if feasible.
   std::string Explain() const;
+  // The clearance margin to the cell (floor or obstacle) whose distance came
+  // lowest; nullptr when none was checked.
+  const ConstraintMargin* ClosestObstacle() const;
+  // "closest obstacle: wall, 0.0312 m from wrist_3_link at t = 2.41 s (minimum 0.01 m)"; "" when none.
+  std::string ClosestObstacleLine() const;
 };
 
 // Checks a trajectory's q, qd, qdd and joint torque (inverse dynamics plus

@@ -10,6 +10,8 @@
 // estimated by identify's zero-phase filter), and Bullet replays them.
 #pragma once
 
+#include "idbench/engine/base_pose.h"
+
 #include <string>
 #include <vector>
 
@@ -34,6 +36,8 @@ struct CompareOptions {
   std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // torque model [N m]
   std::vector<double> wrench_noise{0.5, 0.05};  // per-body model: force [N], moment [N m] per axis
   double clearance = 0.01;                 // [m] in the limits check; negative: not checked
+  std::string scene;                       // scene JSON (scene_file.h; optional): obstacles, floor
+  BasePose base_pose;                      // the robot's base in the world (RunCompare mounts the model)
   int trials = 20;
   unsigned seed = 1;
   std::string out_dir = "out/compare";

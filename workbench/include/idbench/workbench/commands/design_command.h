@@ -26,7 +26,9 @@ struct DesignCommandOptions {
   std::string criterion;
   std::string algorithm = "slsqp";
   std::string limits;                                // limits JSON (optional)
-  DesignOptions design;
+  std::string scene;                                 // scene JSON (scene_file.h; optional): design.scene
+  DesignOptions design;                              // design.base_pose: where the robot stands; RunDesign
+                                                     // mounts the model it is given (MountRobot)
   double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate; the re-check runs at
                                                      // the larger of it and design.check_rate_hz
   std::string csv_columns = "q,qd,qdd";              // trajectory.csv: "q" (positions) or "q,qd,qdd"
@@ -66,7 +68,8 @@ double MinimumCsvRate(const DesignOptions& design);
 // Throws std::invalid_argument naming a bad file.
 std::vector<JointLimits> DesignLimits(const RobotModel& model, const DesignCommandOptions& options);
 
-// Runs the design; progress lines on stderr unless quiet; `stop` ends it
+// Runs the design of the model mounted at options.design.base_pose, in the
+// cell options.scene names (read here; design.scene when empty); progress lines on stderr unless quiet; `stop` ends it
 // early with the best feasible design so far. Throws std::invalid_argument for
 // bad limits or files, std::runtime_error when nothing feasible was found.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/measurements.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/signal_filter.h"
@@ -19,6 +20,8 @@ struct IdentifyOptions {
   std::string robot = "puma560";   // built-in name or URDF path
   std::string data;                // joint-log CSV (required)
   std::string model = "torque";    // "torque"; "per-body" needs hinge wrenches (idbench run)
+  BasePose base_pose;              // the robot's base in the world: the model given to RunIdentify
+                                   // must have its gravity (MountRobot; refused otherwise)
   std::string estimator = "ols";   // ols | wls | pc
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
 
@@ -16,6 +17,7 @@ struct SimulateOptions {
   double duration = 10.0;               // [s] of a built-in motion; a file brings its own
   double dt = 1e-3;                     // simulation step [s]
   SensorOptions sensors;
+  BasePose base_pose;                   // the robot's base in the world: gravity along the world's −z
   std::string out = "out/log.csv";
 
   SimulationOptions simulation() const;
@@ -23,7 +25,8 @@ struct SimulateOptions {
   bool IsValid(std::string* why) const;
 };
 
-// Simulates and measures over the motion's duration. Throws
+// Simulates and measures over the motion's duration, the model mounted at
+// options.base_pose (MountRobot). Throws
 // std::invalid_argument on a robot/motion/sensor mismatch or a bad trajectory
 // file (naming it) and std::runtime_error if the simulation diverges.
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
