@@ -229,6 +229,7 @@ void Session::StartSimulate() {
     return std::function<void()>([this, log, path = options.out] {
       log_ = std::move(*log);
       identify.data = path;
+      simulated_log_ = path;
       Info("simulate: " + std::to_string(log_->n_samples()) + " samples written to " + path);
     });
   });
@@ -335,10 +336,12 @@ void Session::StartPerBody() {
 
 void Session::StartReport() {
   if (!identify_report_) return Error("report: nothing identified yet");
+  // "truth" only for the log the GUI simulated itself; a recorded one is "measured".
+  const LogOrigin origin = identified_with_.data == simulated_log_ ? LogOrigin::kSimulated : LogOrigin::kRecorded;
   StartJob(JobKind::kReport, [this, model = model_, options = identified_with_, report = *identify_report_,
-                              dir = out_dir](const std::atomic<bool>&) {
+                              dir = out_dir, origin](const std::atomic<bool>&) {
     EnsureOutputDirectory(dir);
-    WriteFilesAtomically(FormatReportFiles(MakeIdentifyReportContent(*model, options, report), dir));
+    WriteFilesAtomically(FormatReportFiles(MakeIdentifyReportContent(*model, options, report, origin), dir));
     return std::function<void()>(
         [this, dir] { Info("report written to " + (std::filesystem::path(dir) / "report.html").string()); });
   });

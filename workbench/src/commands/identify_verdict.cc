@@ -33,7 +33,7 @@ std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyRe
   const IdentificationVerdict& verdict = report.identification.verdict;
   if (verdict.fit_to_load()) return "";
   return InFrontEndTerms("the physically consistent estimate is not a robot model (" + verdict.message + "): " +
-                             verdict.cause + ". identified.json holds the diagnostics; identified.urdf and joints.yaml " +
+                             verdict.cause + ". identified.json holds the diagnostics; identified.urdf, identified.xml and joints.yaml " +
                              (options.write_unverified ? "are written anyway, as asked (write_unverified)"
                                                        : "are not written (write_unverified writes them anyway)"),
                          names);
