@@ -19,7 +19,8 @@ namespace {
 
 // Fields of IdentifyOptions named in messages.
 constexpr FieldFlag kIdentifySpellings[] = {
-    {"validate_window", "--validate-window"}, {"time_window", "--time-window"}, {"drive_gains", "--drive-gains"}};
+    {"validate_window", "--validate-window"}, {"time_window", "--time-window"}, {"drive_gains", "--drive-gains"},
+    {"friction_side", "--friction-side"}};
 
 struct IdentifyFlags {
   IdentifyOptions options;

@@ -66,7 +66,7 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
   if (friction_side != "joint" && friction_side != "actuator") {
-    return fail("--friction-side: expected joint or actuator, got '" + friction_side + "'");
+    return fail("friction_side: expected joint or actuator, got '" + friction_side + "'");
   }
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
