@@ -15,7 +15,7 @@ UrdfLoadResult LoadRobot(const std::string& name_or_path, const UrdfLoadOptions&
   const std::vector<std::string> builtins = BuiltinRobotNames();
   if (!options.empty() && std::find(builtins.begin(), builtins.end(), name_or_path) != builtins.end()) {
     throw std::invalid_argument("robot '" + name_or_path +
-                                "': --lock and --tip apply to URDF files only, not to a built-in robot");
+                                "': locked_joints and tip_link apply to URDF files only, not to a built-in robot");
   }
   if (name_or_path == "paper6r") return {MakePaper6r(), {}, {}};
   if (name_or_path == "puma560") return {MakePuma560(), InertiaWarnings(MakePuma560()), {}};

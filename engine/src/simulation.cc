@@ -12,17 +12,17 @@ bool SimulationOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (!(dt > 0.0) || !std::isfinite(dt)) return fail("dt must be > 0, got " + std::to_string(dt));
+  if (!(dt > 0.0) || !std::isfinite(dt)) return fail("dt: must be > 0 s, got " + std::to_string(dt));
   if (!(duration > 0.0) || !std::isfinite(duration))
-    return fail("duration must be > 0, got " + std::to_string(duration));
-  if (dt < kMinDt) return fail("dt must be >= " + std::to_string(kMinDt) + " s");
-  if (duration < 2.0 * dt) return fail("duration must cover at least two steps of dt");
-  if (duration / dt > kMaxSteps) return fail("duration/dt gives more than 1e6 steps");
+    return fail("duration: must be > 0 s, got " + std::to_string(duration));
+  if (dt < kMinDt) return fail("dt: must be >= " + std::to_string(kMinDt) + " s");
+  if (duration < 2.0 * dt) return fail("duration: must cover at least two steps of `dt`");
+  if (duration / dt > kMaxSteps) return fail("duration: more than 1e6 steps of `dt`");
   if (tracking_bandwidth * dt > kMaxBandwidthTimesDt) {
-    return fail("dt must be <= " + std::to_string(kMaxBandwidthTimesDt / tracking_bandwidth) +
+    return fail("dt: must be <= " + std::to_string(kMaxBandwidthTimesDt / tracking_bandwidth) +
                 " s for stable tracking at " + std::to_string(tracking_bandwidth) + " rad/s");
   }
-  if (!(tracking_bandwidth >= 0.0)) return fail("tracking bandwidth must be >= 0");
+  if (!(tracking_bandwidth >= 0.0)) return fail("tracking_bandwidth: must be >= 0");
   return true;
 }
 

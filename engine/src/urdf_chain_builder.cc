@@ -184,7 +184,7 @@ class UrdfChainBuilder {
     std::string why;
     if (!options_.IsValid(&why)) Fail(why);
     for (const auto& [name, value] : options_.locked_joints) {
-      const std::string where = "--lock " + name + "=" + Format(value) + ": ";
+      const std::string where = "locked_joints " + name + "=" + Format(value) + ": ";
       const urdf::JointConstSharedPtr joint = urdf_.getJoint(name);
       if (joint == nullptr) {
         Fail(where + "no joint " + Quote(name) + " in the file; joints that can be locked: " + LockableJoints());
@@ -210,10 +210,10 @@ class UrdfChainBuilder {
       if (urdf_.getLink(tip) == nullptr) {
         std::vector<std::string> names;
         for (const auto& [name, link] : urdf_.links_) names.push_back(name);
-        Fail("--tip " + tip + ": no link " + Quote(tip) + " in the file; links: " + QuotedList(names));
+        Fail("tip_link " + tip + ": no link " + Quote(tip) + " in the file; links: " + QuotedList(names));
       }
       if (tip == root.name) {
-        Fail("--tip " + tip + ": " + Quote(tip) + " is the root link (the ground); pass the arm's last link");
+        Fail("tip_link " + tip + ": " + Quote(tip) + " is the root link (the ground); pass the arm's last link");
       }
     }
   }
@@ -304,8 +304,8 @@ class UrdfChainBuilder {
       const urdf::Joint& joint = *blocked.front();
       Fail("joint " + Quote(joint.name) + " (" + TypeName(joint) +
            ") carries revolute joints; idbench identifies revolute chains and cannot tell whether this joint "
-           "belongs to the arm: pass --lock " + LockArgument(joint) + " to hold it (the chain then continues "
-           "through it), or --tip LINK to end the chain above it");
+           "belongs to the arm: pass locked_joints " + LockArgument(joint) + " to hold it (the chain then continues "
+           "through it), or tip_link LINK to end the chain above it");
     }
     if (ends.empty()) {
       std::string message =
@@ -334,8 +334,8 @@ class UrdfChainBuilder {
       }
       Fail("link " + Quote(fork->name) + ": the robot branches into " + std::to_string(ends.size()) +
            " chains of revolute joints, ending at links " + candidates +
-           "; pass --tip LINK with the arm's last link (one of these, or " + Quote(fork->name) +
-           " to hold every branch below it); the joints off the chain are then locked at 0 (or at --lock "
+           "; pass tip_link LINK with the arm's last link (one of these, or " + Quote(fork->name) +
+           " to hold every branch below it); the joints off the chain are then locked at 0 (or at locked_joints "
            "JOINT=VALUE) and their links merged into the chain");
     }
     return urdf_.getLink(ends.front()->child_link_name);
@@ -351,13 +351,13 @@ class UrdfChainBuilder {
         case Role::kRigid: break;
         case Role::kOther:
           Fail("joint " + Quote(joint.name) + ": " + TypeName(joint) + " joint on the chain from the root link " +
-               Quote(root.name) + " to " + Quote(tip->name) + "; idbench identifies revolute chains: pass --lock " +
-               LockArgument(joint) + " to hold it, or a --tip above it");
+               Quote(root.name) + " to " + Quote(tip->name) + "; idbench identifies revolute chains: pass locked_joints " +
+               LockArgument(joint) + " to hold it, or a tip_link above it");
       }
     }
     if (chain_.empty()) {
       Fail("no revolute or continuous joint between the root link " + Quote(root.name) + " and " +
-           Quote(tip->name) + " (--tip); nothing to identify: pass the arm's last link");
+           Quote(tip->name) + " (tip_link); nothing to identify: pass the arm's last link");
     }
   }
 
@@ -447,10 +447,10 @@ class UrdfChainBuilder {
       } else {
         out << ", at its <origin>";
       }
-      if (options_.locked_joints.contains(joint.name)) out << " by --lock";
+      if (options_.locked_joints.contains(joint.name)) out << " by locked_joints";
       out << ", into " << (locked.into.empty() ? "the ground" : "link " + Quote(locked.into)) << ")";
     }
-    out << "; --lock JOINT=VALUE holds a joint at another value, --tip LINK chooses another end of the chain";
+    out << "; locked_joints JOINT=VALUE holds a joint at another value, tip_link LINK chooses another end of the chain";
     return out.str();
   }
 
@@ -557,7 +557,7 @@ class UrdfChainBuilder {
       Fail(where + "mass must be > 0, got " + Format(link->inertia.mass) + " (" +
            (parts.empty() ? "no <inertial>" : "the <inertial> <mass>") + " on it and the links held to it); give " +
            "it an <inertial> with an estimate of its mass (a prior that identification replaces), or hold joint " +
-           Quote(link->joint_name) + " with --lock " + link->joint_name + "=VALUE");
+           Quote(link->joint_name) + " with locked_joints " + link->joint_name + "=VALUE");
     }
 
     // An inertia that is not positive definite (a point mass, a rod) is only

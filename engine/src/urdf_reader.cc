@@ -27,11 +27,11 @@ using internal::Quote;
 bool UrdfLoadOptions::IsValid(std::string* why) const {
   for (const auto& [name, value] : locked_joints) {
     if (name.empty()) {
-      *why = "--lock: a joint name is empty";
+      *why = "locked_joints: a joint name is empty";
       return false;
     }
     if (!std::isfinite(value)) {
-      *why = "--lock " + name + ": expected a finite value, got " + Format(value);
+      *why = "locked_joints " + name + ": expected a finite value, got " + Format(value);
       return false;
     }
   }
@@ -40,7 +40,7 @@ bool UrdfLoadOptions::IsValid(std::string* why) const {
 
 bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string* why) {
   const auto fail = [&](const std::string& what) {
-    *why = "--lock '" + text + "': " + what;
+    *why = "locked_joints '" + text + "': " + what;
     return false;
   };
   const size_t equals = text.find('=');

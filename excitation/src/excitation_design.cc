@@ -41,30 +41,30 @@ bool DesignOptions::IsValid(std::string* why) const {
     return false;
   };
   if (harmonics < 1 || harmonics > FourierSeriesTrajectory::kMaxHarmonics) {
-    return fail("--harmonics must be in 1.." + std::to_string(FourierSeriesTrajectory::kMaxHarmonics) + ", got " +
+    return fail("harmonics: must be in 1.." + std::to_string(FourierSeriesTrajectory::kMaxHarmonics) + ", got " +
                 std::to_string(harmonics));
   }
-  if (!(f0 > 0.0) || !(f0 <= 100.0)) return fail(Format("--f0 must be in (0, 100] Hz, got %g", f0));
-  if (!(duration >= 0.0) || !std::isfinite(duration)) return fail(Format("--duration must be >= 0 s, got %g", duration));
+  if (!(f0 > 0.0) || !(f0 <= 100.0)) return fail(Format("f0: must be in (0, 100] Hz, got %g", f0));
+  if (!(duration >= 0.0) || !std::isfinite(duration)) return fail(Format("duration: must be >= 0 s, got %g", duration));
   const double top = f0 * harmonics * period_duration();  // periods of the top harmonic
   if (samples < 8 * top) {
-    return fail(Format("--samples must be at least %g (8 per period of the highest harmonic, %g Hz), got %g",
+    return fail(Format("samples: must be at least %g (8 per period of the highest harmonic, %g Hz), got %g",
                        std::ceil(8 * top), f0 * harmonics, samples));
   }
-  if (starts < 1) return fail("--starts must be >= 1, got " + std::to_string(starts));
+  if (starts < 1) return fail("starts: must be >= 1, got " + std::to_string(starts));
   if (threads < 1 || threads > MaxThreads()) {
-    return fail("--threads must be in 1.." + std::to_string(MaxThreads()) + " (4 per hardware thread), got " +
+    return fail("threads: must be in 1.." + std::to_string(MaxThreads()) + " (4 per hardware thread), got " +
                 std::to_string(threads));
   }
-  if (max_evaluations < 1) return fail("--max-evaluations must be >= 1");
-  if (!(max_seconds >= 0.0)) return fail("--max-time must be >= 0");
-  if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("--margin must be in [0, 0.5), got %g", margin));
-  if (!std::isfinite(clearance) || clearance > 1.0) return fail(Format("--clearance must be at most 1 m, got %g", clearance));
+  if (max_evaluations < 1) return fail("max_evaluations: must be >= 1");
+  if (!(max_seconds >= 0.0)) return fail("max_seconds: must be >= 0");
+  if (!(margin >= 0.0 && margin < 0.5)) return fail(Format("margin: must be in [0, 0.5), got %g", margin));
+  if (!std::isfinite(clearance) || clearance > 1.0) return fail(Format("clearance: must be at most 1 m, got %g", clearance));
   if (!(check_rate_hz > 0.0)) return fail("the check rate must be > 0 Hz");
   if (std::string scene_why; !scene.IsValid(&scene_why)) return fail("scene." + scene_why);
   if (!base_pose.IsValid(why)) return false;
   if (!(ramp_seconds >= 0.0 && ramp_seconds <= kMaxRampSeconds)) {
-    return fail(Format("--ramp must be in [0, %g] s, got ", kMaxRampSeconds) + Format("%g", ramp_seconds));
+    return fail(Format("ramp_seconds: must be in [0, %g] s, got ", kMaxRampSeconds) + Format("%g", ramp_seconds));
   }
   return true;
 }
@@ -97,11 +97,11 @@ void CheckDesignLimits(const RobotModel& model, const std::vector<JointLimits>& 
     const std::string who = "joint " + std::to_string(j + 1) + " ('" + model.link(j).joint_name + "')";
     if (!(l.qd_max > 0.0) || !std::isfinite(l.qd_max)) {
       throw std::invalid_argument(who + ": the velocity limit qd_max must be finite and > 0, got " +
-                                  Format("%g", l.qd_max) + " (give it in --limits)");
+                                  Format("%g", l.qd_max) + " (give it in the `limits` file)");
     }
     if (!(l.qdd_max > 0.0) || !std::isfinite(l.qdd_max)) {
       throw std::invalid_argument(who + ": the acceleration limit qdd_max must be finite and > 0, got " +
-                                  Format("%g", l.qdd_max) + " (give it in --limits)");
+                                  Format("%g", l.qdd_max) + " (give it in the `limits` file)");
     }
     if (!(l.q_min < l.q_max)) {
       throw std::invalid_argument(who + Format(": q_min = %g must be below q_max = %g rad", l.q_min, l.q_max));
@@ -122,7 +122,7 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
   HomePose home;
   if (options.home.size() > 0) {
     if (options.home.size() != n) {
-      throw std::invalid_argument("--home: expected " + std::to_string(n) + " joint angles, got " +
+      throw std::invalid_argument("home: expected " + std::to_string(n) + " joint angles, got " +
                                   std::to_string(options.home.size()));
     }
     home.q = options.home;
@@ -140,7 +140,7 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
   if (!check.feasible()) {
     std::string pose;
     for (int j = 0; j < n; ++j) pose += (j ? "," : "") + Format("%.4g", home.q[j]);
-    const std::string what = home.source == "given" ? "the --home pose " + pose
+    const std::string what = home.source == "given" ? "the `home` pose " + pose
                                                     : "no pose with room to move was found; the nearest to the "
                                                       "middle of the joint ranges, " + pose + ",";
     std::vector<std::string> advice = RelaxationAdvice(check, options, true);
@@ -172,10 +172,10 @@ void CheckDesignFitsInMemory(const DesignRegressor& regressor, const DesignOptio
   // coefficient vectors (an estimate from above).
   const double n = regressor.model().n_dof(), p = regressor.n_parameters();
   const double coefficients = 2.0 * options.harmonics + 6.0;
-  CheckFitsInMemory("--samples", options.samples, "samples",
+  CheckFitsInMemory("samples", options.samples, "samples",
                     8.0 * (2.0 * n * p * options.threads + 4.0 * n * coefficients + 3.0 * coefficients),
                     "the regressor rows, limit rows and basis of one sample");
-  CheckFitsInMemory("--starts", options.starts, "starts", 8.0 * 4.0 * n * coefficients + 512.0,
+  CheckFitsInMemory("starts", options.starts, "starts", 8.0 * 4.0 * n * coefficients + 512.0,
                     "the coefficients and progress of one start");
 }
 

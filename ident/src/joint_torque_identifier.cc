@@ -245,14 +245,14 @@ bool PlausibilitySettings::IsValid(std::string* why) const {
     return false;
   };
   if (!(mass_factor_min >= 0.0) || !(mass_factor_max >= 1.0) || !(mass_factor_min <= 1.0) || !(mass_factor_max <= 1e6))
-    return fail("--mass-range: expected 0 <= LO <= 1 <= HI <= 1e6 (factors of each link's robot-file mass), got " +
+    return fail("plausibility.mass_factor_min, plausibility.mass_factor_max: expected 0 <= LO <= 1 <= HI <= 1e6 (factors of each link's robot-file mass), got " +
                 std::to_string(mass_factor_min) + "," + std::to_string(mass_factor_max));
   if (!(total_mass >= 0.0) || !(total_mass <= 1e6))
-    return fail("--total-mass: expected 0 (none) to 1e6 kg, got " + std::to_string(total_mass));
+    return fail("plausibility.total_mass: expected 0 (none) to 1e6 kg, got " + std::to_string(total_mass));
   if (!(total_mass_tolerance >= 0.0) || !(total_mass_tolerance <= 1.0))
-    return fail("--total-mass-tolerance: expected a fraction in [0, 1], got " + std::to_string(total_mass_tolerance));
+    return fail("plausibility.total_mass_tolerance: expected a fraction in [0, 1], got " + std::to_string(total_mass_tolerance));
   if (!(prior_weight > 0.0) || !(prior_weight <= 1e6))
-    return fail("--prior-weight: expected more than 0, up to 1e6, got " + std::to_string(prior_weight) +
+    return fail("plausibility.prior_weight: expected more than 0, up to 1e6, got " + std::to_string(prior_weight) +
                 ": the prior decides what the log does not determine (with 0 that is arbitrary); for a negligible "
                 "prior give a small value, e.g. 1e-8");
   if (!(cost_tolerance >= 0.0) || !(cost_tolerance <= 1e6))
@@ -269,8 +269,9 @@ bool PlausibilitySettings::IsValidFor(const RobotModel& model, std::string* why)
   if (hi < mass_factor_min * file_total || lo > mass_factor_max * file_total) {
     char text[400];
     std::snprintf(text, sizeof(text),
-                  "--total-mass %.6g kg (± %.3g %%) cannot be met: the links' bounds (--mass-range %.3g,%.3g × the "
-                  "robot file's %.6g kg) allow %.6g to %.6g kg; widen --mass-range or --total-mass-tolerance",
+                  "plausibility.total_mass %.6g kg (± %.3g %%) cannot be met: the links' bounds (plausibility.mass_factor_min, "
+                  "plausibility.mass_factor_max %.3g,%.3g × the robot file's %.6g kg) allow %.6g to %.6g kg; widen "
+                  "plausibility.mass_factor_min, plausibility.mass_factor_max or plausibility.total_mass_tolerance",
                   total_mass, 100.0 * total_mass_tolerance, mass_factor_min, mass_factor_max, file_total,
                   mass_factor_min * file_total, mass_factor_max * file_total);
     if (why) *why = text;

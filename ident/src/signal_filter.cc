@@ -260,13 +260,13 @@ bool LogFilterOptions::IsValid(std::string* why) const {
     return false;
   };
   if (order < 1 || order > kMaxOrder) {
-    return fail("expected order in 1.." + std::to_string(kMaxOrder) + ", got " + std::to_string(order));
+    return fail("order: expected 1.." + std::to_string(kMaxOrder) + ", got " + std::to_string(order));
   }
   if (!(cutoff_hz > 0.0) || !std::isfinite(cutoff_hz)) {
-    return fail("expected cutoff_hz > 0, got " + Str(cutoff_hz));
+    return fail("cutoff_hz: expected > 0 Hz, got " + Str(cutoff_hz));
   }
-  if (decimation < 1) return fail("expected decimation >= 1, got " + std::to_string(decimation));
-  if (!std::isfinite(trim_s)) return fail("expected a finite trim_s, got " + Str(trim_s));
+  if (decimation < 1) return fail("decimation: expected >= 1, got " + std::to_string(decimation));
+  if (!std::isfinite(trim_s)) return fail("trim_s: expected a finite value, got " + Str(trim_s));
   return true;
 }
 

@@ -30,7 +30,7 @@ JointLogFormat MergedFormat(const JointLogDescription& description, const JointL
                             std::vector<std::string>* notes) {
   const std::string& source = description.source;
   if (!format.columns.empty()) {
-    throw std::invalid_argument(source + ": --columns given with a log description: name each file's columns in its "
+    throw std::invalid_argument(source + ": columns given with a log description: name each file's columns in its "
                                 ".files[i].columns instead");
   }
   JointLogFormat merged = format;

@@ -138,8 +138,8 @@ struct Field {
     format.columns = out;
     std::string why;
     // Names checked as the columns option's are; the t column may be in another file.
-    if (!format.IsValid(&why) && why != "--columns: no 't' column") {
-      Fail(why.starts_with("--columns: ") ? why.substr(11) : why);
+    if (!format.IsValid(&why) && why != "columns: no 't' column") {
+      Fail(why.starts_with("columns: ") ? why.substr(9) : why);
     }
     return out;
   }

@@ -19,9 +19,9 @@ bool JointLogFormat::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (angle_unit != "rad" && angle_unit != "deg") return fail("--angle-unit: expected rad or deg, got '" + angle_unit + "'");
+  if (angle_unit != "rad" && angle_unit != "deg") return fail("angle_unit: expected rad or deg, got '" + angle_unit + "'");
   if (static_cast<int>(drive_gains.size()) > kMaxJoints) {
-    return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, at most " + std::to_string(kMaxJoints));
+    return fail("drive_gains: " + std::to_string(drive_gains.size()) + " gains, at most " + std::to_string(kMaxJoints));
   }
   // |K| within [kMinDriveGain, kMaxDriveGain]; a negative gain is a drive
   // whose current is logged with the opposite sign, but not every drive.
@@ -46,10 +46,10 @@ bool JointLogFormat::IsValid(std::string* why) const {
   }
   std::map<std::string, int> seen;
   for (size_t c = 0; c < names.size(); ++c) {
-    const std::string where = "--columns: column " + std::to_string(c + 1) + " ('" + names[c] + "')";
+    const std::string where = "columns: column " + std::to_string(c + 1) + " ('" + names[c] + "')";
     ColumnTarget target{};
     if (names[c].empty()) {
-      return fail("--columns: column " + std::to_string(c + 1) + " is empty (two commas in a row, or a comma at an "
+      return fail("columns: column " + std::to_string(c + 1) + " is empty (two commas in a row, or a comma at an "
                   "end?); name every column, \"_\" skips one");
     }
     if (internal::ActuatorColumn(names[c])) continue;  // refused by name when the log is read (needs a transmission)
@@ -59,7 +59,7 @@ bool JointLogFormat::IsValid(std::string* why) const {
     if (target.kind >= 0 && target.joint >= kMaxJoints) return fail(where + ": joint above " + std::to_string(kMaxJoints));
     if (names[c] != "_" && !seen.emplace(names[c], static_cast<int>(c)).second) return fail(where + ": repeated");
   }
-  if (!seen.count("t")) return fail("--columns: no 't' column");
+  if (!seen.count("t")) return fail("columns: no 't' column");
   return true;
 }
 
@@ -69,7 +69,7 @@ bool JointLogFormat::IsValidFor(int n_dof, std::string* why) const {
     return false;
   };
   if (!drive_gains.empty() && static_cast<int>(drive_gains.size()) != n_dof) {
-    return fail("--drive-gains: " + std::to_string(drive_gains.size()) + " gains, the robot has " +
+    return fail("drive_gains: " + std::to_string(drive_gains.size()) + " gains, the robot has " +
                 std::to_string(n_dof) + " joints");
   }
   if (transmission && !transmission->IsValid(n_dof, why)) {
@@ -81,7 +81,7 @@ bool JointLogFormat::IsValidFor(int n_dof, std::string* why) const {
   for (size_t c = 0; c < names.size(); ++c) {
     ColumnTarget target{};
     if (ParseColumnName(names[c], &target) && target.kind > 0 && target.joint >= n_dof) {
-      return fail("--columns: column " + std::to_string(c + 1) + " ('" + names[c] + "'): joint " +
+      return fail("columns: column " + std::to_string(c + 1) + " ('" + names[c] + "'): joint " +
                   std::to_string(target.joint + 1) + " but the robot has " + std::to_string(n_dof) + " joints");
     }
   }
@@ -92,7 +92,7 @@ std::vector<std::string> ExpandColumnNames(const std::vector<std::string>& items
   std::vector<std::string> names;
   auto add = [&](const std::string& name) {
     if (static_cast<int>(names.size()) >= JointLogFormat::kMaxColumns) {
-      throw std::invalid_argument("--columns: more than " + std::to_string(JointLogFormat::kMaxColumns) + " columns");
+      throw std::invalid_argument("columns: more than " + std::to_string(JointLogFormat::kMaxColumns) + " columns");
     }
     names.push_back(name);
   };
@@ -116,10 +116,10 @@ std::vector<std::string> ExpandColumnNames(const std::vector<std::string>& items
     }
     if (!ParseColumnName(a, &first) || !ParseColumnName(b, &last) || first.kind <= 0 || first.kind != last.kind ||
         last.joint < first.joint) {
-      throw std::invalid_argument("--columns: '" + item + "': expected a range such as q1..q6 (same prefix, first <= last)");
+      throw std::invalid_argument("columns: '" + item + "': expected a range such as q1..q6 (same prefix, first <= last)");
     }
     if (last.joint - first.joint >= JointLogFormat::kMaxColumns) {
-      throw std::invalid_argument("--columns: '" + item + "': more than " + std::to_string(JointLogFormat::kMaxColumns) +
+      throw std::invalid_argument("columns: '" + item + "': more than " + std::to_string(JointLogFormat::kMaxColumns) +
                                   " columns");
     }
     for (int j = first.joint; j <= last.joint; ++j) add(kKindPrefix[first.kind] + std::to_string(j + 1));

@@ -33,7 +33,7 @@ std::vector<std::string> FileColumnNames(const std::vector<std::string>& first_f
     FailAt(source, line_number,
            "the first line is data (all numbers), not a header naming the columns: " +
                (messages.list.empty()
-                    ? "pass --columns with the names in file order, e.g. --columns " + example
+                    ? "pass `columns` with the names in file order, e.g. `columns` " + example
                     : "give " + messages.list + " with the names in file order, e.g. \"" + example + "\"") +
                " (_ skips a column)");
   }
@@ -188,16 +188,16 @@ ColumnUse ChooseColumns(const FileColumns& columns, int n_dof, const JointLogFor
   switch (torques) {
     case TorqueColumns::kRequired:
       if (!format.drive_gains.empty()) {
-        if (!has_i) messages.Fail("--drive-gains given but the log has no motor currents i1..i" + n_str);
+        if (!has_i) messages.Fail("drive_gains given but the log has no motor currents i1..i" + n_str);
         use.use_i = true;
         use.use_tau = false;
         if (has_tau) {
-          warnings->push_back(messages.source + ": tau columns ignored: --drive-gains given, tau = K·i from i1..i" +
+          warnings->push_back(messages.source + ": tau columns ignored: drive_gains given, tau = K·i from i1..i" +
                               n_str);
         }
       } else if (!has_tau) {
         if (has_i) {
-          messages.Fail("the log has motor currents i1..i" + n_str + " but no tau: pass --drive-gains K1,...,K" +
+          messages.Fail("the log has motor currents i1..i" + n_str + " but no tau: pass drive_gains K1,...,K" +
                         n_str + " (tau = K·i; `idbench gains` estimates them)");
         }
         messages.Fail("missing column 'tau1' (robot has " + n_str + " joints)");

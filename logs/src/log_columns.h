@@ -24,11 +24,11 @@ struct ColumnMessages {
   std::string source;        // the data file
   bool named;                // a columns list names the columns
   std::int64_t header_line;  // 0 when named
-  std::string list;          // the columns list as messages name it; "": "<source>: --columns"
+  std::string list;          // the columns list as messages name it; "": "<source>: columns"
 
   // "<list>: what" when named, else "source:header_line: what".
   [[noreturn]] void Fail(const std::string& what) const;
-  std::string ListName() const { return list.empty() ? source + ": --columns" : list; }
+  std::string ListName() const { return list.empty() ? source + ": columns" : list; }
 };
 
 // The file's columns: the name of each, where its values go, and the column

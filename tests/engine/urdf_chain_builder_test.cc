@@ -218,7 +218,7 @@ TEST(UrdfTest, RejectsUnsupportedJointTypesNamingTheJoint) {
   const std::string rail = Robot(BareLink("base") + MassLink("carriage") + MassLink("a") + MassLink("b") +
                                  Joint("rail", "prismatic", "base", "carriage", "<axis xyz=\"1 0 0\"/>" + kLimit) +
                                  Joint("j1", "revolute", "carriage", "a") + Joint("j2", "revolute", "a", "b"));
-  ExpectRejected(rail, {"joint 'rail'", "prismatic", "--lock rail=VALUE"});
+  ExpectRejected(rail, {"joint 'rail'", "prismatic", "locked_joints rail=VALUE"});
   // A --tip below it does not make it a revolute joint.
   try {
     LoadUrdfString(rail, "<string>", "", Options({}, "b"));
@@ -231,14 +231,14 @@ TEST(UrdfTest, RejectsUnsupportedJointTypesNamingTheJoint) {
   ASSERT_EQ(locked.model.n_dof(), 2);
   ExpectNear(locked.model.link(0).X_PJ.translation(), Eigen::Vector3d(0.3, 0, 0), 1e-15, "j1 on the locked rail");
   ASSERT_EQ(locked.warnings.size(), 1u);
-  EXPECT_NE(locked.warnings[0].find("'rail' (prismatic, at 0.3 m by --lock, into the ground)"), std::string::npos)
+  EXPECT_NE(locked.warnings[0].find("'rail' (prismatic, at 0.3 m by locked_joints, into the ground)"), std::string::npos)
       << locked.warnings[0];
 
   // A floating base (a mobile robot's file) can only be held at its origin.
   const std::string floating = Robot(BareLink("world") + MassLink("base") + MassLink("a") +
                                      Joint("base_joint", "floating", "world", "base", "<origin xyz=\"0 0 0.4\"/>") +
                                      Joint("j1", "revolute", "base", "a"));
-  ExpectRejected(floating, {"joint 'base_joint' (floating)", "--lock base_joint=0 "});
+  ExpectRejected(floating, {"joint 'base_joint' (floating)", "locked_joints base_joint=0 "});
   const UrdfLoadResult held =
       LoadUrdfString(floating, "<string>", "", Options({{"base_joint", 0.0}}));
   ExpectNear(held.model.link(0).X_PJ.translation(), Eigen::Vector3d(0, 0, 0.4), 0.0, "j1 on the held base");
@@ -447,7 +447,7 @@ TEST(UrdfTest, LockedFingersMoveToTheGivenOpening) {
   ASSERT_TRUE(AddJointLock("panda_finger_joint1=0.04", &options, &why)) << why;
   const UrdfLoadResult loaded = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", options);
   ASSERT_EQ(loaded.warnings.size(), 1u);
-  ExpectContains(loaded.warnings[0], {"'panda_finger_joint1' (prismatic, at 0.04 m by --lock, into link 'panda_link7')",
+  ExpectContains(loaded.warnings[0], {"'panda_finger_joint1' (prismatic, at 0.04 m by locked_joints, into link 'panda_link7')",
                                       "'panda_finger_joint2' (prismatic, mimics 'panda_finger_joint1', at 0.04 m"});
   const LinkInertia open = PandaLink7ByHand(0.04), closed = PandaLink7ByHand(0.0);
   const Link& link7 = loaded.model.link(6);
@@ -493,7 +493,7 @@ TEST(UrdfTest, TipAndLockShortenTheChain) {
   lock7.locked_joints["panda_joint7"] = 0.5;
   const UrdfLoadResult six = LoadUrdfString(testing::PandaLikeUrdf(), "panda.urdf", "", lock7);
   ASSERT_EQ(six.model.n_dof(), 6);
-  ExpectContains(six.warnings.at(0), {"'panda_joint7' (revolute, at 0.5 rad by --lock, into link 'panda_link6')"});
+  ExpectContains(six.warnings.at(0), {"'panda_joint7' (revolute, at 0.5 rad by locked_joints, into link 'panda_link6')"});
   // Link 7's frame in link 6: (0.088, 0, 0), Rx(π/2)·Rz(0.5); link 6 is 1 kg at its origin.
   const Eigen::Vector3d p_67(0.088, 0, 0);
   const Eigen::Matrix3d R_67 = Rx(kPi / 2) * Rz(0.5);
@@ -507,15 +507,15 @@ TEST(UrdfTest, TipAndLockShortenTheChain) {
 TEST(UrdfTest, OptionsThatDoNotFitTheFileAreRefusedNamingWhatToChange) {
   const std::string panda = testing::PandaLikeUrdf();
   ExpectRejectedWith(panda, Options({{"panda_finger_joint1", 0.05}}),
-                     {"--lock panda_finger_joint1=0.05", "outside the <limit>", "[0, 0.04] m"});
+                     {"locked_joints panda_finger_joint1=0.05", "outside the <limit>", "[0, 0.04] m"});
   ExpectRejectedWith(panda, Options({{"wrist", 0.0}}),
                      {"no joint 'wrist'", "joints that can be locked: 'panda_finger_joint1', 'panda_finger_joint2', "
                                           "'panda_joint1'"});
   ExpectRejectedWith(panda, Options({{"panda_hand_joint", 0.0}}), {"'panda_hand_joint' is fixed already"});
-  ExpectRejectedWith(panda, Options({}, "flange"), {"--tip flange: no link 'flange'", "'panda_hand'"});
+  ExpectRejectedWith(panda, Options({}, "flange"), {"tip_link flange: no link 'flange'", "'panda_hand'"});
   ExpectRejectedWith(panda, Options({}, "panda_link0"), {"root link"});
   ExpectRejectedWith(panda, Options({}, "panda_leftfinger"),
-                     {"joint 'panda_finger_joint1': prismatic joint on the chain", "--lock panda_finger_joint1=VALUE"});
+                     {"joint 'panda_finger_joint1': prismatic joint on the chain", "locked_joints panda_finger_joint1=VALUE"});
 
   // AddJointLock parses JOINT=VALUE.
   UrdfLoadOptions options;
@@ -539,7 +539,7 @@ TEST(UrdfTest, BranchesAskForATipAndTheOtherBranchIsMerged) {
             Joint("j3", "revolute", "b", "b2") +
             Joint("j4", "revolute", "a", "c", "<origin xyz=\"0.3 0 0\"/><axis xyz=\"1 0 0\"/>" + kLimit));
   ExpectRejectedWith(xml, {}, {"link 'a': the robot branches into 2 chains", "'b2' (joint 'j3')", "'c' (joint 'j4')",
-                               "--tip LINK"});
+                               "tip_link LINK"});
   const UrdfLoadResult loaded = LoadUrdfString(xml, "vendor.urdf", "", Options({}, "b2"));
   ASSERT_EQ(loaded.model.n_dof(), 3);
   // a (1 kg at 0) with c (0.5 kg at (0.3, 0.2, 0)): COM (0.1, 0.2/3, 0).

@@ -73,11 +73,11 @@ TEST(ExcitationDesignTest, UnboundedOrInconsistentLimitsAreNamed) {
   o.harmonics = 0;
   std::string why;
   EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("--harmonics"), std::string::npos);
+  EXPECT_NE(why.find("harmonics: must be in 1.."), std::string::npos);
   o = DesignOptions{};
   o.samples = 20;  // 8 per period of the 0.5 Hz top harmonic over 10 s needs 40
   EXPECT_FALSE(o.IsValid(&why));
-  EXPECT_NE(why.find("--samples must be at least 40"), std::string::npos) << why;
+  EXPECT_NE(why.find("samples: must be at least 40"), std::string::npos) << why;
 }
 
 // paper6r, per-body model. The normalised cond of the paper's two-hinge

@@ -389,11 +389,11 @@ TEST(LogFilterOptionsTest, IsValid) {
   std::string why;
   EXPECT_TRUE(LogFilterOptions{}.IsValid(&why));
   EXPECT_FALSE((LogFilterOptions{.order = 0}).IsValid(&why));
-  EXPECT_EQ(why, "expected order in 1..8, got 0");
+  EXPECT_EQ(why, "order: expected 1..8, got 0");
   EXPECT_FALSE((LogFilterOptions{.cutoff_hz = -1.0}).IsValid(&why));
-  EXPECT_NE(why.find("expected cutoff_hz > 0"), std::string::npos);
+  EXPECT_NE(why.find("cutoff_hz: expected > 0 Hz"), std::string::npos);
   EXPECT_FALSE((LogFilterOptions{.decimation = 0}).IsValid(&why));
-  EXPECT_EQ(why, "expected decimation >= 1, got 0");
+  EXPECT_EQ(why, "decimation: expected >= 1, got 0");
   EXPECT_FALSE((LogFilterOptions{.order = 9}).IsValid(nullptr));
 }
 
@@ -562,7 +562,7 @@ TEST(ProcessJointLogTest, RejectsNonUniformSamplingAndBadShapes) {
             std::string::npos);
   EXPECT_THROW(ProcessJointLog(log.t, log.q, log.tau.leftCols(1), {}), std::invalid_argument);
   EXPECT_NE(ThrownMessage([&] { ProcessJointLog(log.t, log.q, log.tau, {.order = 0}); })
-                .find("log filter options: expected order"),
+                .find("log filter options: order: expected 1.."),
             std::string::npos);
   // 60 Hz would alias after decimation by 10 (new Nyquist 50 Hz).
   EXPECT_NE(ThrownMessage([&] { ProcessJointLog(log.t, log.q, log.tau, {.cutoff_hz = 60.0, .decimation = 10}); })

@@ -130,11 +130,11 @@ TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
   JointLogFormat seven;
   seven.columns = {"t", "q1..q7", "tau1..tau6"};
   const std::vector<Case> cases = {
-      {data, {}, "x.csv:1: the first line is data (all numbers), not a header naming the columns: pass --columns"},
-      {data, currents, "x.csv: --columns: the log has motor currents i1..i6 but no tau: pass --drive-gains"},
+      {data, {}, "x.csv:1: the first line is data (all numbers), not a header naming the columns: pass `columns`"},
+      {data, currents, "x.csv: columns: the log has motor currents i1..i6 but no tau: pass drive_gains"},
       {data, short_columns, "x.csv:1: 13 fields, expected at least 14"},
-      {data, bad_range, "--columns: 'q1..qd6': expected a range such as q1..q6"},
-      {data, seven, "--columns: column 8 ('q7'): joint 7 but the robot has 6 joints"},
+      {data, bad_range, "columns: 'q1..qd6': expected a range such as q1..q6"},
+      {data, seven, "columns: column 8 ('q7'): joint 7 but the robot has 6 joints"},
       {"t,q1,q2,q3,q4,q5,q6,qd1,qd2,tau1,tau2,tau3,tau4,tau5,tau6\n", {}, "x.csv:1: missing column 'qd3': give all of qd1..qd6 or none"},
       {"t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n0,0,0,0,0,0,0,1,1,1,1,x,1\n", {}, "x.csv:2: column 12 ('tau5'): 'x' is not a number"},
   };
@@ -146,14 +146,14 @@ TEST(JointLogCsvTest, ErrorsNameFileLineAndColumnOrTheOption) {
   JointLogFormat gains_without_currents;
   gains_without_currents.drive_gains = std::vector<double>(6, 1.0);
   EXPECT_NE(parse("t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n0,0,0,0,0,0,0,1,1,1,1,1,1\n", gains_without_currents)
-                .find("x.csv:1: --drive-gains given but the log has no motor currents i1..i6"),
+                .find("x.csv:1: drive_gains given but the log has no motor currents i1..i6"),
             std::string::npos);
   // Options alone: the CLI reports these as usage errors.
   std::string why;
   JointLogFormat unit;
   unit.angle_unit = "grad";
   EXPECT_FALSE(unit.IsValid(&why));
-  EXPECT_NE(why.find("--angle-unit"), std::string::npos);
+  EXPECT_NE(why.find("angle_unit: expected rad or deg"), std::string::npos);
   JointLogFormat zero_gain;
   zero_gain.drive_gains = {1, 0};
   EXPECT_FALSE(zero_gain.IsValid(&why));

@@ -7,11 +7,18 @@ namespace idbench::cli {
 namespace {
 
 // Fields several commands' options share, one flag each.
-constexpr FieldFlag kSharedSpellings[] = {{"out_dir", "--out"},     {"robot", "--robot"},
-                                          {"friction", "--friction"}, {"coulomb_smoothing", "--coulomb-smoothing"},
-                                          {"duration", "--duration"}, {"dt", "--dt"}};
+constexpr FieldFlag kSharedSpellings[] = {{"out_dir", "--out"},
+                                          {"robot", "--robot"},
+                                          {"locked_joints", "--lock"},
+                                          {"tip_link", "--tip"},
+                                          {"friction", "--friction"},
+                                          {"coulomb_smoothing", "--coulomb-smoothing"},
+                                          {"duration", "--duration"},
+                                          {"dt", "--dt"}};
 
 }  // namespace
+
+std::string SharedFlagSpelling(const std::string& message) { return SpellFields(message, kSharedSpellings); }
 
 CliContext::CliContext(std::string command_line) : command_line_(std::move(command_line)) {
   AddSpellings(kSharedSpellings);
@@ -21,26 +28,7 @@ void CliContext::AddSpellings(std::span<const FieldFlag> table) {
   spellings_.insert(spellings_.end(), table.begin(), table.end());
 }
 
-std::string CliContext::FlagSpelling(std::string message) const {
-  for (const auto& [field, flag] : spellings_) {
-    const std::string f(field);
-    for (size_t at = message.find(f); at != std::string::npos; at = message.find(f, at + 1)) {
-      // A word of its own (not part of a path such as /tmp/time_window.csv).
-      // A field that is a plain word (data, topic) only where it cannot be
-      // English: as a label, "data: ..." at the start, after ": " or "(".
-      const size_t end = at + f.size();
-      bool word = (at == 0 || std::string(" (,").find(message[at - 1]) != std::string::npos) &&
-                  (end == message.size() || std::string(" :,);").find(message[end]) != std::string::npos);
-      if (word && f.find('_') == std::string::npos) {
-        const bool label = end < message.size() && message[end] == ':' &&
-                           (at == 0 || message[at - 1] == '(' || (at >= 2 && message.compare(at - 2, 2, ": ") == 0));
-        word = label;
-      }
-      if (word) message.replace(at, f.size(), flag);
-    }
-  }
-  return message;
-}
+std::string CliContext::FlagSpelling(std::string message) const { return SpellFields(std::move(message), spellings_); }
 
 int CliContext::UsageError(const std::string& message) const {
   std::fprintf(stderr, "idbench: error: %s\n", FlagSpelling(message).c_str());

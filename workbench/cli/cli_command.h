@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "idbench/engine/urdf.h"
+#include "idbench/workbench/commands/field_spelling.h"
 
 namespace idbench::cli {
 
@@ -30,10 +31,11 @@ struct UsageException : std::invalid_argument {
 
 // An option field as library messages name it (time_window) and the flag
 // that sets it (--time-window). Each command keeps its table beside its flags.
-struct FieldFlag {
-  const char* field;
-  const char* flag;
-};
+using FieldFlag = FieldSpelling;
+
+// The message with the fields every command shares (robot, locked_joints,
+// out_dir, ...) spelled as their flags, as CliContext::FlagSpelling does.
+std::string SharedFlagSpelling(const std::string& message);
 
 // What the subcommands are added with; main() keeps it for as long as they run.
 class CliContext {
@@ -54,9 +56,8 @@ class CliContext {
   // message: a message from reading a log names time_window for identify and
   // gains alike, and a parse error is spelled before any command runs.
   void AddSpellings(std::span<const FieldFlag> table);
-  // The message with each field that is a word of its own (not part of a
-  // path such as /tmp/time_window.csv) spelled as its flag; a field that is
-  // a plain word (data) only where it labels what follows ("data: ...").
+  // The message with its fields spelled as their flags (SpellFields: a
+  // plain word such as data only where it labels text or is quoted).
   std::string FlagSpelling(std::string message) const;
 
   // "idbench: error: MESSAGE" on stderr, flag-spelled; returns kExitUsage.

@@ -42,7 +42,7 @@ RobotModel LoadRobotOrThrow(const std::string& name_or_path, const UrdfLoadOptio
     throw UsageException("--lock and --tip apply to URDF files, not to the built-in robot '" + name_or_path + "'");
   }
   UrdfLoadResult loaded = LoadRobot(name_or_path, load);
-  for (const std::string& w : loaded.warnings) std::fprintf(stderr, "idbench: warning: %s\n", w.c_str());
+  for (const std::string& w : loaded.warnings) std::fprintf(stderr, "idbench: warning: %s\n", SharedFlagSpelling(w).c_str());
   if (transmission) *transmission = loaded.transmission;
   return std::move(loaded.model);
 }

@@ -18,6 +18,14 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of CompareOptions named in messages.
+constexpr FieldFlag kCompareSpellings[] = {{"model", "--model"},
+                                           {"samples", "--samples"},
+                                           {"trials", "--trials"},
+                                           {"tau_noise", "--tau-noise"},
+                                           {"wrench_noise", "--wrench-noise"},
+                                           {"clearance", "--clearance"}};
+
 struct CompareFlags {
   CompareOptions options;
   bool report = false;   // --report
@@ -47,6 +55,7 @@ int CompareCommand(const CompareOptions& options, const UrdfLoadOptions& load, b
 }  // namespace
 
 CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kCompareSpellings);
   auto flags = std::make_shared<CompareFlags>();
   CompareOptions& compare = flags->options;
   compare.command_line = context->command_line();

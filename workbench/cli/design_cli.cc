@@ -21,6 +21,18 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of DesignCommandOptions and DesignOptions named in messages.
+constexpr FieldFlag kDesignSpellings[] = {
+    {"harmonics", "--harmonics"},     {"f0", "--f0"},
+    {"samples", "--samples"},         {"starts", "--starts"},
+    {"threads", "--threads"},         {"max_evaluations", "--max-evaluations"},
+    {"max_seconds", "--max-time"},    {"margin", "--margin"},
+    {"clearance", "--clearance"},     {"ramp_seconds", "--ramp"},
+    {"home", "--home"},               {"limits", "--limits"},
+    {"model", "--model"},             {"criterion", "--criterion"},
+    {"algorithm", "--algorithm"},     {"csv_rate_hz", "--rate"},
+    {"csv_columns", "--csv-columns"}};
+
 struct DesignFlags {
   DesignCommandOptions options;
   bool report = false;   // --report
@@ -108,6 +120,7 @@ void AddSearchFlags(CLI::App* command, DesignOptions* design) {
 }  // namespace
 
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kDesignSpellings);
   auto flags = std::make_shared<DesignFlags>();
   DesignCommandOptions& design = flags->options;
   design.command_line = context->command_line();

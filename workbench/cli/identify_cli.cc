@@ -20,7 +20,13 @@ namespace {
 // Fields of IdentifyOptions named in messages.
 constexpr FieldFlag kIdentifySpellings[] = {
     {"validate_window", "--validate-window"}, {"time_window", "--time-window"}, {"drive_gains", "--drive-gains"},
-    {"friction_side", "--friction-side"}};
+    {"friction_side", "--friction-side"}, {"data", "--data"}, {"model", "--model"}, {"estimator", "--estimator"},
+    // PlausibilitySettings, as the library names them.
+    {"plausibility.com_in_geometry = false", "--com-bound none"},
+    {"plausibility.mass_factor_min, plausibility.mass_factor_max", "--mass-range"},
+    {"plausibility.total_mass_tolerance", "--total-mass-tolerance"}, {"plausibility.total_mass", "--total-mass"},
+    {"plausibility.prior_weight", "--prior-weight"}, {"plausibility.cost_tolerance", "--cost-tolerance"},
+    {"write_unverified", "--write-unverified"}};
 
 struct IdentifyFlags {
   IdentifyOptions options;

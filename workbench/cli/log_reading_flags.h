@@ -14,7 +14,14 @@
 namespace idbench::cli {
 
 // Fields of JointLogFormat named in messages about reading a log.
-inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"}, {"topic", "--topic"}};
+inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"},
+                                                     {"topic", "--topic"},
+                                                     {"columns", "--columns"},
+                                                     {"drive_gains", "--drive-gains"},
+                                                     {"max_gap_s", "--max-gap"},
+                                                     {"filter.cutoff_hz", "--filter-cutoff"},
+                                                     {"filter.order", "--filter-order"},
+                                                     {"filter.decimation", "--decimate"}};
 
 // --columns, --topic, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
 // --filter-order, --max-gap, filling these fields of the command's options.

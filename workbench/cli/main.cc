@@ -48,10 +48,10 @@ int main(int argc, char** argv) {
     // Settings that admit no motion are wrong input (nothing ran); a search
     // that found nothing feasible ran and failed.
     if (e.before_search()) return context.UsageError(e.what());
-    std::fprintf(stderr, "idbench: error: %s\n", e.what());
+    std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return idbench::cli::kExitFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "idbench: error: %s\n", e.what());
+    std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return idbench::cli::kExitFailure;
   }
   return context.UsageError("a subcommand is required (run, simulate, identify, gains, payload, montecarlo, design, compare, render, report, gui); see idbench --help");

@@ -14,7 +14,7 @@ namespace idbench::cli {
 namespace {
 
 // Fields of MonteCarloOptions named in messages (beside the shared ones).
-constexpr FieldFlag kMonteCarloSpellings[] = {{"trials", "--trials"}, {"samples", "--samples"}, {"tau_noise", "--tau-noise"}};
+constexpr FieldFlag kMonteCarloSpellings[] = {{"trials", "--trials"}, {"samples", "--samples"}, {"tau_noise", "--tau-noise"}, {"trajectory", "--trajectory"}};
 
 int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;

@@ -14,6 +14,9 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of SimulateOptions named in messages.
+constexpr FieldFlag kSimulateSpellings[] = {{"paper_accel_deg_s2", "--accel"}, {"out", "--out"}};
+
 struct SimulateFlags {
   SimulateOptions options;
   bool no_derivatives = false;  // --no-derivatives: sensors.record_derivatives = false
@@ -37,6 +40,7 @@ int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load,
 }  // namespace
 
 CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
+  context->AddSpellings(kSimulateSpellings);
   auto flags = std::make_shared<SimulateFlags>();
   SimulateOptions& simulate = flags->options;
   CLI::App* command = app->add_subcommand("simulate", "Simulate an experiment in Bullet and write the joint log (CSV)");

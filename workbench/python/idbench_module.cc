@@ -1,13 +1,42 @@
 // The Python module `idbench` (pybind11): the library calls the command line
-// makes, on numpy arrays. Options are keyword arguments named as the command
-// line's (--total-mass → total_mass); errors are raised with the command
-// line's messages (ValueError: bad input or options; RuntimeError: it ran and
-// failed). docs/python.md. Each part is bound in its own file (bindings.h).
+// makes, on numpy arrays. Options are keyword arguments named as the options'
+// fields, or as the command line's flags (--total-mass → total_mass); errors
+// are raised with the library's messages, their fields spelled as keywords
+// (ValueError: bad input or options; RuntimeError: it ran and failed).
+// docs/python.md. Each part is bound in its own file (bindings.h).
 #include <exception>
+#include <stdexcept>
 
 #include "bindings.h"
 #include "idbench/workbench/commands/design_command.h"
+#include "idbench/workbench/commands/field_spelling.h"
 #include "idbench/workbench/version.h"
+
+namespace {
+
+// The option fields whose keyword argument has another name.
+constexpr idbench::FieldSpelling kKeywordSpellings[] = {
+    {"locked_joints", "lock"},
+    {"tip_link", "tip"},
+    {"csv_rate_hz", "rate"},
+    {"max_seconds", "max_time"},
+    {"ramp_seconds", "ramp"},
+    {"paper_accel_deg_s2", "paper_accel"},
+    {"max_gap_s", "max_gap"},
+    {"filter.cutoff_hz", "filter_cutoff"},
+    {"filter.order", "filter_order"},
+    {"filter.decimation", "decimate"},
+    {"plausibility.com_in_geometry = false", "com_bound='none'"},
+    {"plausibility.mass_factor_min, plausibility.mass_factor_max", "mass_range"},
+    {"plausibility.total_mass_tolerance", "total_mass_tolerance"},
+    {"plausibility.total_mass", "total_mass"},
+    {"plausibility.prior_weight", "prior_weight"},
+    {"plausibility.cost_tolerance", "cost_tolerance"},
+    {"write_unverified", "write_unverified=True"}};
+
+std::string KeywordSpelling(const char* message) { return idbench::SpellFields(message, kKeywordSpellings); }
+
+}  // namespace
 
 PYBIND11_MODULE(idbench, m) {
   using namespace idbench;
@@ -23,7 +52,15 @@ PYBIND11_MODULE(idbench, m) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const InfeasibleDesign& e) {
-      PyErr_SetString(e.before_search() ? PyExc_ValueError : PyExc_RuntimeError, e.what());
+      PyErr_SetString(e.before_search() ? PyExc_ValueError : PyExc_RuntimeError, KeywordSpelling(e.what()).c_str());
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's own (TypeError, ...): its translator
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, KeywordSpelling(e.what()).c_str());
+    } catch (const std::runtime_error& e) {
+      PyErr_SetString(PyExc_RuntimeError, KeywordSpelling(e.what()).c_str());
     }
   });
   python::BindRobot(m);

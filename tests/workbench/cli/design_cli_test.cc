@@ -153,7 +153,7 @@ TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
       << r.err;
   r = Run("design --robot puma560 --harmonics 0" + out);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--harmonics must be in 1..50, got 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--harmonics: must be in 1..50, got 0"), std::string::npos) << r.err;
   r = Run("design --robot puma560 --f0 -1" + out);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--f0"), std::string::npos) << r.err;
@@ -175,7 +175,7 @@ TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
   EXPECT_NE(r.err.find("--csv-columns: expected 'q' or 'q,qd,qdd', got 'q,qd'"), std::string::npos) << r.err;
   r = Run("design --robot puma560 --ramp -1" + out);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--ramp must be in [0, 600] s, got -1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--ramp: must be in [0, 600] s, got -1"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "d"));
 }
 

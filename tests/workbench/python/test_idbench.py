@@ -168,7 +168,7 @@ def test_a_refused_model_is_the_verdict_not_a_urdf(puma, tmp_path):
                                rtol=1e-12)
 
 
-def test_errors_carry_the_command_lines_messages(puma, tmp_path):
+def test_errors_carry_the_command_lines_messages_in_keywords(puma, tmp_path):
     code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
     assert code != 0
     message = err.strip().splitlines()[-1].removeprefix("idbench: error: ")
@@ -180,7 +180,17 @@ def test_errors_carry_the_command_lines_messages(puma, tmp_path):
     assert code == 2
     with pytest.raises(ValueError) as raised:
         idbench.identify(puma, "x.csv", estimator="best")
-    assert str(raised.value) == err.strip().splitlines()[-1].removeprefix("idbench: error: ")
+    # The same message, the option named as its keyword rather than its flag.
+    assert err.strip().splitlines()[-1] == "idbench: error: --estimator: expected ols, wls or pc, got 'best'"
+    assert str(raised.value) == "estimator: expected ols, wls or pc, got 'best'"
+
+    # Fields whose keyword differs from the field are spelled as the keyword.
+    with pytest.raises(ValueError) as raised:
+        idbench.identify(puma, "x.csv", total_mass=-1)
+    assert str(raised.value).startswith("total_mass: expected 0 (none) to 1e6 kg"), str(raised.value)
+    with pytest.raises(ValueError) as raised:
+        idbench.design(puma, ramp=-1)
+    assert str(raised.value) == "ramp: must be in [0, 600] s, got -1", str(raised.value)
 
 
 def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
@@ -209,7 +219,7 @@ def test_design_reports_progress_and_a_feasible_trajectory(puma, tmp_path):
     assert len(rows) == 26 * 100 + 1
     first, last = np.array(list(rows[0]))[1:], np.array(list(rows[-1]))[1:]
     assert np.array_equal(first, home) and np.array_equal(last, home)
-    with pytest.raises(ValueError, match="--home: expected 6 joint angles"):
+    with pytest.raises(ValueError, match="^home: expected 6 joint angles"):
         idbench.design(puma, home=[0.0, 0.0], limits=str(tmp_path / "limits.json"))
 
 

@@ -122,10 +122,10 @@ void CheckCompareMotion(const std::string& name, double duration, const CompareO
   std::string works = below > 0 ? std::to_string(below) : "";
   if (above > 0 && above != below) works += (works.empty() ? "" : " or ") + std::to_string(above);
   throw std::invalid_argument(
-      "--samples: " + std::to_string(options.samples) + " samples over " + name + "'s " + Shortest(duration) +
+      "samples: " + std::to_string(options.samples) + " samples over " + name + "'s " + Shortest(duration) +
       " s fall every " + Format("%.4g", per_sample) + " simulation steps of " + Shortest(options.dt) +
       " s; they must fall on whole steps (samples must divide the " + std::to_string(n_steps) + " steps)" +
-      (works.empty() ? "" : ": --samples " + works + " would"));
+      (works.empty() ? "" : ": `samples` " + works + " would"));
 }
 
 // %σ from σ where the true value is not zero up to rounding (kZeroValue);
@@ -230,31 +230,31 @@ bool CompareOptions::IsValid(std::string* why) const {
     return fail("give at least one motion (built-in name, .json/.csv trajectory file, or a recorded log)");
   }
   if (!logs.empty() && !preparation().IsValid(why)) return false;
-  if (model != "torque" && model != "per-body") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
+  if (model != "torque" && model != "per-body") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
   std::string friction_why;
-  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
-  if (samples < 4) return fail("--samples: must be >= 4, got " + std::to_string(samples));
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
+  if (samples < 4) return fail("samples: must be >= 4, got " + std::to_string(samples));
   if (trials < 2 || trials > kMaxTrials) {
-    return fail("--trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
+    return fail("trials: must be in [2, " + std::to_string(kMaxTrials) + "], got " + std::to_string(trials));
   }
   const double max_duration = SimulationOptions::kMaxSteps * dt;  // [s] what one simulation holds
   if (!(duration > 0.0) || !(duration <= max_duration)) {
-    return fail("--duration: must be in (0, " + Shortest(max_duration) + "] s (the simulation keeps at most " +
+    return fail("duration: must be in (0, " + Shortest(max_duration) + "] s (the simulation keeps at most " +
                 std::to_string(std::lround(SimulationOptions::kMaxSteps)) + " steps of " + Shortest(dt) + " s), got " + Shortest(duration));
   }
   for (double s : tau_noise) {
-    if (!(s > 0.0) || !std::isfinite(s)) return fail("--tau-noise: every value must be > 0 N m");
+    if (!(s > 0.0) || !std::isfinite(s)) return fail("tau_noise: every value must be > 0 N m");
   }
   if (wrench_noise.size() != 2 || !(wrench_noise[0] > 0.0) || !(wrench_noise[1] > 0.0)) {
-    return fail("--wrench-noise: give force and moment sigma, both > 0 (N, N m)");
+    return fail("wrench_noise: give force and moment sigma, both > 0 (N, N m)");
   }
-  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
 
 CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options) {
   const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
-  CheckRegressorSamples("--samples", options.samples, model.n_dof());
+  CheckRegressorSamples("samples", options.samples, model.n_dof());
   const bool per_body = options.model == "per-body";
   const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
                                              : DesignRegressor::JointTorque(model, *ParseFrictionTerms(options.friction, nullptr));
@@ -273,7 +273,7 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
   // steps; a recorded log is read whole (not simulated).
   const size_t n_noise = options.tau_noise.size();
   if (!per_body && n_noise != 1 && n_noise != static_cast<size_t>(model.n_dof())) {
-    throw std::invalid_argument("--tau-noise: expected 1 or " + std::to_string(model.n_dof()) +
+    throw std::invalid_argument("tau_noise: expected 1 or " + std::to_string(model.n_dof()) +
                                 " values (one per joint), got " + std::to_string(n_noise));
   }
   std::vector<std::string> names = options.trajectories;

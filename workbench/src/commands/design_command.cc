@@ -37,32 +37,32 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (model != "torque" && model != "per-body") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
+  if (model != "torque" && model != "per-body") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
   std::string friction_why;
-  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (!criterion.empty() && !ParseDesignCriterion(criterion)) {
-    return fail("--criterion: expected cond, cond-normalised, logdet or hybrid, got '" + criterion + "'");
+    return fail("criterion: expected cond, cond-normalised, logdet or hybrid, got '" + criterion + "'");
   }
   if (!ParseDesignAlgorithm(algorithm)) {
-    return fail("--algorithm: expected slsqp, mma, cobyla or sbplx, got '" + algorithm + "'");
+    return fail("algorithm: expected slsqp, mma, cobyla or sbplx, got '" + algorithm + "'");
   }
   if (!design.IsValid(why)) return false;
-  if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("--rate: must be > 0 Hz");
+  if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("csv_rate_hz: must be > 0 Hz");
   if (csv_rate_hz < MinimumCsvRate(design)) {
     char buf[256];
     std::snprintf(buf, sizeof buf,
-                  "--rate: %g Hz cannot sample the motion; trajectory.csv needs at least 10 samples per period of "
-                  "the highest harmonic, 10 x %d harmonics x %g Hz (--f0) = %g Hz",
+                  "csv_rate_hz: %g Hz cannot sample the motion; trajectory.csv needs at least 10 samples per period of "
+                  "the highest harmonic, 10 x %d harmonics x %g Hz (f0) = %g Hz",
                   csv_rate_hz, design.harmonics, design.f0, MinimumCsvRate(design));
     return fail(buf);
   }
   if (csv_columns != "q" && csv_columns != "q,qd,qdd") {
-    return fail("--csv-columns: expected 'q' or 'q,qd,qdd', got '" + csv_columns + "'");
+    return fail("csv_columns: expected 'q' or 'q,qd,qdd', got '" + csv_columns + "'");
   }
   for (double q : home) {
-    if (!std::isfinite(q)) return fail("--home: expected finite joint angles [rad]");
+    if (!std::isfinite(q)) return fail("home: expected finite joint angles [rad]");
   }
-  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
 
@@ -71,7 +71,7 @@ double MinimumCsvRate(const DesignOptions& design) { return 10.0 * design.harmon
 bool DesignCommandOptions::IsValidFor(const RobotModel& robot, std::string* why) const {
   if (home.empty() || static_cast<int>(home.size()) == robot.n_dof()) return true;
   if (why) {
-    *why = "--home: expected " + std::to_string(robot.n_dof()) + " joint angles (one per joint of " + robot.name() +
+    *why = "home: expected " + std::to_string(robot.n_dof()) + " joint angles (one per joint of " + robot.name() +
            "), got " + std::to_string(home.size());
   }
   return false;

@@ -56,29 +56,29 @@ bool IdentifyOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (data.empty()) return fail("--data: a joint-log CSV is required");
+  if (data.empty()) return fail("data: a joint-log CSV is required");
   if (model == "per-body") {
-    return fail("--model per-body: needs the wrench through every hinge, which a joint log does not carry; "
+    return fail("model: per-body needs the wrench through every hinge, which a joint log does not carry; "
                 "`idbench run` identifies per body from Bullet's joint feedback");
   }
-  if (model != "torque") return fail("--model: expected 'torque' or 'per-body', got '" + model + "'");
-  if (!ParseTorqueEstimator(estimator)) return fail("--estimator: expected ols, wls or pc, got '" + estimator + "'");
+  if (model != "torque") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
+  if (!ParseTorqueEstimator(estimator)) return fail("estimator: expected ols, wls or pc, got '" + estimator + "'");
   std::string friction_why;
-  if (!ParseFrictionTerms(friction, &friction_why)) return fail("--friction: " + friction_why);
+  if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (friction_side != "joint" && friction_side != "actuator") {
     return fail("friction_side: expected joint or actuator, got '" + friction_side + "'");
   }
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("--coulomb-smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+    return fail("coulomb_smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;
-  if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
+  if (!filter.IsValid(&filter_why)) return fail("filter." + filter_why);
   if (!preparation(true).IsValid(why)) return false;
   if (!validate_window.empty() && validate.empty()) return fail("validate_window: given without a held-out log (validate)");
   if (!preparation(false).IsValid(why)) return false;
   std::string plausibility_why;
-  if (!plausibility.IsValid(&plausibility_why)) return fail(InFrontEndTerms(plausibility_why, OptionNames::kCommandLine));
+  if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
   if (!base_pose.IsValid(why)) return false;
-  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -28,10 +28,10 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
     }
   }
   if (!(max_gap_s >= 0.0 && max_gap_s <= kMaxGapS)) {
-    return fail("--max-gap: expected 0 (10 median steps) to " + Shortest(kMaxGapS) + " s, got " + Shortest(max_gap_s));
+    return fail("max_gap_s: expected 0 (10 median steps) to " + Shortest(kMaxGapS) + " s, got " + Shortest(max_gap_s));
   }
   std::string filter_why;
-  if (!filter.IsValid(&filter_why)) return fail("--filter: " + filter_why);
+  if (!filter.IsValid(&filter_why)) return fail("filter." + filter_why);
   return true;
 }
 
@@ -183,7 +183,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
   // some at its end, e.g. the degree check on the range of each joint).
   out.warnings = layout.warnings;
   out.notes = layout.notes;
-  if (layout.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (--drive-gains)");
+  if (layout.torque_from_currents) out.notes.push_back(path + ": tau = K·i from the motor currents (drive_gains)");
   out.n_raw = n;
   out.source = source;
   out.has_qd = layout.has_qd;
@@ -245,7 +245,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
       if (resampling.status == ResamplingStatus::kGap) {
         const int line = recorded.lines[static_cast<size_t>(resampling.gap_sample)];
         throw std::invalid_argument(path + ":" + std::to_string(line) + ": column 't': " + resampling.BriefReport() +
-                                    "; split the log there or choose a --time-window without it (--max-gap sets the "
+                                    "; split the log there or choose a time_window without it (max_gap_s sets the "
                                     "bound)");
       }
       if (resampling.status == ResamplingStatus::kResampled) out.notes.push_back(path + ": " + resampling.BriefReport());

@@ -113,7 +113,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
     if (fit.rank < p) {
       throw std::invalid_argument("montecarlo: the motion does not excite every base parameter (W has rank " +
                                   std::to_string(fit.rank) + " of " + std::to_string(p) +
-                                  "); choose a richer --trajectory (see idbench compare)");
+                                  "); choose a richer `trajectory` (see compare)");
     }
     estimates.col(trial) = fit.beta;
     sigma_sum += fit.sigma;

@@ -35,7 +35,7 @@ std::unique_ptr<Trajectory> MakeRunMotion(const RobotModel& model, const RunOpti
   std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.motion, model, builtin);
   if (motion->duration() < options.duration - 1e-9) {
     throw std::invalid_argument(options.motion + ": lasts " + Shortest(motion->duration()) +
-                                " s, shorter than --duration " + Shortest(options.duration) + " s");
+                                " s, shorter than `duration` " + Shortest(options.duration) + " s");
   }
   return motion;
 }

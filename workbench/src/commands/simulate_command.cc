@@ -23,11 +23,11 @@ bool SimulateOptions::IsValid(std::string* why) const {
     return false;
   };
   std::string sim_why;
-  if (!simulation().IsValid(&sim_why)) return fail("--dt/--duration: " + sim_why);
+  if (!simulation().IsValid(&sim_why)) return fail(sim_why);
   if (!std::isfinite(paper_accel_deg_s2) || paper_accel_deg_s2 <= 0.0)
-    return fail("--accel: must be > 0 deg/s^2, got " + std::to_string(paper_accel_deg_s2));
+    return fail("paper_accel_deg_s2: must be > 0 deg/s^2, got " + std::to_string(paper_accel_deg_s2));
   if (!base_pose.IsValid(why)) return false;
-  if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputFile(out, "out", &out_why)) return fail(out_why);
   return true;
 }
 

@@ -203,11 +203,11 @@ std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_d
 
 void CheckTrajectoryCsvRate(double duration, double rate_hz, int n_dof) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
-    throw std::invalid_argument("--rate: expected a rate > 0 Hz, got " + Shortest(rate_hz));
+    throw std::invalid_argument("csv_rate_hz: expected a rate > 0 Hz, got " + Shortest(rate_hz));
   }
   // Each row: t and n values of q, qd, qdd as text (at most 25 characters
   // each), and the log that holds them (8 bytes each).
-  CheckFitsInMemory("--rate " + Shortest(rate_hz), std::floor(duration * rate_hz + 1e-9) + 1,
+  CheckFitsInMemory("csv_rate_hz " + Shortest(rate_hz), std::floor(duration * rate_hz + 1e-9) + 1,
                     "rows of trajectory.csv", (25.0 + 8.0) * (1 + 3 * n_dof), "t, q, qd, qdd as text and as numbers");
 }
 

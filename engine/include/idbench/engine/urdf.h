@@ -54,7 +54,7 @@ struct UrdfLoadOptions {
   bool IsValid(std::string* why) const;
 };
 
-// "JOINT=VALUE" (as --lock takes it) into *options->locked_joints. False with
+// "JOINT=VALUE" (as the CLI's --lock takes it) into *options->locked_joints. False with
 // *why (quoting the text) when there is no '=', no name, a value that is not
 // one finite number, or a joint given twice.
 bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string* why);

@@ -53,7 +53,7 @@ struct JointLogFormat {
 };
 
 // The --columns items with ranges expanded ("q1..q3" → q1, q2, q3). Throws
-// std::invalid_argument "--columns: ..." for a malformed range or more than
+// std::invalid_argument "columns: ..." for a malformed range or more than
 // kMaxColumns names.
 std::vector<std::string> ExpandColumnNames(const std::vector<std::string>& items);
 

@@ -33,8 +33,8 @@ struct IdentifyOptions {
   LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
   PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
   std::string validate;            // held-out joint log (optional)
-  // Reading the logs (README "Joint logs"): --columns, --angle-unit,
-  // --drive-gains for --data and --validate; --time-window for --data only.
+  // Reading the logs (docs/formats/joint-logs.md): format (columns, angle
+  // unit, drive gains) for data and validate; time_window for data only.
   JointLogFormat format;
   std::vector<double> time_window;  // {T0, T1} [s]; empty: the whole log
   // {T0, T1} [s] of the held-out log scored as validation (e.g. its moving
