@@ -17,12 +17,31 @@
 #include <nlohmann/json.hpp>
 
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/workbench/commands/identify_command.h"
 #include "ident/synthetic_log.h"
 
 namespace idbench {
 namespace {
+
+// The text of `key: value` in joint `name`'s entry of joints.yaml ("" when absent).
+std::string YamlJointValue(const std::string& yaml, const std::string& name, const std::string& key) {
+  const size_t entry = yaml.find("- name: \"" + name + "\"\n");
+  if (entry == std::string::npos) return "";
+  const size_t next = yaml.find("- name:", entry + 1);
+  const size_t at = yaml.find("    " + key + ": ", entry);
+  if (at == std::string::npos || at > next) return "";
+  const size_t begin = at + 6 + key.size();
+  return yaml.substr(begin, yaml.find('\n', begin) - begin);
+}
+// The text of joint `name`'s element in a URDF or MJCF text.
+std::string JointElement(const std::string& xml, const std::string& name) {
+  const size_t at = xml.find("<joint name=\"" + name + "\"");
+  if (at == std::string::npos) return "";
+  const size_t end = xml.find("</joint>", at), line_end = xml.find('\n', at);
+  return xml.substr(at, (xml.compare(line_end - 2, 2, "/>") == 0 ? line_end : end) - at);
+}
 
 constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
 const double kOffset[6] = {0.0, -M_PI / 2, M_PI / 2, 0.0, 0.0, 0.0};  // q = A⁻¹θm + q0
@@ -131,6 +150,50 @@ class IdentifyTransmissionTest : public ::testing::Test {
     return pi;
   }
 
+  // joints.yaml, identified.json's "joints", identified.urdf and identified.xml
+  // carry identified.json's joint_side values for joints 1-4 and no number for
+  // the coupled wrist (joints 5, 6), with a comment naming the coupling.
+  void ExpectExportsCarryJointSideValuesAndNoneForTheCoupledWrist(const IdentifyOptions& options,
+                                                                  const IdentifyReport& report,
+                                                                  const nlohmann::json& identified) const {
+    const std::string yaml = FormatJointDynamicsYaml(*model_, options, report);
+    const std::string urdf = FormatIdentifiedUrdf(*model_, options, report);
+    const std::string mjcf = FormatIdentifiedMjcf(*model_, options, report);
+    const RobotModel loaded = LoadUrdfString(urdf).model;
+    for (int j = 0; j < 6; ++j) {
+      const nlohmann::json& listed = identified["joints"][j];
+      const std::string& name = model_->link(j).joint_name;
+      if (j < 4) {
+        for (const auto& [key, side] : {std::pair{"viscous", "Fv"}, {"coulomb", "Fc"}, {"rotor_inertia", "Ia"}}) {
+          const double truth = identified["joint_side"][side][j].get<double>();
+          EXPECT_NEAR(std::stod(YamlJointValue(yaml, name, key)), truth, 1e-12 * truth) << name << " " << key;
+          EXPECT_NEAR(listed[key].get<double>(), truth, 1e-12 * truth) << name << " " << key;
+        }
+        const double Fv = identified["joint_side"]["Fv"][j].get<double>();
+        const double Fc = identified["joint_side"]["Fc"][j].get<double>();
+        EXPECT_NEAR(loaded.link(j).dynamics.viscous, Fv, 1e-12 * Fv) << name;
+        EXPECT_NEAR(loaded.link(j).dynamics.coulomb, Fc, 1e-12 * Fc) << name;
+        EXPECT_FALSE(listed.contains("coupled_motors")) << name;
+        continue;
+      }
+      for (const char* key : {"viscous", "coulomb", "rotor_inertia"}) {
+        EXPECT_EQ(YamlJointValue(yaml, name, key), "null") << name << " " << key;
+        EXPECT_TRUE(listed[key].is_null()) << name << " " << key;
+      }
+      EXPECT_EQ(listed["coupled_motors"], (j == 4 ? nlohmann::json{5, 6} : nlohmann::json{6})) << name;
+      const std::string note = "joint '" + name + "' is coupled: " + (j == 4 ? "motors 5 and 6 turn" : "motor 6 turns");
+      EXPECT_NE(yaml.find("    # " + note + " with it"), std::string::npos) << yaml;
+      EXPECT_NE(urdf.find("<!-- " + EscapeXml(note)), std::string::npos) << urdf;
+      EXPECT_NE(mjcf.find("<!-- " + EscapeXml(note)), std::string::npos) << mjcf;
+      EXPECT_EQ(JointElement(urdf, name).find("<dynamics"), std::string::npos) << JointElement(urdf, name);
+      const std::string mjcf_joint = JointElement(mjcf, name);
+      ASSERT_FALSE(mjcf_joint.empty()) << name;
+      for (const char* zero : {"armature=", "damping=", "frictionloss="}) {
+        EXPECT_EQ(mjcf_joint.find(zero), std::string::npos) << mjcf_joint;
+      }
+    }
+  }
+
   std::filesystem::path dir_;
   std::optional<RobotModel> model_;
   JointLog log_;
@@ -188,6 +251,7 @@ TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJoi
   for (int j = 4; j < 6; ++j) {
     for (const char* key : {"Ia", "Fv", "Fc"}) EXPECT_TRUE(out["joint_side"][key][j].is_null()) << key << j;
   }
+  ExpectExportsCarryJointSideValuesAndNoneForTheCoupledWrist(motor, from_motor, out);
 }
 
 TEST_F(IdentifyTransmissionTest, ActuatorSideFrictionNeedsATransmission) {
