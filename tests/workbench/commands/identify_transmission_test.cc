@@ -20,6 +20,7 @@
 #include "idbench/engine/urdf.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/workbench/commands/identify_command.h"
+#include "idbench/workbench/commands/simulate_command.h"
 #include "ident/synthetic_log.h"
 
 namespace idbench {
@@ -252,6 +253,71 @@ TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJoi
     for (const char* key : {"Ia", "Fv", "Fc"}) EXPECT_TRUE(out["joint_side"][key][j].is_null()) << key << j;
   }
   ExpectExportsCarryJointSideValuesAndNoneForTheCoupledWrist(motor, from_motor, out);
+}
+
+// `simulate` with the same transmission (a file as a log description's) and
+// motor truth: the written motor-side log holds θm, θ̇m as the TX40's
+// relations by hand give them from the joint side, keeps virtual work, and
+// identifies to the same truth.
+TEST_F(IdentifyTransmissionTest, SimulatedMotorSideLogKeepsVirtualWorkAndIdentifiesToTheTruth) {
+  std::ofstream(dir_ / "wrist.json") << R"({"actuator_from_joint": [[32, 0, 0, 0, 0, 0], [0, 32, 0, 0, 0, 0],
+      [0, 0, 45, 0, 0, 0], [0, 0, 0, -48, 0, 0], [0, 0, 0, 0, 45, 0], [0, 0, 0, 0, 32, 32]],
+      "joint_offset": [0, -1.5707963267948966, 1.5707963267948966, 0, 0, 0]})";
+  SimulateOptions simulate;
+  simulate.duration = 10.0;
+  simulate.transmission = (dir_ / "wrist.json").string();
+  simulate.motor_viscous.assign(std::begin(kFv), std::end(kFv));
+  simulate.motor_coulomb.assign(std::begin(kFc), std::end(kFc));
+  simulate.motor_rotor_inertia.assign(std::begin(kIa), std::end(kIa));
+  const std::optional<Transmission> transmission = SimulateTransmission(simulate, 6, std::nullopt);
+  ASSERT_TRUE(transmission.has_value());
+  const MotorSideLog log = SimulateMotorSideLog(*model_, *transmission, simulate);
+  std::ofstream(dir_ / "sim.csv") << FormatMotorSideLogCsv(log);
+  std::ofstream(dir_ / "sim.json") << FormatMotorSideLogDescription(log, "sim.csv");
+
+  // The written file, parsed here: t, qm1..6, qdm1..6, qdd1..6, taum1..6.
+  std::ifstream csv(dir_ / "sim.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(0, 13), "t,qm1,qm2,qm3");
+  EXPECT_NE(line.find(",qdm6,qdd1,"), std::string::npos) << line;
+  EXPECT_NE(line.find(",taum6"), std::string::npos) << line;
+  const JointLog& joint = log.joint;
+  double worst_work = 0.0, worst_rates = 0.0, worst_torque = 0.0;
+  int s = 0;
+  for (; std::getline(csv, line); ++s) {
+    std::vector<double> v;
+    for (size_t at = 0; at <= line.size();) {
+      const size_t end = std::min(line.find(',', at), line.size());
+      v.push_back(std::stod(line.substr(at, end - at)));
+      at = end + 1;
+    }
+    ASSERT_EQ(v.size(), 25u);
+    const Eigen::Map<const Eigen::VectorXd> qm(&v[1], 6), qdm(&v[7], 6), taum(&v[19], 6);
+    const Eigen::VectorXd qd = joint.qd.row(s).transpose(), tau = joint.tau.row(s).transpose();
+    Eigen::VectorXd q_minus_offset(6);
+    for (int j = 0; j < 6; ++j) q_minus_offset[j] = joint.q(s, j) - kOffset[j];
+    worst_rates = std::max({worst_rates, (qdm - MotorRates(qd)).norm() / MotorRates(qd).norm(),
+                            (qm - MotorRates(q_minus_offset)).norm() / MotorRates(q_minus_offset).norm()});
+    worst_torque = std::max(worst_torque, (JointFromMotorTorques(taum) - tau).norm() / tau.norm());
+    worst_work = std::max(worst_work, std::abs(tau.dot(qd) - taum.dot(qdm)) / (tau.norm() * qd.norm()));
+  }
+  EXPECT_EQ(s, joint.n_samples());
+  std::printf("simulated motor-side log: %d samples; worst relative |τᵀq̇ − τmᵀθ̇m| = %.3g, θm/θ̇m vs A·q %.3g, "
+              "Aᵀτm vs τ %.3g\n", s, worst_work, worst_rates, worst_torque);
+  EXPECT_LT(worst_work, 1e-12);
+  EXPECT_LT(worst_rates, 1e-12);
+  EXPECT_LT(worst_torque, 1e-12);
+
+  // Identified from the written log through its description.
+  const IdentifyOptions motor = Options((dir_ / "sim.json").string());
+  const IdentifyReport report = RunIdentify(*model_, motor);
+  const JointTorqueIdentification& id = report.identification;
+  const Eigen::VectorXd beta_true = id.base.combination * TruePi(motor.friction_model());
+  const double beta_error = (id.beta - beta_true).cwiseAbs().maxCoeff() / beta_true.cwiseAbs().maxCoeff();
+  std::printf("simulated motor-side log identified: max |β − β_true| / max |β_true| = %.3g, fit relative error %.3g\n",
+              beta_error, id.fit.relative_error);
+  EXPECT_LT(beta_error, 1e-9);
 }
 
 TEST_F(IdentifyTransmissionTest, ActuatorSideFrictionNeedsATransmission) {
