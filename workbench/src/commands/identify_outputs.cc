@@ -147,11 +147,11 @@ std::string AnnotateCoupledJoints(std::string text, const RobotModel& model, con
     for (const std::string& zero : zeros) {
       if (const size_t z = joint_line.find(zero); z != std::string::npos) joint_line.erase(z, zero.size());
     }
-    // "--" may not appear inside an XML comment.
+    // A comment is raw text (no entities); "--" may not appear in it.
     std::string note = CouplingNote(joints[j], friction);
     for (size_t d = note.find("--"); d != std::string::npos; d = note.find("--")) note.replace(d, 2, "- -");
     const std::string indent = text.substr(line, at - line);
-    text.replace(line, end - line, indent + "<!-- " + EscapeXml(note) + " -->\n" + joint_line);
+    text.replace(line, end - line, indent + "<!-- " + note + " -->\n" + joint_line);
   }
   return text;
 }

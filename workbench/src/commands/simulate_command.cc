@@ -189,20 +189,21 @@ std::string FormatMotorSideLogCsv(const MotorSideLog& log) {
 }
 
 std::string FormatMotorSideLogDescription(const MotorSideLog& log, const std::string& csv_path) {
-  nlohmann::json A = nlohmann::json::array();
+  // One row of A per line, so that the coupling reads as a matrix.
   const Eigen::MatrixXd& a = log.transmission.actuator_from_joint;
+  std::string rows;
   for (Eigen::Index k = 0; k < a.rows(); ++k) {
-    nlohmann::json row = nlohmann::json::array();
-    for (Eigen::Index j = 0; j < a.cols(); ++j) row.push_back(a(k, j));
-    A.push_back(row);
+    const Eigen::VectorXd row = a.row(k).transpose();
+    rows += std::string(k == 0 ? "" : ",\n                            ") +
+            nlohmann::json(std::vector<double>(row.data(), row.data() + row.size())).dump();
   }
-  nlohmann::json transmission = {{"actuator_from_joint", A}};
+  std::string out = "{\n  \"files\": [{\"path\": " + nlohmann::json(csv_path).dump() +
+                    "}],\n  \"transmission\": {\n    \"actuator_from_joint\": [" + rows + "]";
   if (log.transmission.joint_offset.size() > 0) {
     const Eigen::VectorXd& q0 = log.transmission.joint_offset;
-    transmission["joint_offset"] = std::vector<double>(q0.data(), q0.data() + q0.size());
+    out += ",\n    \"joint_offset\": " + nlohmann::json(std::vector<double>(q0.data(), q0.data() + q0.size())).dump();
   }
-  const nlohmann::json description = {{"files", {{{"path", csv_path}}}}, {"transmission", transmission}};
-  return description.dump(2) + "\n";
+  return out + "\n  }\n}\n";
 }
 
 }  // namespace idbench
