@@ -212,6 +212,31 @@ int FrictionColumns(const FrictionModel& friction, const Scalar& qd, const Scala
   return c;
 }
 
+// Actuator side: visits each non-zero friction entry of Y, (joint j, column
+// c, value A(k, j)·column of motor k), motor k's terms taken on its rates
+// θ̇m_k = A_k·q̇ and θ̈m_k = A_k·q̈ (A_k row k of A), computed here once for
+// both the regressor and its contraction.
+template <typename Scalar, typename Visit>
+void VisitActuatorFrictionEntries(const FrictionModel& friction, const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qd,
+                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& qdd, int base, Visit&& visit) {
+  const Eigen::MatrixXd& A = friction.actuator_from_joint;
+  const int n = static_cast<int>(A.rows()), per_joint = friction.per_joint();
+  Scalar columns[4];
+  for (int k = 0; k < n; ++k) {
+    Scalar thetad(0.0), thetadd(0.0);
+    for (int j = 0; j < n; ++j) {
+      if (A(k, j) == 0.0) continue;
+      thetad += A(k, j) * qd[j];
+      thetadd += A(k, j) * qdd[j];
+    }
+    FrictionColumns(friction, thetad, thetadd, columns);
+    for (int j = 0; j < n; ++j) {
+      if (A(k, j) == 0.0) continue;
+      for (int c = 0; c < per_joint; ++c) visit(j, base + per_joint * k + c, A(k, j) * columns[c]);
+    }
+  }
+}
+
 }  // namespace
 
 template <typename Scalar>
@@ -247,20 +272,8 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
   Scalar columns[4];
   if (friction.actuator_side()) {
     // Motor k's terms on θ̇m_k = A_k·q̇, into the joints through A_kᵀ.
-    const Eigen::MatrixXd& A = friction.actuator_from_joint;
-    for (int k = 0; k < n; ++k) {
-      Scalar thetad(0.0), thetadd(0.0);
-      for (int j = 0; j < n; ++j) {
-        if (A(k, j) == 0.0) continue;
-        thetad += A(k, j) * qd[j];
-        thetadd += A(k, j) * qdd[j];
-      }
-      FrictionColumns(friction, thetad, thetadd, columns);
-      for (int j = 0; j < n; ++j) {
-        if (A(k, j) == 0.0) continue;
-        for (int c = 0; c < per_joint; ++c) (*Y)(j, base + per_joint * k + c) = A(k, j) * columns[c];
-      }
-    }
+    VisitActuatorFrictionEntries<Scalar>(friction, qd, qdd, base,
+                                         [&](int j, int c, const Scalar& value) { (*Y)(j, c) = value; });
     return;
   }
   for (int j = 0; j < n; ++j) {
@@ -311,21 +324,8 @@ Scalar ContractJointTorqueRegressorT(const RobotModel& model, const FrictionMode
   const int base = model.n_links() * kInertialParametersPerLink;
   Scalar columns[4];
   if (friction.actuator_side() && per_joint > 0) {
-    const Eigen::MatrixXd& A = friction.actuator_from_joint;
-    const int n = model.n_dof();
-    for (int k = 0; k < n; ++k) {
-      Scalar thetad(0.0), thetadd(0.0);
-      for (int j = 0; j < n; ++j) {
-        if (A(k, j) == 0.0) continue;
-        thetad += A(k, j) * qd[j];
-        thetadd += A(k, j) * qdd[j];
-      }
-      FrictionColumns(friction, thetad, thetadd, columns);
-      for (int j = 0; j < n; ++j) {
-        if (A(k, j) == 0.0) continue;
-        for (int c = 0; c < per_joint; ++c) sum += G(j, base + per_joint * k + c) * A(k, j) * columns[c];
-      }
-    }
+    VisitActuatorFrictionEntries<Scalar>(friction, qd, qdd, base,
+                                         [&](int j, int c, const Scalar& value) { sum += G(j, c) * value; });
     return sum;
   }
   for (int j = 0; j < model.n_dof() && per_joint > 0; ++j) {

@@ -15,7 +15,12 @@ namespace idbench::cli {
 namespace {
 
 // Fields of SimulateOptions named in messages.
-constexpr FieldFlag kSimulateSpellings[] = {{"paper_accel_deg_s2", "--accel"}, {"out", "--out"}};
+constexpr FieldFlag kSimulateSpellings[] = {{"paper_accel_deg_s2", "--accel"},
+                                            {"out", "--out"},
+                                            {"motor_viscous", "--motor-viscous"},
+                                            {"motor_coulomb", "--motor-coulomb"},
+                                            {"motor_rotor_inertia", "--motor-rotor-inertia"},
+                                            {"transmission", "--transmission"}};
 
 struct SimulateFlags {
   SimulateOptions options;
@@ -25,15 +30,32 @@ struct SimulateFlags {
 int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  std::optional<Transmission> from_urdf;
+  const RobotModel model = LoadRobotOrThrow(options.robot, load, &from_urdf);
   if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) return context.UsageError(why);
-  const JointLog log = SimulateJointLog(model, options);
+  const std::optional<Transmission> transmission = SimulateTransmission(options, model.n_dof(), from_urdf);
   const std::filesystem::path path(options.out);
   if (path.has_parent_path()) EnsureOutputDirectory(path.parent_path());
-  WriteFileAtomically(path, FormatJointLogCsv(log));
-  std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz; wrote %s\n", model.name().c_str(),
-              options.trajectory.c_str(), log.n_samples() / options.sensors.rate_hz, log.n_samples(),
-              options.sensors.rate_hz, path.c_str());
+  if (!transmission) {
+    const JointLog log = SimulateJointLog(model, options);
+    WriteFileAtomically(path, FormatJointLogCsv(log));
+    std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz; wrote %s\n", model.name().c_str(),
+                options.trajectory.c_str(), log.n_samples() / options.sensors.rate_hz, log.n_samples(),
+                options.sensors.rate_hz, path.c_str());
+    return 0;
+  }
+  // Motor side: the CSV and, beside it, the description that names its transmission.
+  const MotorSideLog log = SimulateMotorSideLog(model, *transmission, options);
+  std::filesystem::path description = path;
+  description.replace_extension(".json");
+  if (description == path) return context.UsageError("--out: a motor-side log's CSV cannot end in .json (its description does)");
+  WriteFileAtomically(path, FormatMotorSideLogCsv(log));
+  WriteFileAtomically(description, FormatMotorSideLogDescription(log, path.filename().string()));
+  const int n_samples = static_cast<int>(log.t.size());
+  std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz on the motor side; wrote %s and its "
+              "description %s (read it as --data %s)\n",
+              model.name().c_str(), options.trajectory.c_str(), n_samples / options.sensors.rate_hz, n_samples,
+              options.sensors.rate_hz, path.c_str(), description.c_str(), description.c_str());
   return 0;
 }
 
@@ -62,6 +84,19 @@ CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
       ->capture_default_str();
   command->add_flag("--no-derivatives", flags->no_derivatives,
                     "Log only t, q, tau (as a real robot); identify then filters q for qd, qdd");
+  command->add_option("--transmission", simulate.transmission,
+                      "Write a motor-side log (qm, qdm, qdd, taum) and its description (.json beside --out): "
+                      "'urdf' for the robot's <transmission> elements, or a .json/.yaml file with {\"reduction\": "
+                      "[...]} or {\"actuator_from_joint\": [[...]], \"joint_offset\": [...]}");
+  command->add_option("--motor-viscous", simulate.motor_viscous,
+                      "Each motor's viscous friction [N m s/rad], on its own velocity: one value, or one per motor")
+      ->delimiter(',');
+  command->add_option("--motor-coulomb", simulate.motor_coulomb,
+                      "Each motor's Coulomb friction [N m]: one value, or one per motor")
+      ->delimiter(',');
+  command->add_option("--motor-rotor-inertia", simulate.motor_rotor_inertia,
+                      "Each motor's rotor inertia [kg m^2]: one value, or one per motor")
+      ->delimiter(',');
   AddBasePoseFlag(command, &simulate.base_pose);
   AddSeedFlag(command, &simulate.sensors.seed);
   AddOutFlag(command, &simulate.out, "Joint-log CSV to write")->capture_default_str();

@@ -14,10 +14,13 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/robot_library.h"
+#include "idbench/engine/transmission.h"
 #include "idbench/workbench/commands/log_preparation.h"
 
 namespace idbench::python {
@@ -29,7 +32,12 @@ struct Robot {
   std::shared_ptr<const RobotModel> model;
   std::string source;                 // name or path as given
   std::vector<std::string> warnings;  // from loading the file
+  std::optional<Transmission> transmission;  // the URDF's <transmission> elements; nullopt: none
 };
+
+// A base_pose keyword argument: None (the identity) or (x, y, z, roll, pitch,
+// yaw) [m, rad]. Throws std::invalid_argument naming base_pose.
+BasePose BasePoseArgument(const py::object& value);
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using ArrayRef = Eigen::Ref<const RowMatrix>;

@@ -107,7 +107,7 @@ IdentifyResult ToIdentifyResult(const RobotModel& model, const IdentifyOptions& 
 
 IdentifyResult Identify(const Robot& robot, const py::object& data, const IdentifyOptions& options,
                         const py::object& validate) {
-  const RobotModel& model = *robot.model;
+  const RobotModel model = MountRobot(*robot.model, options.base_pose);  // gravity seen from the base
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   if (!options.format.IsValidFor(model.n_dof(), &why)) throw std::invalid_argument(why);
@@ -222,8 +222,12 @@ void BindIdentify(py::module_& m) {
          const std::vector<double>& validate_window, double max_gap,
          double filter_cutoff, int filter_order, int decimate, const std::vector<double>& mass_range,
          double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight,
-         double cost_tolerance, bool write_unverified, const std::string& topic) {
+         double cost_tolerance, bool write_unverified, const std::string& topic, const std::string& friction_side,
+         const py::object& base_pose) {
         IdentifyOptions options;
+        options.friction_side = friction_side;
+        options.base_pose = BasePoseArgument(base_pose);
+        options.format.transmission = robot.transmission;  // a log description's wins (IdentifyOptions::transmission)
         options.robot = robot.source;
         options.data = py::isinstance<py::dict>(data) ? "<data arrays>" : py::str(data).cast<std::string>();
         options.validate = validate.is_none()                ? ""
@@ -271,12 +275,15 @@ void BindIdentify(py::module_& m) {
       py::arg("total_mass_tolerance") = id_defaults.plausibility.total_mass_tolerance,
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
       py::arg("cost_tolerance") = id_defaults.plausibility.cost_tolerance, py::arg("write_unverified") = false,
-      py::arg("topic") = std::string(),
+      py::arg("topic") = std::string(), py::arg("friction_side") = id_defaults.friction_side,
+      py::arg("base_pose") = py::none(),
       "Identifies the robot from a joint log: a CSV path or a ROS 2 bag (a directory with metadata.yaml, a .db3 or "
       ".mcap file; topic= names its JointState topic when it has several), read as `idbench identify --data`, or a dict of arrays "
       "{t, q, [qd, qdd], tau} or with i (motor currents) for drive_gains (n_samples × n_dof, angles in angle_unit; "
       "without qd/qdd they are estimated by filtering). validate_window=(T0, T1) scores only that part of the held-out "
-      "log. Options as `idbench identify`'s. The result's verdict says whether the physically consistent estimate is "
+      "log. friction_side=\"actuator\" puts the friction and rotor terms on the motors, through the transmission of the "
+      "data's log description or the robot's URDF; base_pose=(x, y, z, roll, pitch, yaw) mounts the robot (gravity "
+      "along the world's -z). Options as `idbench identify`'s. The result's verdict says whether the physically consistent estimate is "
       "a robot model; urdf and joints_yaml are None when it is not (unless write_unverified=True).");
 }
 

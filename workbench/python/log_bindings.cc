@@ -51,8 +51,9 @@ void BindLog(py::module_& m) {
       "simulate",
       [](const Robot& robot, const std::string& trajectory, double duration, double paper_accel, double dt,
          double rate, const std::vector<double>& tau_noise, double q_noise, double q_resolution, bool derivatives,
-         unsigned seed) {
+         unsigned seed, const py::object& base_pose) {
         SimulateOptions options;
+        options.base_pose = BasePoseArgument(base_pose);
         options.robot = robot.source;
         options.trajectory = trajectory;
         options.duration = duration;
@@ -80,7 +81,9 @@ void BindLog(py::module_& m) {
       py::arg("tau_noise") = std::vector<double>{}, py::arg("q_noise") = sim_defaults.sensors.q_noise,
       py::arg("q_resolution") = sim_defaults.sensors.q_resolution,
       py::arg("derivatives") = sim_defaults.sensors.record_derivatives, py::arg("seed") = sim_defaults.sensors.seed,
-      "Simulates the robot along a built-in motion or a trajectory file in Bullet (as `idbench simulate`); "
+      py::arg("base_pose") = py::none(),
+      "Simulates the robot along a built-in motion or a trajectory file in Bullet (as `idbench simulate`), its base "
+      "at base_pose=(x, y, z, roll, pitch, yaw) [m, rad] when given; "
       "returns {t, q, [qd, qdd], tau} as numpy arrays");
 }
 

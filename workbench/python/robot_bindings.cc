@@ -14,10 +14,25 @@ Robot LoadRobotForPython(const std::string& name_or_path, const std::map<std::st
   std::string why;
   if (!load.IsValid(&why)) throw std::invalid_argument(why);
   UrdfLoadResult loaded = LoadRobot(name_or_path, load);
-  return Robot{std::make_shared<const RobotModel>(std::move(loaded.model)), name_or_path, std::move(loaded.warnings)};
+  return Robot{std::make_shared<const RobotModel>(std::move(loaded.model)), name_or_path, std::move(loaded.warnings),
+               std::move(loaded.transmission)};
 }
 
 }  // namespace
+
+BasePose BasePoseArgument(const py::object& value) {
+  BasePose pose;
+  if (value.is_none()) return pose;
+  const std::vector<double> xyz_rpy = value.cast<std::vector<double>>();
+  if (xyz_rpy.size() != 6) {
+    throw std::invalid_argument("base_pose: expected (x, y, z, roll, pitch, yaw), got " + std::to_string(xyz_rpy.size()) +
+                                " values");
+  }
+  std::copy(xyz_rpy.begin(), xyz_rpy.end(), pose.xyz_rpy.begin());
+  std::string why;
+  if (!pose.IsValid(&why)) throw std::invalid_argument(why);
+  return pose;
+}
 
 void BindRobot(py::module_& m) {
   py::class_<Robot>(m, "Robot", "A robot model (built-in or from a URDF file); immutable")

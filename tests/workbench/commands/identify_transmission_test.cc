@@ -17,12 +17,32 @@
 #include <nlohmann/json.hpp>
 
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/workbench/commands/identify_command.h"
+#include "idbench/workbench/commands/simulate_command.h"
 #include "ident/synthetic_log.h"
 
 namespace idbench {
 namespace {
+
+// The text of `key: value` in joint `name`'s entry of joints.yaml ("" when absent).
+std::string YamlJointValue(const std::string& yaml, const std::string& name, const std::string& key) {
+  const size_t entry = yaml.find("- name: \"" + name + "\"\n");
+  if (entry == std::string::npos) return "";
+  const size_t next = yaml.find("- name:", entry + 1);
+  const size_t at = yaml.find("    " + key + ": ", entry);
+  if (at == std::string::npos || at > next) return "";
+  const size_t begin = at + 6 + key.size();
+  return yaml.substr(begin, yaml.find('\n', begin) - begin);
+}
+// The text of joint `name`'s element in a URDF or MJCF text.
+std::string JointElement(const std::string& xml, const std::string& name) {
+  const size_t at = xml.find("<joint name=\"" + name + "\"");
+  if (at == std::string::npos) return "";
+  const size_t end = xml.find("</joint>", at), line_end = xml.find('\n', at);
+  return xml.substr(at, (xml.compare(line_end - 2, 2, "/>") == 0 ? line_end : end) - at);
+}
 
 constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
 const double kOffset[6] = {0.0, -M_PI / 2, M_PI / 2, 0.0, 0.0, 0.0};  // q = A⁻¹θm + q0
@@ -131,6 +151,50 @@ class IdentifyTransmissionTest : public ::testing::Test {
     return pi;
   }
 
+  // joints.yaml, identified.json's "joints", identified.urdf and identified.xml
+  // carry identified.json's joint_side values for joints 1-4 and no number for
+  // the coupled wrist (joints 5, 6), with a comment naming the coupling.
+  void ExpectExportsCarryJointSideValuesAndNoneForTheCoupledWrist(const IdentifyOptions& options,
+                                                                  const IdentifyReport& report,
+                                                                  const nlohmann::json& identified) const {
+    const std::string yaml = FormatJointDynamicsYaml(*model_, options, report);
+    const std::string urdf = FormatIdentifiedUrdf(*model_, options, report);
+    const std::string mjcf = FormatIdentifiedMjcf(*model_, options, report);
+    const RobotModel loaded = LoadUrdfString(urdf).model;
+    for (int j = 0; j < 6; ++j) {
+      const nlohmann::json& listed = identified["joints"][j];
+      const std::string& name = model_->link(j).joint_name;
+      if (j < 4) {
+        for (const auto& [key, side] : {std::pair{"viscous", "Fv"}, {"coulomb", "Fc"}, {"rotor_inertia", "Ia"}}) {
+          const double truth = identified["joint_side"][side][j].get<double>();
+          EXPECT_NEAR(std::stod(YamlJointValue(yaml, name, key)), truth, 1e-12 * truth) << name << " " << key;
+          EXPECT_NEAR(listed[key].get<double>(), truth, 1e-12 * truth) << name << " " << key;
+        }
+        const double Fv = identified["joint_side"]["Fv"][j].get<double>();
+        const double Fc = identified["joint_side"]["Fc"][j].get<double>();
+        EXPECT_NEAR(loaded.link(j).dynamics.viscous, Fv, 1e-12 * Fv) << name;
+        EXPECT_NEAR(loaded.link(j).dynamics.coulomb, Fc, 1e-12 * Fc) << name;
+        EXPECT_FALSE(listed.contains("coupled_motors")) << name;
+        continue;
+      }
+      for (const char* key : {"viscous", "coulomb", "rotor_inertia"}) {
+        EXPECT_EQ(YamlJointValue(yaml, name, key), "null") << name << " " << key;
+        EXPECT_TRUE(listed[key].is_null()) << name << " " << key;
+      }
+      EXPECT_EQ(listed["coupled_motors"], (j == 4 ? nlohmann::json{5, 6} : nlohmann::json{6})) << name;
+      const std::string note = "joint '" + name + "' is coupled: " + (j == 4 ? "motors 5 and 6 turn" : "motor 6 turns");
+      EXPECT_NE(yaml.find("    # " + note + " with it"), std::string::npos) << yaml;
+      EXPECT_NE(urdf.find("<!-- " + note), std::string::npos) << urdf;
+      EXPECT_NE(mjcf.find("<!-- " + note), std::string::npos) << mjcf;
+      EXPECT_EQ(JointElement(urdf, name).find("<dynamics"), std::string::npos) << JointElement(urdf, name);
+      const std::string mjcf_joint = JointElement(mjcf, name);
+      ASSERT_FALSE(mjcf_joint.empty()) << name;
+      for (const char* zero : {"armature=", "damping=", "frictionloss="}) {
+        EXPECT_EQ(mjcf_joint.find(zero), std::string::npos) << mjcf_joint;
+      }
+    }
+  }
+
   std::filesystem::path dir_;
   std::optional<RobotModel> model_;
   JointLog log_;
@@ -188,6 +252,72 @@ TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJoi
   for (int j = 4; j < 6; ++j) {
     for (const char* key : {"Ia", "Fv", "Fc"}) EXPECT_TRUE(out["joint_side"][key][j].is_null()) << key << j;
   }
+  ExpectExportsCarryJointSideValuesAndNoneForTheCoupledWrist(motor, from_motor, out);
+}
+
+// `simulate` with the same transmission (a file as a log description's) and
+// motor truth: the written motor-side log holds θm, θ̇m as the TX40's
+// relations by hand give them from the joint side, keeps virtual work, and
+// identifies to the same truth.
+TEST_F(IdentifyTransmissionTest, SimulatedMotorSideLogKeepsVirtualWorkAndIdentifiesToTheTruth) {
+  std::ofstream(dir_ / "wrist.json") << R"({"actuator_from_joint": [[32, 0, 0, 0, 0, 0], [0, 32, 0, 0, 0, 0],
+      [0, 0, 45, 0, 0, 0], [0, 0, 0, -48, 0, 0], [0, 0, 0, 0, 45, 0], [0, 0, 0, 0, 32, 32]],
+      "joint_offset": [0, -1.5707963267948966, 1.5707963267948966, 0, 0, 0]})";
+  SimulateOptions simulate;
+  simulate.duration = 10.0;
+  simulate.transmission = (dir_ / "wrist.json").string();
+  simulate.motor_viscous.assign(std::begin(kFv), std::end(kFv));
+  simulate.motor_coulomb.assign(std::begin(kFc), std::end(kFc));
+  simulate.motor_rotor_inertia.assign(std::begin(kIa), std::end(kIa));
+  const std::optional<Transmission> transmission = SimulateTransmission(simulate, 6, std::nullopt);
+  ASSERT_TRUE(transmission.has_value());
+  const MotorSideLog log = SimulateMotorSideLog(*model_, *transmission, simulate);
+  std::ofstream(dir_ / "sim.csv") << FormatMotorSideLogCsv(log);
+  std::ofstream(dir_ / "sim.json") << FormatMotorSideLogDescription(log, "sim.csv");
+
+  // The written file, parsed here: t, qm1..6, qdm1..6, qdd1..6, taum1..6.
+  std::ifstream csv(dir_ / "sim.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(0, 13), "t,qm1,qm2,qm3");
+  EXPECT_NE(line.find(",qdm6,qdd1,"), std::string::npos) << line;
+  EXPECT_NE(line.find(",taum6"), std::string::npos) << line;
+  const JointLog& joint = log.joint;
+  double worst_work = 0.0, worst_rates = 0.0, worst_torque = 0.0;
+  int s = 0;
+  for (; std::getline(csv, line); ++s) {
+    std::vector<double> v;
+    for (size_t at = 0; at <= line.size();) {
+      const size_t end = std::min(line.find(',', at), line.size());
+      v.push_back(std::stod(line.substr(at, end - at)));
+      at = end + 1;
+    }
+    ASSERT_EQ(v.size(), 25u);
+    const Eigen::Map<const Eigen::VectorXd> qm(&v[1], 6), qdm(&v[7], 6), taum(&v[19], 6);
+    const Eigen::VectorXd qd = joint.qd.row(s).transpose(), tau = joint.tau.row(s).transpose();
+    Eigen::VectorXd q_minus_offset(6);
+    for (int j = 0; j < 6; ++j) q_minus_offset[j] = joint.q(s, j) - kOffset[j];
+    worst_rates = std::max({worst_rates, (qdm - MotorRates(qd)).norm() / MotorRates(qd).norm(),
+                            (qm - MotorRates(q_minus_offset)).norm() / MotorRates(q_minus_offset).norm()});
+    worst_torque = std::max(worst_torque, (JointFromMotorTorques(taum) - tau).norm() / tau.norm());
+    worst_work = std::max(worst_work, std::abs(tau.dot(qd) - taum.dot(qdm)) / (tau.norm() * qd.norm()));
+  }
+  EXPECT_EQ(s, joint.n_samples());
+  std::printf("simulated motor-side log: %d samples; worst relative |τᵀq̇ − τmᵀθ̇m| = %.3g, θm/θ̇m vs A·q %.3g, "
+              "Aᵀτm vs τ %.3g\n", s, worst_work, worst_rates, worst_torque);
+  EXPECT_LT(worst_work, 1e-12);
+  EXPECT_LT(worst_rates, 1e-12);
+  EXPECT_LT(worst_torque, 1e-12);
+
+  // Identified from the written log through its description.
+  const IdentifyOptions motor = Options((dir_ / "sim.json").string());
+  const IdentifyReport report = RunIdentify(*model_, motor);
+  const JointTorqueIdentification& id = report.identification;
+  const Eigen::VectorXd beta_true = id.base.combination * TruePi(motor.friction_model());
+  const double beta_error = (id.beta - beta_true).cwiseAbs().maxCoeff() / beta_true.cwiseAbs().maxCoeff();
+  std::printf("simulated motor-side log identified: max |β − β_true| / max |β_true| = %.3g, fit relative error %.3g\n",
+              beta_error, id.fit.relative_error);
+  EXPECT_LT(beta_error, 1e-9);
 }
 
 TEST_F(IdentifyTransmissionTest, ActuatorSideFrictionNeedsATransmission) {

@@ -18,37 +18,98 @@ namespace {
 // Per joint, what a controller loads besides the URDF: the physically
 // consistent estimate's friction, offset and rotor inertia (null when not in
 // the model) and the drive gain the log was read with (null without currents).
+// Actuator side (friction_side "actuator"): a joint one motor k drives alone
+// with ratio N (Transmission::SingleMotorOf) gets motor k's terms as their
+// joint-side equivalents by virtual work, Fv·N², Fc·|N|, offset·N, Ia·N²; a
+// coupled joint has none (null, never 0) and lists the motors turning with it.
 struct JointDynamicsValues {
   std::string name;
   std::optional<double> viscous, coulomb, offset, rotor_inertia, drive_gain;
+  std::vector<int> coupled_motors;  // 0-based motors k with A(k, j) ≠ 0 when the joint is coupled; else empty
 };
 std::vector<JointDynamicsValues> JointDynamicsOf(const RobotModel& model, const IdentifyOptions& options,
                                                  const IdentifyReport& report) {
   const std::vector<std::string>& names = report.identification.standard_names;
+  const FrictionModel friction = options.friction_model();
+  // The standard parameter named `term` + the joint's (or its motor's) number.
+  auto parameter = [&](const std::string& term, const std::string& number) -> std::optional<double> {
+    for (size_t c = 0; c < names.size(); ++c) {
+      if (names[c] == term + number) return report.identification.consistent.pi[static_cast<Eigen::Index>(c)];
+    }
+    return std::nullopt;
+  };
+  auto scaled = [](const std::optional<double>& v, double factor) {
+    return v ? std::optional<double>(*v * factor) : std::nullopt;
+  };
   std::vector<JointDynamicsValues> joints(static_cast<size_t>(model.n_dof()));
   for (int j = 0; j < model.n_dof(); ++j) {
     JointDynamicsValues& v = joints[static_cast<size_t>(j)];
     v.name = model.link(j).joint_name;
-    const std::string s = std::to_string(j + 1);
-    for (size_t c = 0; c < names.size(); ++c) {
-      const double value = report.identification.consistent.pi[static_cast<Eigen::Index>(c)];
-      if (names[c] == "Fv" + s) v.viscous = value;
-      if (names[c] == "Fc" + s) v.coulomb = value;
-      if (names[c] == "offset" + s) v.offset = value;
-      if (names[c] == "Ia" + s) v.rotor_inertia = value;
-    }
     if (!options.format.drive_gains.empty()) v.drive_gain = options.format.drive_gains[static_cast<size_t>(j)];
+    if (!friction.actuator_side()) {
+      const std::string s = std::to_string(j + 1);
+      v.viscous = parameter("Fv", s);
+      v.coulomb = parameter("Fc", s);
+      v.offset = parameter("offset", s);
+      v.rotor_inertia = parameter("Ia", s);
+      continue;
+    }
+    const std::optional<Transmission::SingleMotor> single = SingleMotorOf(friction, j);
+    if (!single) {
+      for (int k = 0; k < model.n_dof(); ++k) {
+        if (friction.actuator_from_joint(k, j) != 0.0) v.coupled_motors.push_back(k);
+      }
+      continue;
+    }
+    const std::string m = "m" + std::to_string(single->motor + 1);
+    const double N = single->ratio;
+    v.viscous = scaled(parameter("Fv", m), N * N);
+    v.coulomb = scaled(parameter("Fc", m), std::abs(N));
+    v.offset = scaled(parameter("offset", m), N);
+    v.rotor_inertia = scaled(parameter("Ia", m), N * N);
   }
   return joints;
+}
+
+// "motors 5 and 6" (1-based) for a coupled joint's comment.
+std::string MotorList(const std::vector<int>& motors) {
+  std::string out = motors.size() == 1 ? "motor " : "motors ";
+  for (size_t i = 0; i < motors.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == motors.size() ? " and " : ", ") + std::to_string(motors[i] + 1);
+  }
+  return out;
+}
+
+// Why a coupled joint carries no friction or rotor inertia, and where the
+// actuator-side values are.
+std::string CouplingNote(const JointDynamicsValues& v, const FrictionModel& friction) {
+  std::string terms;
+  for (int k : v.coupled_motors) {
+    const std::string m = "m" + std::to_string(k + 1);
+    for (const auto& [on, term] : {std::pair{friction.viscous, "Fv"}, {friction.coulomb, "Fc"},
+                                   {friction.offset, "offset"}, {friction.rotor_inertia, "Ia"}}) {
+      if (on) terms += (terms.empty() ? "" : ", ") + std::string(term) + m;
+    }
+  }
+  return "joint '" + v.name + "' is coupled: " + MotorList(v.coupled_motors) +
+         (v.coupled_motors.size() == 1 ? " turns" : " turn") + " with it (transmission actuator_from_joint), so its friction and rotor inertia are per motor, "
+         "not per joint; not 0 but not expressible here: see identified.json's standard_parameters " +
+         (terms.empty() ? std::string("(none in the model)") : terms);
 }
 
 nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions& options, const IdentifyReport& report) {
   auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   nlohmann::json joints = nlohmann::json::array();
   for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
-    joints.push_back({{"name", v.name}, {"viscous", value(v.viscous)}, {"coulomb", value(v.coulomb)},
-                      {"offset", value(v.offset)}, {"rotor_inertia", value(v.rotor_inertia)},
-                      {"drive_gain", value(v.drive_gain)}});
+    nlohmann::json joint = {{"name", v.name}, {"viscous", value(v.viscous)}, {"coulomb", value(v.coulomb)},
+                            {"offset", value(v.offset)}, {"rotor_inertia", value(v.rotor_inertia)},
+                            {"drive_gain", value(v.drive_gain)}};
+    if (!v.coupled_motors.empty()) {
+      nlohmann::json motors = nlohmann::json::array();
+      for (int k : v.coupled_motors) motors.push_back(k + 1);
+      joint["coupled_motors"] = motors;
+    }
+    joints.push_back(joint);
   }
   return joints;
 }
@@ -58,18 +119,41 @@ nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions&
 // the model), from the physically consistent estimate.
 nlohmann::json JointSideEquivalentsJson(const RobotModel& model, const IdentifyOptions& options,
                                         const IdentifyReport& report) {
-  const FrictionModel friction = options.friction_model();
-  const RobotModel equivalent = ModelWithStandardParameters(model, friction, report.identification.consistent.pi);
+  auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   nlohmann::json Ia = nlohmann::json::array(), Fv = Ia, Fc = Ia;
-  for (int j = 0; j < model.n_dof(); ++j) {
-    const bool single = SingleMotorOf(friction, j).has_value();
-    const JointDynamics& d = equivalent.link(j).dynamics;
-    auto value = [&](bool in_model, double v) { return single && in_model ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    Ia.push_back(value(friction.rotor_inertia, d.rotor_inertia));
-    Fv.push_back(value(friction.viscous, d.viscous));
-    Fc.push_back(value(friction.coulomb, d.coulomb));
+  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
+    Ia.push_back(value(v.rotor_inertia));
+    Fv.push_back(value(v.viscous));
+    Fc.push_back(value(v.coulomb));
   }
   return {{"Ia", Ia}, {"Fv", Fv}, {"Fc", Fc}};
+}
+
+// A robot file's text with an XML comment before each coupled joint's
+// <joint name="..."> line (CouplingNote), and `zeros` (the writer's
+// attributes holding that joint's 0 friction) taken off that line.
+std::string AnnotateCoupledJoints(std::string text, const RobotModel& model, const IdentifyOptions& options,
+                                  const IdentifyReport& report, const std::vector<std::string>& zeros) {
+  const FrictionModel friction = options.friction_model();
+  const std::vector<JointDynamicsValues> joints = JointDynamicsOf(model, options, report);
+  for (size_t j = 0; j < joints.size(); ++j) {
+    if (joints[j].coupled_motors.empty()) continue;
+    const std::string name = joints[j].name.empty() ? model.link(static_cast<int>(j)).name + "_joint" : joints[j].name;
+    const size_t at = text.find("<joint name=\"" + EscapeXml(name) + "\"");
+    if (at == std::string::npos) continue;
+    const size_t line = text.rfind('\n', at) + 1;
+    const size_t end = text.find('\n', at);
+    std::string joint_line = text.substr(line, end - line);
+    for (const std::string& zero : zeros) {
+      if (const size_t z = joint_line.find(zero); z != std::string::npos) joint_line.erase(z, zero.size());
+    }
+    // A comment is raw text (no entities); "--" may not appear in it.
+    std::string note = CouplingNote(joints[j], friction);
+    for (size_t d = note.find("--"); d != std::string::npos; d = note.find("--")) note.replace(d, 2, "- -");
+    const std::string indent = text.substr(line, at - line);
+    text.replace(line, end - line, indent + "<!-- " + note + " -->\n" + joint_line);
+  }
+  return text;
 }
 
 }  // namespace
@@ -79,10 +163,14 @@ std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptio
   auto value = [](const std::optional<double>& v) { return v ? Shortest(*v) : std::string("null"); };
   std::string out = "# idbench identify: per-joint friction and drive values of the physically consistent estimate\n"
                     "# (the rigid-body parameters are in identified.urdf). Units: viscous [N m s/rad], coulomb and\n"
-                    "# offset [N m], rotor_inertia [kg m^2], drive_gain [N m/A]; null: not in the model.\n"
+                    "# offset [N m], rotor_inertia [kg m^2], drive_gain [N m/A]; null: not in the model, or a coupled\n"
+                    "# joint's (see its comment), never a measured zero.\n"
                     "robot: \"" + model.name() + "\"\njoints:\n";
+  const FrictionModel friction = options.friction_model();
   for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
-    out += "  - name: \"" + v.name + "\"\n    viscous: " + value(v.viscous) + "\n    coulomb: " + value(v.coulomb) +
+    out += "  - name: \"" + v.name + "\"\n";
+    if (!v.coupled_motors.empty()) out += "    # " + CouplingNote(v, friction) + "\n";
+    out += "    viscous: " + value(v.viscous) + "\n    coulomb: " + value(v.coulomb) +
            "\n    offset: " + value(v.offset) + "\n    rotor_inertia: " + value(v.rotor_inertia) +
            "\n    drive_gain: " + value(v.drive_gain) + "\n";
   }
@@ -219,7 +307,11 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
 
 std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
-  return WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
+  // A coupled joint has no <dynamics> (its friction is zero in the model): a
+  // comment says why.
+  return AnnotateCoupledJoints(
+      WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi)), model,
+      options, report, {});
 }
 
 }  // namespace idbench
@@ -228,7 +320,9 @@ namespace idbench {
 
 std::string FormatIdentifiedMjcf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
-  return WriteMjcf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi));
+  return AnnotateCoupledJoints(
+      WriteMjcf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi)), model,
+      options, report, {" armature=\"0\"", " damping=\"0\"", " frictionloss=\"0\""});
 }
 
 }  // namespace idbench

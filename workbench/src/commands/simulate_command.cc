@@ -1,10 +1,15 @@
 #include "idbench/workbench/commands/simulate_command.h"
 
+#include <Eigen/LU>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
 
+#include "idbench/engine/input_file.h"
+#include "idbench/logs/joint_log_csv_writer.h"
+#include "idbench/logs/joint_log_description.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 
@@ -31,7 +36,10 @@ bool SimulateOptions::IsValid(std::string* why) const {
   return true;
 }
 
-JointLog SimulateJointLog(const RobotModel& loaded, const SimulateOptions& options) {
+namespace {
+
+// The simulation before the sensors, the model mounted at options.base_pose.
+SimulationLog SimulateSteps(const RobotModel& loaded, const SimulateOptions& options) {
   const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   std::string why;
   if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) throw std::invalid_argument("sensors: " + why);
@@ -40,7 +48,162 @@ JointLog SimulateJointLog(const RobotModel& loaded, const SimulateOptions& optio
   const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
   SimulationOptions simulation = options.simulation();
   simulation.duration = motion->duration();  // a file's own
-  return Measure(Simulate(model, *motion, simulation), options.sensors);
+  return Simulate(model, *motion, simulation);
+}
+
+// A motor_* field as one value per motor: one value repeated, n as given,
+// empty as zeros. Throws std::invalid_argument naming the field.
+Eigen::VectorXd PerMotor(const std::vector<double>& values, int n, const std::string& field) {
+  if (values.empty()) return Eigen::VectorXd::Zero(n);
+  if (values.size() != 1 && static_cast<int>(values.size()) != n) {
+    throw std::invalid_argument(field + ": expected one value or " + std::to_string(n) + " (one per motor), got " +
+                                std::to_string(values.size()));
+  }
+  Eigen::VectorXd out(n);
+  for (int k = 0; k < n; ++k) {
+    out[k] = values[values.size() == 1 ? 0 : static_cast<size_t>(k)];
+    if (!std::isfinite(out[k]) || out[k] < 0.0) {
+      throw std::invalid_argument(field + ": expected finite values >= 0, got " + std::to_string(out[k]));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+JointLog SimulateJointLog(const RobotModel& loaded, const SimulateOptions& options) {
+  return Measure(SimulateSteps(loaded, options), options.sensors);
+}
+
+std::optional<Transmission> SimulateTransmission(const SimulateOptions& options, int n_dof,
+                                                 const std::optional<Transmission>& from_urdf) {
+  if (options.transmission.empty()) {
+    if (!options.motor_viscous.empty() || !options.motor_coulomb.empty() || !options.motor_rotor_inertia.empty()) {
+      throw std::invalid_argument("motor_viscous, motor_coulomb, motor_rotor_inertia: the motors' terms need a "
+                                  "transmission to act through");
+    }
+    return std::nullopt;
+  }
+  std::optional<Transmission> out;
+  if (options.transmission == "urdf") {
+    if (!from_urdf) {
+      throw std::invalid_argument("transmission \"urdf\": the robot '" + options.robot +
+                                  "' has no <transmission> elements naming its joints");
+    }
+    out = from_urdf;
+  } else {
+    // A log description with a "transmission", or the transmission alone
+    // (read as one, so that one parser checks it and names its keys).
+    const std::string& path = options.transmission;
+    if (!IsJointLogDescriptionPath(path)) {
+      throw std::invalid_argument("transmission: expected \"urdf\" or a .json/.yaml file, got '" + path + "'");
+    }
+    const std::string text = ReadInputFile(path);
+    const bool yaml = !path.ends_with(".json");
+    bool described = false;
+    if (!yaml) {
+      const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
+      described = document.is_object() && document.contains("files");
+    } else {
+      described = text.starts_with("files:") || text.find("\nfiles:") != std::string::npos;
+    }
+    std::string wrapped;
+    if (described) {
+      wrapped = text;
+    } else if (!yaml) {
+      wrapped = "{\"files\": [{\"path\": \"-\"}], \"transmission\": " + text + "}";
+    } else {
+      wrapped = "files: [{path: \"-\"}]\ntransmission:\n";
+      for (size_t at = 0; at < text.size();) {
+        const size_t end = std::min(text.find('\n', at), text.size());
+        wrapped += "  " + text.substr(at, end - at) + "\n";
+        at = end + 1;
+      }
+    }
+    out = ParseJointLogDescription(wrapped, path, yaml).transmission;
+    if (!out) throw std::invalid_argument(path + ": no \"transmission\"");
+  }
+  std::string why;
+  if (!out->IsValid(n_dof, &why)) throw std::invalid_argument(out->source + ": " + why);
+  return out;
+}
+
+MotorSideLog SimulateMotorSideLog(const RobotModel& model, const Transmission& transmission,
+                                  const SimulateOptions& options) {
+  const int n = model.n_dof();
+  std::string why;
+  if (!transmission.IsValid(n, &why)) throw std::invalid_argument("transmission: " + why);
+  const Eigen::VectorXd Fv = PerMotor(options.motor_viscous, n, "motor_viscous");
+  const Eigen::VectorXd Fc = PerMotor(options.motor_coulomb, n, "motor_coulomb");
+  const Eigen::VectorXd Ia = PerMotor(options.motor_rotor_inertia, n, "motor_rotor_inertia");
+  const Eigen::MatrixXd& A = transmission.actuator_from_joint;
+  const Eigen::VectorXd q0 =
+      transmission.joint_offset.size() > 0 ? transmission.joint_offset : Eigen::VectorXd::Zero(n);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> At(Eigen::MatrixXd(A.transpose()));
+
+  // Each step: the motors' terms into the joint torques (τ += Aᵀ·τm_own),
+  // then the step on the motor side, where the sensors sit.
+  SimulationLog steps = SimulateSteps(model, options);
+  SimulationLog joint_steps = steps;
+  for (size_t s = 0; s < steps.steps.size(); ++s) {
+    LogStep& step = joint_steps.steps[s];
+    const Eigen::VectorXd thetad = A * step.qd, thetadd = A * step.qdd;
+    const Eigen::VectorXd sign = thetad.unaryExpr([](double v) { return double((v > 0.0) - (v < 0.0)); });
+    const Eigen::VectorXd tau_own = Fv.cwiseProduct(thetad) + Fc.cwiseProduct(sign) + Ia.cwiseProduct(thetadd);
+    step.tau += A.transpose() * tau_own;
+    LogStep& motor = steps.steps[s];
+    motor.q = A * (step.q - q0);
+    motor.qd = thetad;
+    motor.qdd = step.qdd;  // joint side: a log has no motor accelerations
+    motor.tau = At.solve(step.tau);
+  }
+  const JointLog measured = Measure(steps, options.sensors);
+  SensorOptions exact;
+  exact.rate_hz = options.sensors.rate_hz;
+  MotorSideLog out;
+  out.t = measured.t;
+  out.theta_m = measured.q;
+  out.thetad_m = measured.qd;
+  out.qdd = measured.qdd;
+  out.tau_m = measured.tau;
+  out.transmission = transmission;
+  out.joint = Measure(joint_steps, exact);
+  return out;
+}
+
+std::string FormatMotorSideLogCsv(const MotorSideLog& log) {
+  // The joint-log writer's numbers under motor-side column names.
+  JointLog rows;
+  rows.t = log.t;
+  rows.q = log.theta_m;
+  rows.qd = log.thetad_m;
+  rows.qdd = log.qdd;
+  rows.tau = log.tau_m;
+  std::string csv = FormatJointLogCsv(rows);
+  std::string header = "t";
+  for (const char* prefix : {"qm", "qdm", "qdd", "taum"}) {
+    if (!rows.has_derivatives() && prefix[1] == 'd') continue;
+    for (int j = 1; j <= rows.n_dof(); ++j) header += "," + std::string(prefix) + std::to_string(j);
+  }
+  return header + csv.substr(csv.find('\n'));
+}
+
+std::string FormatMotorSideLogDescription(const MotorSideLog& log, const std::string& csv_path) {
+  // One row of A per line, so that the coupling reads as a matrix.
+  const Eigen::MatrixXd& a = log.transmission.actuator_from_joint;
+  std::string rows;
+  for (Eigen::Index k = 0; k < a.rows(); ++k) {
+    const Eigen::VectorXd row = a.row(k).transpose();
+    rows += std::string(k == 0 ? "" : ",\n                            ") +
+            nlohmann::json(std::vector<double>(row.data(), row.data() + row.size())).dump();
+  }
+  std::string out = "{\n  \"files\": [{\"path\": " + nlohmann::json(csv_path).dump() +
+                    "}],\n  \"transmission\": {\n    \"actuator_from_joint\": [" + rows + "]";
+  if (log.transmission.joint_offset.size() > 0) {
+    const Eigen::VectorXd& q0 = log.transmission.joint_offset;
+    out += ",\n    \"joint_offset\": " + nlohmann::json(std::vector<double>(q0.data(), q0.data() + q0.size())).dump();
+  }
+  return out + "\n  }\n}\n";
 }
 
 }  // namespace idbench

@@ -1,12 +1,18 @@
 // `idbench simulate`: a simulated experiment written as a joint log. Bullet
-// tracks a motion with computed torques; the sensor model samples it.
+// tracks a motion with computed torques; the sensor model samples it. Given a
+// transmission (transmission.h), the log is written on the motor side, as a
+// geared robot's controller records it, with each motor's own friction and
+// rotor inertia.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/base_pose.h"
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
+#include "idbench/engine/transmission.h"
 
 namespace idbench {
 
@@ -19,6 +25,17 @@ struct SimulateOptions {
   SensorOptions sensors;
   BasePose base_pose;                   // the robot's base in the world: gravity along the world's −z
   std::string out = "out/log.csv";
+  // A motor-side log when not empty: "urdf" takes the robot URDF's
+  // <transmission> elements; else a JSON or YAML file holding a transmission
+  // as a log description's "transmission" ({"reduction": [N1, ...]} or
+  // {"actuator_from_joint": [[...], ...], "joint_offset": [...]}).
+  std::string transmission;
+  // The motors' own terms (truth), acting on θm and entering the joint
+  // torques through Aᵀ: one value for every motor or one per motor; empty:
+  // none. Only with a transmission.
+  std::vector<double> motor_viscous;        // Fv_k [N m s/rad of the motor]
+  std::vector<double> motor_coulomb;        // Fc_k [N m]
+  std::vector<double> motor_rotor_inertia;  // Ia_k [kg m²]
 
   SimulationOptions simulation() const;
   // Checks what does not need the robot; *why names the bad option.
@@ -30,5 +47,37 @@ struct SimulateOptions {
 // std::invalid_argument on a robot/motion/sensor mismatch or a bad trajectory
 // file (naming it) and std::runtime_error if the simulation diverges.
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
+
+// A motor-side log: rows are samples, columns motors (qdd: joints).
+struct MotorSideLog {
+  Eigen::VectorXd t;         // sample times [s] (n_samples)
+  Eigen::MatrixXd theta_m;   // motor positions θm = A·(q − q0) [rad] (n_samples × n_dof)
+  Eigen::MatrixXd thetad_m;  // motor velocities θ̇m = A·q̇ [rad/s]; empty when not recorded
+  Eigen::MatrixXd qdd;       // joint accelerations [rad/s²] (a log has no motor-side ones); empty when not recorded
+  Eigen::MatrixXd tau_m;     // motor torques τm = A⁻ᵀ·τ [N m]
+  Transmission transmission;
+  JointLog joint;            // the same experiment on the joint side, noise-free (τ = Aᵀ·τm)
+};
+
+// The transmission options.transmission names: nullopt when empty; "urdf":
+// `from_urdf` (the robot file's), or std::invalid_argument when it has none;
+// else the file's. Throws std::invalid_argument naming the field, or the
+// file and its key, and checks it against n_dof.
+std::optional<Transmission> SimulateTransmission(const SimulateOptions& options, int n_dof,
+                                                 const std::optional<Transmission>& from_urdf);
+
+// Simulates as SimulateJointLog, adds each motor's terms (options.motor_*)
+// through Aᵀ to the joint torques, and measures on the motor side: the
+// sensors' q_noise and q_resolution apply to θm, tau_noise to τm. Throws
+// std::invalid_argument naming a motor_* field of the wrong size or sign.
+MotorSideLog SimulateMotorSideLog(const RobotModel& model, const Transmission& transmission,
+                                  const SimulateOptions& options);
+
+// The log as CSV: t, qm*, qdm* and qdd* when recorded, taum*.
+std::string FormatMotorSideLogCsv(const MotorSideLog& log);
+// Its log description (joint_log_description.h), naming `csv_path`
+// (relative to the description's folder) and the transmission, so that
+// identify reads it through the same A and q0.
+std::string FormatMotorSideLogDescription(const MotorSideLog& log, const std::string& csv_path);
 
 }  // namespace idbench
