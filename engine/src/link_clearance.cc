@@ -9,6 +9,8 @@
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +29,40 @@ btTransform ToBt(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   return btTransform(basis, ToBt(p));
 }
 
+// The distance between the segments p1–q1 and p2–q2 (Ericson, Real-Time
+// Collision Detection, 5.1.9).
+double SegmentDistance(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                       const Eigen::Vector3d& q2) {
+  constexpr double kEps = 1e-18;
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a <= kEps && e <= kEps) return r.norm();
+  if (a <= kEps) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= kEps) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) t = 0.0, s = std::clamp(-c / a, 0.0, 1.0);
+      else if (t > 1.0) t = 1.0, s = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+  }
+  return (p1 + s * d1 - (p2 + t * d2)).norm();
+}
+
+// The distance from p to the segment a–b.
+double PointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double dd = d.squaredNorm();
+  const double t = dd > 0.0 ? std::clamp((p - a).dot(d) / dd, 0.0, 1.0) : 0.0;
+  return (p - a - t * d).norm();
+}
+
 }  // namespace
 
 std::string ClearancePair::Other(const RobotModel& model) const {
@@ -39,7 +75,10 @@ struct ClearanceModel::Impl {
   struct LinkShape {
     std::unique_ptr<btConvexShape> shape;
     Eigen::Isometry3d X_BG;
-    double bounding_radius = 0.0;  // of the sphere about G's origin holding the shape
+    // A capsule holding the shape as GJK sees it (margin included): the
+    // points within capsule_radius of the segment e0–e1 (in G).
+    Eigen::Vector3d e0 = Eigen::Vector3d::Zero(), e1 = Eigen::Vector3d::Zero();
+    double capsule_radius = 0.0;
   };
   std::vector<std::vector<LinkShape>> shapes;  // per link
   std::vector<LinkShape> obstacles;            // X_BG is X_RO: the obstacle in the base frame
@@ -113,7 +152,48 @@ struct ClearanceModel::Impl {
     return c;
   }
 
-  // The pair's clearance; shape pairs whose bounding spheres are at least
+  // A shape's capsule segment placed by link (or, link < 0, an obstacle's in R).
+  void Segment(const KinematicsData<double>& k, int link, const LinkShape& s, Eigen::Vector3d* a,
+               Eigen::Vector3d* b) const {
+    if (link < 0) {
+      *a = s.X_BG * s.e0, *b = s.X_BG * s.e1;
+      return;
+    }
+    const size_t i = static_cast<size_t>(link);
+    const Eigen::Matrix3d R = k.R_WB[i] * s.X_BG.linear();
+    const Eigen::Vector3d o = k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation();
+    *a = o + R * s.e0, *b = o + R * s.e1;
+  }
+
+  // A lower bound of the distance between shape sa of link a and the other
+  // side's shape sb (link b ≥ 0, an obstacle, or the floor when sb is null):
+  // their capsules' distance, less kBoundTolerance.
+  double Bound(const KinematicsData<double>& k, const ClearancePair& pair, const LinkShape& sa,
+               const LinkShape* sb) const {
+    constexpr double kBoundTolerance = 1e-9;  // [m] rounding: never above GJK's distance
+    Eigen::Vector3d a0, a1, b0, b1;
+    Segment(k, pair.link_a, sa, &a0, &a1);
+    if (!sb) return std::min(n_R.dot(a0), n_R.dot(a1)) + floor_h - sa.capsule_radius - kBoundTolerance;
+    Segment(k, pair.obstacle >= 0 ? -1 : pair.link_b, *sb, &b0, &b1);
+    return SegmentDistance(a0, a1, b0, b1) - sa.capsule_radius - sb->capsule_radius - kBoundTolerance;
+  }
+
+  // The pair's lower bound: the least over its shape pairs.
+  double PairBound(const KinematicsData<double>& k, const ClearancePair& pair) const {
+    double bound = std::numeric_limits<double>::infinity();
+    for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
+      if (pair.obstacle >= 0) {
+        bound = std::min(bound, Bound(k, pair, sa, &obstacles[static_cast<size_t>(pair.obstacle)]));
+      } else if (pair.link_b < 0) {
+        bound = std::min(bound, Bound(k, pair, sa, nullptr));
+      } else {
+        for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) bound = std::min(bound, Bound(k, pair, sa, &sb));
+      }
+    }
+    return bound;
+  }
+
+  // The pair's clearance; shape pairs whose capsules are at least
   // `at_least` apart are not passed to GJK. When all are, the result is that
   // lower bound (distance ≥ at_least; points and normal unset).
   Clearance Compute(const KinematicsData<double>& k, const ClearancePair& pair,
@@ -121,18 +201,15 @@ struct ClearanceModel::Impl {
     Clearance best;
     best.distance = std::numeric_limits<double>::infinity();
     double bound = std::numeric_limits<double>::infinity();
-    auto centre = [&](int link, const LinkShape& s) {
-      const size_t i = static_cast<size_t>(link);
-      return Eigen::Vector3d(k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
-    };
     auto placed = [&](int link, const LinkShape& s) {
-      return ToBt(k.R_WB[static_cast<size_t>(link)] * s.X_BG.linear(), centre(link, s));
+      const size_t i = static_cast<size_t>(link);
+      return ToBt(k.R_WB[i] * s.X_BG.linear(), k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
     };
+    const bool prune = std::isfinite(at_least);
     for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
-      const Eigen::Vector3d c_a = centre(pair.link_a, sa);
       if (pair.obstacle >= 0) {
         const LinkShape& so = obstacles[static_cast<size_t>(pair.obstacle)];
-        const double lower = (c_a - so.X_BG.translation()).norm() - sa.bounding_radius - so.bounding_radius;
+        const double lower = prune ? Bound(k, pair, sa, &so) : -std::numeric_limits<double>::infinity();
         if (lower >= std::min(at_least, best.distance)) {
           bound = std::min(bound, lower);
           continue;
@@ -142,18 +219,13 @@ struct ClearanceModel::Impl {
         if (c.distance < best.distance) best = c;
         continue;
       }
-      if (pair.link_b < 0) {
-        const double lower = n_R.dot(c_a) + floor_h - sa.bounding_radius;
-        if (lower >= std::min(at_least, best.distance)) {
-          bound = std::min(bound, lower);
-          continue;
-        }
+      if (pair.link_b < 0) {  // exact and cheap: no bound needed
         const Clearance c = Ground(sa.shape.get(), placed(pair.link_a, sa));
         if (c.distance < best.distance) best = c;
         continue;
       }
       for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) {
-        const double lower = (c_a - centre(pair.link_b, sb)).norm() - sa.bounding_radius - sb.bounding_radius;
+        const double lower = prune ? Bound(k, pair, sa, &sb) : -std::numeric_limits<double>::infinity();
         if (lower >= std::min(at_least, best.distance)) {
           bound = std::min(bound, lower);
           continue;
@@ -193,15 +265,46 @@ ClearanceModel::Impl::LinkShape ClearanceModel::Impl::Convex(const Shape& s, con
       break;
   }
   if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin + gap);
-  double radius = s.kind == Shape::Kind::kSphere ? s.size.x()
-                  : s.kind == Shape::Kind::kBox  ? 0.5 * s.size.norm() + kMargin
-                                                 : std::hypot(s.size.x(), 0.5 * s.size.z()) + kMargin;
-  if (s.kind == Shape::Kind::kMesh) {
-    radius = 0.0;
-    for (const Eigen::Vector3d& v : s.mesh->vertices) radius = std::max(radius, v.norm());
-    radius += kMargin + gap;  // the inner hull's points are vertices of the mesh
+  // The bounding capsule: along a box's longest side, a cylinder's axis, a
+  // mesh's principal axis (through its vertices' centroid).
+  LinkShape out{std::move(shape), X_BG, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.0};
+  switch (s.kind) {
+    case Shape::Kind::kSphere:
+      out.capsule_radius = s.size.x();
+      break;
+    case Shape::Kind::kCylinder:
+      out.e0 = Eigen::Vector3d(0, 0, -(0.5 * s.size.z() + kMargin)), out.e1 = -out.e0;
+      out.capsule_radius = s.size.x() + kMargin;
+      break;
+    case Shape::Kind::kBox: {
+      const Eigen::Vector3d half = 0.5 * s.size + Eigen::Vector3d::Constant(kMargin);
+      Eigen::Index axis = 0;
+      half.maxCoeff(&axis);
+      out.e1[axis] = half[axis], out.e0[axis] = -half[axis];
+      Eigen::Vector3d across = half;
+      across[axis] = 0.0;
+      out.capsule_radius = across.norm();
+      break;
+    }
+    case Shape::Kind::kMesh: {
+      const std::vector<Eigen::Vector3d>& v = s.mesh->vertices;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& p : v) centroid += p;
+      centroid /= static_cast<double>(v.size());
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (const Eigen::Vector3d& p : v) cov += (p - centroid) * (p - centroid).transpose();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+      const Eigen::Vector3d axis = eig.eigenvectors().col(2);  // the largest eigenvalue's
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Eigen::Vector3d& p : v) lo = std::min(lo, (p - centroid).dot(axis)), hi = std::max(hi, (p - centroid).dot(axis));
+      out.e0 = centroid + lo * axis, out.e1 = centroid + hi * axis;
+      for (const Eigen::Vector3d& p : v) out.capsule_radius = std::max(out.capsule_radius, PointSegmentDistance(p, out.e0, out.e1));
+      // The inner hull's points are vertices of the mesh; GJK rounds it by the margin and the gap.
+      out.capsule_radius += kMargin + gap;
+      break;
+    }
   }
-  return {std::move(shape), X_BG, radius};
+  return out;
 }
 
 ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, const Cell& scene,
@@ -270,6 +373,24 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, co
         continue;
       }
       pair.home_distance = d;
+      pair.reach.assign(static_cast<size_t>(model.n_dof()), 0.0);
+      for (int side = 0; side < 2; ++side) {
+        const int link = side == 0 ? a : pair.link_b;
+        const int other = side == 0 ? pair.link_b : a;
+        if (link < 0) continue;
+        // The farthest point of the link's shapes from its origin, then from
+        // each joint up its chain (adding the fixed hinge-to-hinge lengths).
+        double r = 0.0;
+        for (const Impl::LinkShape& sh : impl_->shapes[static_cast<size_t>(link)]) {
+          r = std::max({r, (sh.X_BG * sh.e0).norm() + sh.capsule_radius, (sh.X_BG * sh.e1).norm() + sh.capsule_radius});
+        }
+        for (int j = link; j >= 0; j = model.link(j).parent) {
+          bool shared = false;  // a joint on the other side's chain too
+          for (int o = other; o >= 0; o = model.link(o).parent) shared = shared || o == j;
+          if (!shared) pair.reach[static_cast<size_t>(j)] += r;
+          r += model.link(j).X_PJ.translation().norm();
+        }
+      }
       // An obstacle is where the cell puts it, not a part of the robot that
       // q = 0 may overlap by construction: its pairs keep the full clearance.
       pair.minimum = pair.obstacle >= 0 ? min_clearance : std::min(min_clearance, d - kHomeTolerance);
@@ -295,8 +416,12 @@ void ClearanceModel::Compute(const KinematicsData<double>& k, std::vector<Cleara
   }
 }
 
-Clearance ClearanceModel::ComputePair(const KinematicsData<double>& k, int i) const {
-  return impl_->Compute(k, pairs_.at(static_cast<size_t>(i)));
+Clearance ClearanceModel::ComputePair(const KinematicsData<double>& k, int i, double at_least) const {
+  return impl_->Compute(k, pairs_.at(static_cast<size_t>(i)), at_least);
+}
+
+double ClearanceModel::LowerBound(const KinematicsData<double>& k, int i) const {
+  return impl_->PairBound(k, pairs_.at(static_cast<size_t>(i)));
 }
 
 Eigen::VectorXd ClearanceModel::DistanceGradient(const RobotModel& model, const KinematicsData<double>& k,

@@ -13,13 +13,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kClearanceScale = 0.1;  // [m]: a clearance constraint value of 1 is 10 cm
 
-// The indices 0..n−1 ordered by at[i] (stable).
-std::vector<size_t> SortedByInstant(const std::vector<size_t>& at) {
-  std::vector<size_t> order(at.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return at[a] < at[b]; });
-  return order;
-}
 }  // namespace
 
 DesignProblem::Workspace::Workspace(const DesignProblem& p)
@@ -250,38 +243,78 @@ std::string DesignProblem::DescribeViolation(int i, double c) const {
 void DesignProblem::ClearanceConstraints(const double* theta, double* result, double* grad, Workspace* ws) const {
   constexpr double kScale = kClearanceScale;
   const RobotModel& model = regressor_.model();
-  KinematicsData<double>& k = ws->regressor.kinematics;
   // The instants: every clearance_stride_-th grid sample, then those added.
   std::vector<const FourierBasis*> instants;
   for (size_t s = 0; s < times_.size(); s += static_cast<size_t>(clearance_stride_)) instants.push_back(&bases_[s]);
   for (const FourierBasis& b : ws->clearance_extra) instants.push_back(&b);
-  const size_t n_pairs = clearance_->pairs().size();
-  std::vector<double> worst(n_pairs, std::numeric_limits<double>::infinity());
-  std::vector<size_t> at(n_pairs, 0);
-  for (size_t s = 0; s < instants.size(); ++s) {
+  const size_t n_pairs = clearance_->pairs().size(), n_instants = instants.size();
+  // The link poses at every instant, and each pair's lower bound there
+  // (bounding capsules, no GJK).
+  while (ws->clearance_poses.size() < n_instants) ws->clearance_poses.emplace_back(model);
+  std::vector<double>& bounds = ws->clearance_bounds;
+  bounds.resize(n_instants * n_pairs);
+  ws->clearance_q.resize(n_, static_cast<Eigen::Index>(n_instants));
+  for (size_t s = 0; s < n_instants; ++s) {
     const JointState x = StateAt(*instants[s], theta);
-    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
-    clearance_->Compute(k, &ws->clearances, &worst);  // only what can beat the running minimum
+    ws->clearance_q.col(static_cast<Eigen::Index>(s)) = x.q;
+    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &ws->clearance_poses[s]);
     for (size_t i = 0; i < n_pairs; ++i) {
-      if (ws->clearances[i].distance < worst[i]) worst[i] = ws->clearances[i].distance, at[i] = s;
+      bounds[s * n_pairs + i] = clearance_->LowerBound(ws->clearance_poses[s], static_cast<int>(i));
     }
   }
+  // Each pair's minimum over the instants (branch and bound): GJK at the
+  // instants in the order of their bounds, until the next bound is above the
+  // least distance found; an instant is also skipped when a distance found
+  // at another instant, less how far the joints between can move the two
+  // sides (ClearancePair::reach), is above it. The minimum over all
+  // instants (the earliest instant on ties) to GJK's accuracy, with its
+  // witness points.
+  constexpr double kGjkTolerance = 1e-7;  // [m]
+  std::vector<Clearance> witness(n_pairs);
+  std::vector<size_t> at(n_pairs, 0);
+  std::vector<size_t>& order = ws->clearance_order;
+  order.resize(n_instants);
   for (size_t i = 0; i < n_pairs; ++i) {
+    for (size_t s = 0; s < n_instants; ++s) order[s] = s;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      const double ba = bounds[a * n_pairs + i], bb = bounds[b * n_pairs + i];
+      return ba < bb || (ba == bb && a < b);
+    });
+    double best = kInf;
+    const std::vector<double>& reach = clearance_->pairs()[i].reach;
+    ws->clearance_done.clear();
+    ws->clearance_done_distance.clear();
+    auto beaten = [&](double bound, size_t s) { return bound > best || (bound == best && s > at[i]); };
+    for (size_t s : order) {
+      const double bound = bounds[s * n_pairs + i];
+      if (beaten(bound, s)) break;
+      // The bound from the instants already measured (their joint motion to s).
+      double moved_bound = -kInf;
+      for (size_t e = 0; e < ws->clearance_done.size(); ++e) {
+        double d = ws->clearance_done_distance[e] - kGjkTolerance;
+        const size_t se = ws->clearance_done[e];
+        for (int j = 0; j < n_ && d >= best; ++j) {  // stops once below best: not beaten
+          d -= reach[static_cast<size_t>(j)] *
+               std::abs(ws->clearance_q(j, static_cast<Eigen::Index>(s)) - ws->clearance_q(j, static_cast<Eigen::Index>(se)));
+        }
+        moved_bound = std::max(moved_bound, d);
+      }
+      if (beaten(moved_bound, s)) continue;
+      const Clearance c = clearance_->ComputePair(ws->clearance_poses[s], static_cast<int>(i),
+                                                  std::isfinite(best) ? std::nextafter(best, kInf) : kInf);
+      if (c.distance < best || (c.distance == best && s < at[i])) best = c.distance, at[i] = s, witness[i] = c;
+      // Exact, or (pruned) a lower bound of the distance at s: either bounds the others.
+      ws->clearance_done.push_back(s);
+      ws->clearance_done_distance.push_back(c.distance);
+    }
     const ClearancePair& pair = clearance_->pairs()[i];
-    result[i] = (pair.minimum + clearance_slack_[i] - worst[i]) / kScale;
+    result[i] = (pair.minimum + clearance_slack_[i] - best) / kScale;
   }
   if (!grad) return;
-  // The gradients from the witness points at each pair's closest instant:
-  // the kinematics once per instant, GJK for that pair alone.
-  size_t done_at = instants.size();
-  for (size_t i : SortedByInstant(at)) {
-    if (at[i] != done_at) {
-      const JointState x = StateAt(*instants[at[i]], theta);
-      ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &k);
-      done_at = at[i];
-    }
-    const Clearance c = clearance_->ComputePair(k, static_cast<int>(i));
-    const Eigen::VectorXd dd_dq = clearance_->DistanceGradient(model, k, clearance_->pairs()[i], c);
+  // The gradients from the witness points at each pair's closest instant.
+  for (size_t i = 0; i < n_pairs; ++i) {
+    const Eigen::VectorXd dd_dq =
+        clearance_->DistanceGradient(model, ws->clearance_poses[at[i]], clearance_->pairs()[i], witness[i]);
     ws->gx.setZero();
     ws->gx.head(n_) = -dd_dq / kScale;
     double* g = grad + i * static_cast<size_t>(n_unknowns());

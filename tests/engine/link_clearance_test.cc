@@ -7,10 +7,12 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 
 #include "engine/test_meshes.h"
 #include "engine/test_util.h"
 #include "idbench/engine/puma560.h"
+#include "idbench/engine/urdf.h"
 
 namespace idbench {
 namespace {
@@ -416,6 +418,51 @@ TEST(LinkClearanceTest, AnInvalidCellIsRefusedNamingTheField) {
   cell.obstacles.assign(Cell::kMaxObstacles + 1, Obstacle{});
   for (Obstacle& o : cell.obstacles) o.shape.kind = Shape::Kind::kSphere, o.shape.size.setConstant(0.1);
   EXPECT_THROW(ClearanceModel(model, 0.01, cell), std::invalid_argument);
+}
+
+// The bounds the design's search prunes with never exceed the distance GJK
+// measures: the bounding capsules (LowerBound) at random poses, and the
+// reach bound d(q') ≥ d(q) − Σ reach_j |q'_j − q_j| between random pose
+// pairs near and far apart: PUMA (cylinders, boxes), the UR10e-like arm
+// (meshes) in a cell with a box and a sphere.
+TEST(LinkClearanceTest, CapsuleAndReachBoundsNeverExceedTheGjkDistance) {
+  Cell cell;
+  Obstacle box, ball;
+  box.shape.kind = Shape::Kind::kBox;
+  box.shape.size = Eigen::Vector3d(0.1, 2.0, 1.0);
+  box.X_WO.translation() = Eigen::Vector3d(0.6, 0.0, 0.5);
+  ball.shape.kind = Shape::Kind::kSphere;
+  ball.shape.size.setConstant(0.1);
+  ball.X_WO.translation() = Eigen::Vector3d(-0.4, 0.3, 0.8);
+  cell.obstacles = {box, ball};
+  const RobotModel ur = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/ur10e_like/ur10e_like.urdf").model;
+  const RobotModel puma = MakePuma560();
+  int bounded = 0, checked = 0;
+  for (const RobotModel* model : {&puma, &ur}) {
+    const ClearanceModel clearance(*model, 0.01, model == &ur ? cell : Cell());
+    const int n = model->n_dof();
+    KinematicsData<double> k(*model), k2(*model);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    std::mt19937 rng(11);
+    for (int pose = 0; pose < 150; ++pose) {
+      const Eigen::VectorXd q = RandomVector(n, 3.0, &rng);
+      const Eigen::VectorXd q2 = q + RandomVector(n, pose % 2 ? 0.05 : 1.0, &rng);
+      ComputeKinematicsT<double>(*model, q, zero, zero, &k);
+      ComputeKinematicsT<double>(*model, q2, zero, zero, &k2);
+      for (int i = 0; i < static_cast<int>(clearance.pairs().size()); ++i) {
+        const double d = clearance.ComputePair(k, i).distance, d2 = clearance.ComputePair(k2, i).distance;
+        const double bound = clearance.LowerBound(k, i);
+        EXPECT_LE(bound, d + 1e-9) << clearance.pairs()[static_cast<size_t>(i)].Name(*model);
+        bounded += bound > 0.0;
+        double moved = d;
+        for (int j = 0; j < n; ++j) moved -= clearance.pairs()[static_cast<size_t>(i)].reach[static_cast<size_t>(j)] * std::abs(q2[j] - q[j]);
+        EXPECT_LE(moved, d2 + 1e-7) << clearance.pairs()[static_cast<size_t>(i)].Name(*model);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 5000);
+  EXPECT_GT(bounded, checked / 4);  // the capsules are tight enough to bound most pairs above 0
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+
 #include "excitation/design_test_util.h"
 
 #include "idbench/engine/paper6r.h"
@@ -172,6 +175,53 @@ TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
           << problem.clearance()->pairs()[static_cast<size_t>(c)].Name(model) << " unknown " << i;
     }
   }
+}
+
+// The pruned minimum over the clearance grid (capsule and reach bounds)
+// equals the brute force: every pair at every grid instant by GJK, for
+// starts and for motions grown well beyond them.
+TEST(DesignProblemTest, ClearanceMinimumEqualsTheBruteForceOverTheGrid) {
+  const RobotModel model = MakePuma560();
+  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  DesignOptions o = SmallOptions(false);
+  o.clearance = 0.05;
+  const DesignProblem problem(r, testing::DesignLimits(model, 1.5, 4.0), o);
+  const ClearanceModel& clearance = *problem.clearance();
+  const size_t m = clearance.pairs().size();
+  DesignProblem::Workspace ws(problem);
+  // The slack: min(1 mm, the distance at the home pose less the minimum).
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  std::vector<Clearance> d;
+  ComputeKinematicsT<double>(model, problem.home(), zero, zero, &k);
+  clearance.Compute(k, &d);
+  std::vector<double> slack(m);
+  for (size_t i = 0; i < m; ++i) slack[i] = std::clamp(d[i].distance - clearance.pairs()[i].minimum, 0.0, 1e-3);
+  int compared = 0;
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    for (double grow : {1.0, 4.0}) {
+      Eigen::VectorXd theta = problem.StartPoint(seed, &ws);
+      for (int j = 0; j < 6; ++j) theta.segment(j * problem.block() + 1, 2 * problem.harmonics()) *= grow;
+      std::vector<double> value(m);
+      problem.NonlinearConstraints(theta.data(), value.data(), nullptr, &ws);
+      const FourierSeriesTrajectory trajectory = problem.Trajectory(theta);
+      std::vector<double> worst(m, std::numeric_limits<double>::infinity());
+      const size_t stride = static_cast<size_t>((o.samples + 99) / 100);
+      JointState x(6);
+      for (size_t s = 0; s < problem.times().size(); s += stride) {
+        trajectory.Evaluate(problem.times()[s], &x);
+        ComputeKinematicsT<double>(model, x.q, zero, zero, &k);
+        clearance.Compute(k, &d);
+        for (size_t i = 0; i < m; ++i) worst[i] = std::min(worst[i], d[i].distance);
+      }
+      for (size_t i = 0; i < m; ++i) {
+        EXPECT_NEAR(value[i], (clearance.pairs()[i].minimum + slack[i] - worst[i]) / 0.1, 1e-6)
+            << clearance.pairs()[i].Name(model) << " seed " << seed << " grown " << grow;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, static_cast<int>(6 * m));
 }
 
 }  // namespace

@@ -35,6 +35,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +55,11 @@ struct ClearancePair {
   double minimum = 0.0;        // [m] the least distance allowed: min_clearance, or the distance
                                // at q = 0 less kHomeTolerance when the pair starts closer
   double home_distance = 0.0;  // [m] at q = 0
+  // [m/rad] per joint, at any pose: how fast a point of either side moves
+  // relative to the other per unit rate of the joint (0 for joints on
+  // neither chain or on both, which move the two rigidly together). So the
+  // distance at q' is at least the distance at q less Σ_j reach_j |q'_j − q_j|.
+  std::vector<double> reach;
   std::string Name(const RobotModel& model) const;  // "link2–link5", "link4–ground", "link4–table"
   // The other side's name: a link's, "ground" or the obstacle's.
   std::string Other(const RobotModel& model) const;
@@ -89,14 +95,24 @@ class ClearanceModel {
   int n_held_at_home() const;
 
   // The clearance of every pair at the link poses in k (one entry per pair).
-  // With at_least (one value per pair), a pair whose shapes' bounding spheres
-  // are at least that far apart gets that lower bound instead (no GJK; its
-  // points and normal are unset): enough to track a minimum over instants.
+  // With at_least (one value per pair), a pair whose shapes' bounding
+  // capsules (LowerBound) are at least that far apart gets that lower bound
+  // instead (no GJK; its points and normal are unset): enough to track a
+  // minimum over instants.
   void Compute(const KinematicsData<double>& k, std::vector<Clearance>* out,
                const std::vector<double>* at_least = nullptr) const;
 
-  // The clearance of pair i alone (pairs()[i]) at the link poses in k.
-  Clearance ComputePair(const KinematicsData<double>& k, int i) const;
+  // The clearance of pair i alone (pairs()[i]) at the link poses in k; with
+  // a finite at_least, pruned as Compute does.
+  Clearance ComputePair(const KinematicsData<double>& k, int i,
+                        double at_least = std::numeric_limits<double>::infinity()) const;
+
+  // A lower bound of pair i's distance at the link poses in k, without GJK:
+  // the distance between capsules holding the shapes (a segment along a
+  // box's longest side, a cylinder's axis or a mesh's principal axis, with
+  // the radius reaching every point of the shape as GJK sees it). For the
+  // floor, the capsule's lowest point.
+  double LowerBound(const KinematicsData<double>& k, int i) const;
 
   // ∂distance/∂q (n_dof) of a pair from its Clearance: the closest point on a
   // moves with the joints of a's chain, the one on b with b's (ground: fixed).

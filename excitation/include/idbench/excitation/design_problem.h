@@ -40,6 +40,11 @@ class DesignProblem {
     Eigen::MatrixXd W, G, torque_rows;
     std::vector<Clearance> clearances;
     std::vector<FourierBasis> clearance_extra;  // instants added by AddClearanceInstant
+    std::vector<KinematicsData<double>> clearance_poses;  // per clearance instant
+    std::vector<double> clearance_bounds;                 // per instant, per pair: LowerBound
+    std::vector<size_t> clearance_order, clearance_done;
+    Eigen::MatrixXd clearance_q;  // n_dof × instants
+    std::vector<double> clearance_done_distance;
     Eigen::VectorXd gx;
     std::vector<JointState> x;
   };
