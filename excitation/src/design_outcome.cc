@@ -32,6 +32,7 @@ void DescribeProgress(DesignStartSummary* s) {
 // thrown as InfeasibleDesign after the search.
 [[noreturn]] void ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
                                          const DesignOptions& options, const DesignProblem& problem,
+                                         const std::vector<DesignStartSummary>& summaries,
                                          std::vector<StartRun>* runs) {
   int least = 0;
   double least_violation = kInf;
@@ -50,10 +51,15 @@ void DescribeProgress(DesignStartSummary* s) {
   FeasibilityCheck check = CheckTrajectoryLimits(model, limits, problem.Trajectory(run.last_theta),
                                                  options.check_rate_hz, problem.clearance());
   std::vector<std::string> advice = RelaxationAdvice(check, options, false);
+  // What became of each start, then the check of the least violating one.
+  std::string starts;
+  for (size_t s = 0; s < summaries.size(); ++s) {
+    starts += "  start " + std::to_string(s + 1) + ": " + summaries[s].outcome + "\n";
+  }
   throw InfeasibleDesign("no feasible design: no start met the limits (tightened by the margin " +
-                             Format("%g", options.margin) + ") and the clearance on the sample grid; where start " +
-                             std::to_string(least + 1) + " ended, checked at " + Format("%g", options.check_rate_hz) +
-                             " Hz:",
+                             Format("%g", options.margin) + ") and the clearance on the sample grid:\n" + starts +
+                             "where start " + std::to_string(least + 1) + " ended, checked at " +
+                             Format("%g", options.check_rate_hz) + " Hz:",
                          std::move(check), std::move(advice), false);
 }
 

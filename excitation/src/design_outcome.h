@@ -14,9 +14,11 @@ namespace idbench::internal {
 void DescribeProgress(DesignStartSummary* s);
 
 // The least-violating point any start ended at, checked at the check rate:
-// thrown as InfeasibleDesign after the search.
+// thrown as InfeasibleDesign after the search, its summary with one line per
+// start saying what became of it (summaries[s].outcome).
 [[noreturn]] void ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
                                          const DesignOptions& options, const DesignProblem& problem,
+                                         const std::vector<DesignStartSummary>& summaries,
                                          std::vector<StartRun>* runs);
 
 }  // namespace idbench::internal

@@ -220,7 +220,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
       best = s;
     }
   }
-  if (best < 0) internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, &runs);
+  if (best < 0) internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, summaries, &runs);
   const StartRun& winner = runs[static_cast<size_t>(best)];
   DesignResult result(problem.Trajectory(winner.best_theta), problem.Trajectory(winner.start_theta));
   result.starts = summaries;

@@ -3,6 +3,7 @@
 // and the advice on what to relax (excitation_design.h).
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "excitation_design_internal.h"
@@ -21,26 +22,54 @@ bool FeasibilityCheck::feasible() const {
   return std::all_of(margins.begin(), margins.end(), [](const ConstraintMargin& m) { return m.margin >= 0.0; });
 }
 
-std::string FeasibilityCheck::Explain() const {
+namespace {
+
+// One violated margin, one line; at_pose: a pose held still (the home pose
+// before any search) rather than an instant of a motion.
+std::string ExplainMargin(const ConstraintMargin& m, bool at_pose) {
+  const std::string when = at_pose ? " at the home pose" : Format(" at t = %.4g s", m.time);
+  if (m.quantity == "clearance") {
+    return m.pair + Format(" clearance: %.4g m", m.value) + when + Format(" is below its minimum %.4g m", m.limit) +
+           (m.held_at_home ? " (its distance at q = 0, closer than the clearance asked)" : "") +
+           Format(" by %.3g m\n", -m.margin);
+  }
+  const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
+  const bool lower = m.quantity == "q_min";
+  return "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
+         (m.quantity == "q_min" || m.quantity == "q_max" ? "q" : "|" + m.quantity + "|") + Format(" = %.6g", m.value) +
+         " " + unit + when + " " + (lower ? "is below" : "exceeds") + Format(" the limit %.6g ", m.limit) + unit +
+         Format(" by %.3g ", -m.margin) + unit + "\n";
+}
+
+std::string ExplainViolations(const FeasibilityCheck& check, bool at_pose) {
   std::string out;
-  for (const ConstraintMargin& m : margins) {
-    if (m.margin >= 0.0) continue;
-    if (m.quantity == "clearance") {
-      out += m.pair + Format(" clearance: %.4g m at t = %.4g s is below its minimum %.4g m", m.value, m.time, m.limit) +
-             (m.held_at_home ? " (its distance at q = 0, closer than the clearance asked)" : "") +
-             Format(" by %.3g m\n", -m.margin);
-      continue;
-    }
-    const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
-    const bool lower = m.quantity == "q_min";
-    out += "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
-           (m.quantity == "q_min" || m.quantity == "q_max" ? "q" : "|" + m.quantity + "|") +
-           Format(" = %.6g", m.value) + " " + unit + Format(" at t = %.4g s ", m.time) +
-           (lower ? "is below" : "exceeds") + Format(" the limit %.6g ", m.limit) + unit +
-           Format(" by %.3g ", -m.margin) + unit + "\n";
+  for (const ConstraintMargin& m : check.margins) {
+    if (m.margin < 0.0) out += ExplainMargin(m, at_pose);
   }
   return out;
 }
+
+// "obstacles[2], a box 2 × 2 × 0.05 m at (0, 0, -0.026) m" for the scene's
+// obstacle named `name` ("" when the scene has none of that name: the floor).
+std::string DescribeObstacle(const Cell& scene, const std::string& name) {
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    if (scene.ObstacleName(static_cast<int>(i)) != name) continue;
+    const Obstacle& o = scene.obstacles[i];
+    const Eigen::Vector3d& s = o.shape.size;
+    const Eigen::Vector3d p = o.X_WO.translation();
+    const std::string shape = o.shape.kind == Shape::Kind::kBox        ? Format("a box %g", s.x()) + Format(" × %g", s.y()) + Format(" × %g m", s.z())
+                              : o.shape.kind == Shape::Kind::kCylinder ? Format("a cylinder of radius %g m", s.x()) + Format(", %g m long", s.z())
+                              : o.shape.kind == Shape::Kind::kSphere   ? Format("a sphere of radius %g m", s.x())
+                                                                       : std::string("a mesh");
+    return "obstacles[" + std::to_string(i) + "], " + shape + Format(" at (%g", p.x()) + Format(", %g", p.y()) +
+           Format(", %g) m", p.z());
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string FeasibilityCheck::Explain() const { return ExplainViolations(*this, false); }
 
 const ConstraintMargin* FeasibilityCheck::ClosestObstacle() const {
   const ConstraintMargin* closest = nullptr;
@@ -130,7 +159,7 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
 InfeasibleDesign::InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
                                    bool before_search)
     : std::runtime_error([&] {
-        std::string what = summary + "\n" + check.Explain();
+        std::string what = summary + "\n" + ExplainViolations(check, before_search);
         if (!advice.empty()) what += "to relax:\n";
         for (const std::string& a : advice) what += "  " + a + "\n";
         if (!what.empty() && what.back() == '\n') what.pop_back();
@@ -148,35 +177,48 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
   };
   const double ramp = options.ramp_seconds, motion_end = ramp + options.period_duration();
   bool in_motion = false;  // a violation outside the ramps
+  std::vector<std::string> obstacles;            // the scene's obstacles too close, in order
+  std::map<std::string, std::string> too_close;  // obstacle -> "link (distance m), ..."
+  std::map<std::string, double> limit;           // obstacle -> the clearance asked [m]
   for (const ConstraintMargin& m : check.margins) {
     if (m.margin >= 0.0) continue;
     const std::string joint = "joint " + std::to_string(m.joint + 1);
     if (!before_search && ramp > 0.0 && (m.time < ramp || m.time > motion_end)) {
-      add(Format("--ramp (now %g s): longer ramps from and to the home pose (violated during t < %g s", ramp, ramp) +
+      add(Format("ramp_seconds (now %g s): longer ramps from and to the home pose (violated during t < %g s", ramp, ramp) +
           Format(" or t > %g s)", motion_end));
       continue;
     }
     in_motion = true;
     if (m.quantity == "clearance" && !m.obstacle.empty()) {
-      add(m.obstacle == "ground"
-              ? Format("--clearance (now %g m), a --home pose or a base pose with ", options.clearance) + m.link +
-                    " further from the floor, or \"floor\": false in the scene"
-              : "the scene's obstacle '" + m.obstacle + "' (" + m.link +
-                    Format(" comes within %.3g m of it, %.3g m asked): move or remove it, or a base pose further "
-                           "from it", m.value, m.limit));
+      if (m.obstacle == "ground") {
+        add(Format("clearance (now %g m), a home pose or a base_pose with ", options.clearance) + m.link +
+            " further from the floor, or \"floor\": false in the scene");
+        continue;
+      }
+      // Per obstacle: every link that comes too close to it, on one line (below).
+      auto& links = too_close[m.obstacle];
+      if (links.empty()) obstacles.push_back(m.obstacle);
+      links += (links.empty() ? "" : ", ") + m.link + Format(" (%.3g m)", m.value);
+      limit[m.obstacle] = m.limit;
     } else if (m.quantity == "clearance") {
-      add(Format("--clearance (now %g m), or a --home pose with the links further apart", options.clearance));
+      add(Format("clearance (now %g m), or a home pose with the links further apart", options.clearance));
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
-      add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a --home inside it" : ""));
+      add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a home inside it" : ""));
     } else if (m.quantity == "tau") {
-      add(joint + "'s torque limit tau_max in the limits file, or a --home where gravity loads it less");
+      add(joint + "'s torque limit tau_max in the limits file, or a home where gravity loads it less");
     } else {
       add(joint + "'s " + (m.quantity == "qd" ? "velocity limit qd_max" : "acceleration limit qdd_max") +
-          " in the limits file, or fewer --harmonics, a lower --f0 or a longer --duration");
+          " in the limits file, or fewer harmonics, a lower f0 or a longer duration");
     }
   }
+  for (const std::string& name : obstacles) {
+    const std::string what = DescribeObstacle(options.scene, name);
+    add("the scene's obstacle '" + name + "'" + (what.empty() ? "" : " (" + what + ")") + ": " + too_close[name] +
+        Format(" closer than the %.3g m asked", limit[name]) + (before_search ? " at the home pose" : "") +
+        ": move or remove it, or a base_pose further from it");
+  }
   if (!before_search && (in_motion || advice.empty())) {
-    add(Format("--margin (now %g), which tightens every limit during the search", options.margin));
+    add(Format("margin (now %g), which tightens every limit during the search", options.margin));
   }
   return advice;
 }

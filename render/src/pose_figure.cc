@@ -78,26 +78,26 @@ bool PoseFigureOptions::IsValid(double duration, std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (layout != "grid" && layout != "strip") return fail("--layout: expected 'grid' or 'strip', got '" + layout + "'");
-  if (times.empty()) return fail("--times: no time given");
+  if (layout != "grid" && layout != "strip") return fail("layout: expected 'grid' or 'strip', got '" + layout + "'");
+  if (times.empty()) return fail("times: no time given");
   if (static_cast<int>(times.size()) > kMaxPanels) {
-    return fail("--times: " + std::to_string(times.size()) + " times given, at most " + std::to_string(kMaxPanels));
+    return fail("times: " + std::to_string(times.size()) + " times given, at most " + std::to_string(kMaxPanels));
   }
   const double slack = 1e-9 * std::max(1.0, duration);
   for (double t : times) {
     if (!std::isfinite(t) || t < -slack || t > duration + slack) {
-      return fail("--times: time " + Number(t) + " s is outside the trajectory [0, " + Number(duration) + "] s");
+      return fail("times: time " + Number(t) + " s is outside the trajectory [0, " + Number(duration) + "] s");
     }
   }
   for (int side : {panel_width, panel_height}) {
     if (side < kMinPanelSize || side > kMaxPanelSize) {
-      return fail("--size: panels must be " + std::to_string(kMinPanelSize) + ".." + std::to_string(kMaxPanelSize) +
+      return fail("panel_width x panel_height: panels must be " + std::to_string(kMinPanelSize) + ".." + std::to_string(kMaxPanelSize) +
                   " px per side, got " + std::to_string(panel_width) + "x" + std::to_string(panel_height));
     }
   }
   const long long pixels = 1LL * columns() * panel_width * rows() * panel_height;
   if (pixels > kMaxPixels) {
-    return fail("--size: the figure would have " + std::to_string(pixels) + " pixels (" +
+    return fail("panel_width x panel_height: the figure would have " + std::to_string(pixels) + " pixels (" +
                 std::to_string(columns() * panel_width) + "x" + std::to_string(rows() * panel_height) +
                 "), at most " + std::to_string(kMaxPixels));
   }
@@ -110,16 +110,28 @@ std::string PanelLabel(int k, double t) {
 
 Image RenderPoseFigure(SceneRenderer& renderer, const RobotModel& model, const Trajectory& trajectory,
                        const PoseFigureOptions& options) {
-  // The robot at every time, clamped onto the trajectory's domain.
+  // The robot at every time, clamped onto the trajectory's domain, in the cell.
   std::vector<Scene> scenes;
   std::vector<Eigen::Vector3d> points;
   RobotData data(model);
+  const Eigen::Isometry3d X_WR = options.base_pose.X_WR();
   for (double t : options.times) {
     const JointState state = trajectory.At(std::clamp(t, 0.0, trajectory.duration()));
     ComputeKinematics(model, state.q, state.qd, state.qdd, &data);
-    scenes.push_back(BuildRobotScene(model, data));
+    scenes.push_back(BuildRobotScene(model, data, X_WR));
     const std::vector<Eigen::Vector3d> p = scenes.back().BoundingPoints();
     points.insert(points.end(), p.begin(), p.end());
+  }
+  Scene cell;
+  AddCellObstacles(options.scene, &cell);
+  if (!cell.primitives.empty() && !points.empty()) {
+    // The obstacles near the robot in view: their corners clipped to the
+    // robot's box widened by half its size.
+    Eigen::Vector3d lo = points.front(), hi = lo;
+    for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const Eigen::Vector3d widen = 0.5 * (hi - lo);
+    for (const Eigen::Vector3d& p : cell.BoundingPoints()) points.push_back(p.cwiseMax(lo - widen).cwiseMin(hi + widen));
+    for (Scene& scene : scenes) scene.primitives.insert(scene.primitives.end(), cell.primitives.begin(), cell.primitives.end());
   }
   // One camera and one floor for all panels.
   const Camera camera = FitCamera(points, double(options.panel_width) / options.panel_height, options.view);

@@ -77,8 +77,20 @@ Eigen::Vector3f LinkColor(int link) {
   return kPalette[static_cast<size_t>(link) % kPalette.size()];
 }
 
-Scene BuildRobotScene(const RobotModel& model, const RobotData& data) {
+const Eigen::Vector3f kObstacleColor(0.74f, 0.69f, 0.60f);
+
+void AddCellObstacles(const Cell& cell, Scene* scene) {
+  for (const Obstacle& o : cell.obstacles) {
+    if (o.shape.kind == Shape::Kind::kMesh && o.shape.mesh == nullptr) continue;
+    // A mesh obstacle's triangles are already scaled (cell.h): no scale on top.
+    const Eigen::Vector3d size = o.shape.kind == Shape::Kind::kMesh ? Eigen::Vector3d::Ones() : o.shape.size;
+    scene->primitives.push_back({o.shape.kind, size, o.shape.mesh, o.X_WO, kObstacleColor});
+  }
+}
+
+Scene BuildRobotScene(const RobotModel& model, const RobotData& data, const Eigen::Isometry3d& X_WR) {
   Scene scene;
+  const bool mounted = !X_WR.isApprox(Eigen::Isometry3d::Identity(), 1e-12);
   const double stand_in = StandInRadius(model, data);
   for (int i = 0; i < model.n_links(); ++i) {
     const Link& link = model.link(i);
@@ -115,7 +127,7 @@ Scene BuildRobotScene(const RobotModel& model, const RobotData& data) {
     }
     // A grey pedestal from the ground (z = 0) up to a base joint above it.
     const double base_height = link.parent < 0 ? X_WB.translation().z() : 0.0;
-    if (base_height > 0.05 && LinkRadius(link, stand_in) > 0.0) {
+    if (!mounted && base_height > 0.05 && LinkRadius(link, stand_in) > 0.0) {
       ScenePrimitive pedestal;
       pedestal.kind = Shape::Kind::kCylinder;
       pedestal.color = kPedestalColor;
@@ -145,6 +157,10 @@ Scene BuildRobotScene(const RobotModel& model, const RobotData& data) {
       hinge.size = Eigen::Vector3d(0.45 * r_min, 0.45 * r_min, 2.0 * r_max + 0.5 * r_min);
     }
     scene.primitives.push_back(hinge);
+  }
+  // Everything above is in R: into W.
+  if (mounted) {
+    for (ScenePrimitive& p : scene.primitives) p.X_WG = X_WR * p.X_WG;
   }
   return scene;
 }

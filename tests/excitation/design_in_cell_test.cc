@@ -150,7 +150,10 @@ TEST(DesignInCellTest, ACellWithoutRoomIsExplainedPerObstacle) {
     EXPECT_TRUE(e.before_search());
     const std::string what = e.what();
     EXPECT_NE(what.find("–pillar clearance"), std::string::npos) << what;
-    EXPECT_NE(what.find("the scene's obstacle 'pillar'"), std::string::npos) << what;
+    EXPECT_NE(what.find("the scene's obstacle 'pillar' (obstacles[0], a cylinder of radius 0.4 m, 2 m long at (0, 0, 1) m)"),
+              std::string::npos) << what;
+    EXPECT_NE(what.find("clearance: "), std::string::npos) << what;
+    EXPECT_NE(what.find(" at the home pose is below its minimum"), std::string::npos) << what;
   }
 }
 

@@ -152,7 +152,7 @@ TEST(ExcitationDesignTest, RecheckCoversTheRamps) {
   EXPECT_GT(violated, 0);
   const std::vector<std::string> advice = RelaxationAdvice(sharp.check, o, false);
   ASSERT_FALSE(advice.empty());
-  EXPECT_EQ(advice[0].rfind("--ramp (now 0.05 s)", 0), 0u) << advice[0];
+  EXPECT_EQ(advice[0].rfind("ramp_seconds (now 0.05 s)", 0), 0u) << advice[0];
 
   o.ramp_seconds = 12.0;
   const DesignResult smooth = DesignExcitation(r, limits, o);
@@ -185,7 +185,7 @@ TEST(ExcitationDesignTest, NoFeasibleStartIsExplainedAfterTheSearch) {
     EXPECT_NE(std::string(e.what()).find("no feasible design"), std::string::npos) << e.what();
     EXPECT_EQ(e.check().rate_hz, 1000.0);
     bool margin = false;
-    for (const std::string& a : e.advice()) margin |= a.rfind("--margin (now 0.02)", 0) == 0;
+    for (const std::string& a : e.advice()) margin |= a.rfind("margin (now 0.02)", 0) == 0;
     EXPECT_TRUE(margin) << e.what();
   }
 }

@@ -42,4 +42,20 @@ inline long long RobotMaskDifference(const Image& image, int xa, int ya, int xb,
   return n;
 }
 
+// How far below the robot's pixel centroid the first link of a six-link
+// robot (the only blue one, LinkColor(0) = (0.20, 0.42, 0.74)) sits [px]:
+// > 0 below, < 0 above; 0 when fewer than 50 of its pixels show.
+inline double FirstLinkBelowCentroid(const Image& image) {
+  double robot_v = 0, robot_n = 0, base_v = 0, base_n = 0;
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const std::uint8_t* p = image.at(u, v);
+      if (!IsRobotPixel(p)) continue;
+      robot_v += v, ++robot_n;
+      if (p[2] > 1.4 * p[1] && p[2] > 2.0 * p[0]) base_v += v, ++base_n;
+    }
+  }
+  return base_n >= 50 ? base_v / base_n - robot_v / robot_n : 0.0;
+}
+
 }  // namespace idbench::testing

@@ -7,13 +7,19 @@
 namespace idbench {
 namespace {
 
-TEST(RobotSceneTest, Paper6rCylindersSitOnTheLinksAndEveryHingeIsMarked) {
-  const RobotModel model = MakePaper6r();
+// The paper 6R at one pose, at rest (ComputeKinematics done).
+RobotData PosedAtRest(const RobotModel& model) {
   RobotData data(model);
   Eigen::VectorXd q(6);
   q << 0.3, -0.7, 0.4, 1.1, -0.5, 0.9;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
   ComputeKinematics(model, q, zero, zero, &data);
+  return data;
+}
+
+TEST(RobotSceneTest, Paper6rCylindersSitOnTheLinksAndEveryHingeIsMarked) {
+  const RobotModel model = MakePaper6r();
+  const RobotData data = PosedAtRest(model);
   const Scene scene = BuildRobotScene(model, data);
   // One cylinder per link, then its hinge marker.
   ASSERT_EQ(scene.primitives.size(), 12u);
@@ -89,6 +95,41 @@ TEST(RobotSceneTest, LinksWithoutShapesGetRodsBetweenTheirJoints) {
   EXPECT_EQ(balls, 1);
   EXPECT_GE(rods, 4);  // joints that coincide get no rod
   EXPECT_FALSE(scene.BoundingPoints().empty());
+}
+
+// Mounted: every primitive of the upright scene carried by X_WR (no
+// pedestal); the cell's obstacles at their own poses, in the obstacle colour.
+TEST(RobotSceneTest, MountedRobotIsCarriedByTheBasePoseAndObstaclesStandWhereTheCellPutsThem) {
+  const RobotModel model = MakePaper6r();
+  const RobotData data = PosedAtRest(model);
+  const Scene upright = BuildRobotScene(model, data);
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.linear() = Eigen::AngleAxisd(3.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  X_WR.translation() = Eigen::Vector3d(0.2, -0.1, 2.5);
+  const Scene mounted = BuildRobotScene(model, data, X_WR);
+  ASSERT_EQ(mounted.primitives.size(), upright.primitives.size());
+  for (size_t i = 0; i < upright.primitives.size(); ++i) {
+    EXPECT_TRUE(mounted.primitives[i].X_WG.isApprox(X_WR * upright.primitives[i].X_WG, 1e-12)) << i;
+    EXPECT_EQ(mounted.primitives[i].size, upright.primitives[i].size) << i;
+  }
+  Cell cell;
+  Obstacle box, ball;
+  box.shape.kind = Shape::Kind::kBox;
+  box.shape.size = Eigen::Vector3d(0.5, 1.0, 2.0);
+  box.X_WO.translation() = Eigen::Vector3d(1, 2, 1);
+  ball.shape.kind = Shape::Kind::kSphere;
+  ball.shape.size = Eigen::Vector3d::Constant(0.3);
+  ball.X_WO.translation() = Eigen::Vector3d(-1, 0, 0.5);
+  cell.obstacles = {box, ball};
+  Scene scene;
+  AddCellObstacles(cell, &scene);
+  ASSERT_EQ(scene.primitives.size(), 2u);
+  EXPECT_EQ(scene.primitives[0].kind, Shape::Kind::kBox);
+  EXPECT_EQ(scene.primitives[0].size, box.shape.size);
+  EXPECT_TRUE(scene.primitives[0].X_WG.isApprox(box.X_WO));
+  EXPECT_EQ(scene.primitives[1].kind, Shape::Kind::kSphere);
+  EXPECT_EQ(scene.primitives[1].X_WG.translation(), ball.X_WO.translation());
+  EXPECT_EQ(scene.primitives[0].color, kObstacleColor);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,8 +43,20 @@ struct DesignFlags {
 std::atomic<bool> g_stop_requested{false};
 extern "C" void RequestStop(int) { g_stop_requested = true; }
 
-// The search, under Ctrl-C. An infeasible search (not settings that admit no
-// motion) writes design.json with the diagnostics before it is thrown on.
+// Whether an InfeasibleDesign is a run that failed (exit 1) rather than
+// settings that admit no motion (exit 2): the search ran, or the scene's
+// obstacles leave the arm no room (the cell is where the robot stands, not
+// a malformed option; docs/exit-codes.md).
+bool RanAndFailed(const InfeasibleDesign& e) {
+  if (!e.before_search()) return true;
+  for (const ConstraintMargin& m : e.check().margins) {
+    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return true;
+  }
+  return false;
+}
+
+// The search, under Ctrl-C. A design that ran and failed (RanAndFailed)
+// writes design.json with the diagnostics before it is thrown on.
 DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options) {
   const std::filesystem::path dir(options.out_dir);
   std::signal(SIGINT, RequestStop);
@@ -51,8 +64,8 @@ DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOpt
     DesignCommandReport report = RunDesign(model, options, &g_stop_requested);
     std::signal(SIGINT, SIG_DFL);
     return report;
-  } catch (const InfeasibleDesign& e) {  // the search ran: design.json explains it
-    if (!e.before_search()) {
+  } catch (const InfeasibleDesign& e) {  // the search ran, or the cell has no room: design.json explains it
+    if (RanAndFailed(e)) {
       EnsureOutputDirectory(dir);
       WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, options, e));
     }
@@ -66,7 +79,15 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
   if (!options.IsValid(&why)) return context.UsageError(why);
   const RobotModel model = LoadRobotOrThrow(options.robot, load);
   if (!options.IsValidFor(model, &why)) return context.UsageError(why);
-  const DesignCommandReport report = SearchDesign(model, options);
+  std::optional<DesignCommandReport> searched;
+  try {
+    searched.emplace(SearchDesign(model, options));
+  } catch (const InfeasibleDesign& e) {
+    if (!RanAndFailed(e)) throw;  // settings that admit no motion: exit 2 (main)
+    std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
+    return kExitFailure;
+  }
+  const DesignCommandReport& report = *searched;
   std::fputs(FormatDesignSummary(options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   EnsureOutputDirectory(dir);

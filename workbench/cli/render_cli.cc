@@ -13,12 +13,24 @@
 namespace idbench::cli {
 namespace {
 
+// Fields of RenderOptions and PoseFigureOptions named in messages (the
+// combined size first: one flag gives both).
+constexpr FieldFlag kRenderSpellings[] = {{"panel_width x panel_height", "--size"},
+                                          {"panel_width", "--size"},
+                                          {"panel_height", "--size"},
+                                          {"paper_accel_deg_s2", "--accel"},
+                                          {"size", "--size"},
+                                          {"times", "--times"},
+                                          {"layout", "--layout"},
+                                          {"out", "--out"},
+                                          {"base_pose", "--base-pose"}};
+
 int RenderCommand(const RenderOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  const RobotModel model = MountRobot(LoadRobotOrThrow(options.robot, load), options.base_pose);
   const std::unique_ptr<Trajectory> trajectory = MakeRenderTrajectory(model, options);
-  const PoseFigureOptions figure = options.figure(trajectory->duration());
+  const PoseFigureOptions figure = MakeRenderFigure(options, trajectory->duration());
   if (!figure.IsValid(trajectory->duration(), &why)) return context.UsageError(why);
   const std::string png = RenderPoseFigurePng(model, *trajectory, figure);
   const std::filesystem::path path(options.out);
@@ -49,7 +61,11 @@ CliCommand AddRenderCommand(CLI::App* app, CliContext* context) {
       ->delimiter(',');
   command->add_option("--layout", render.layout, "grid (rows of 4) or strip (one row)")->capture_default_str();
   command->add_option("--size", render.size, "One panel, WxH [px]")->capture_default_str();
+  AddSceneFlag(command, &render.scene)->description("The cell: JSON {\"floor\": true, \"obstacles\": [boxes, cylinders, "
+                                                     "spheres, meshes with world poses]}, drawn around the robot");
+  AddBasePoseFlag(command, &render.base_pose);
   AddOutFlag(command, &render.out, "PNG file to write")->capture_default_str();
+  context->AddSpellings(kRenderSpellings);
   return {command, [options, context] { return RenderCommand(*options, *context->robot_load(), *context); }};
 }
 

@@ -114,7 +114,7 @@ TEST_F(DesignCliTest, RobotReadyCsvWithRampsFromAndToTheHome) {
   const Result sharp = Run(common + (dir_ / "c").string() + " --ramp 0.05");
   EXPECT_EQ(sharp.exit_code, 1);
   EXPECT_NE(sharp.out.find("INFEASIBLE"), std::string::npos) << sharp.out;
-  EXPECT_NE(sharp.out.find("  --ramp (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
+  EXPECT_NE(sharp.out.find("  ramp_seconds (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
 }
 
 // The search ran and found nothing feasible (a home whose gravity torque is
@@ -136,10 +136,15 @@ TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
   const json design = json::parse(Slurp(dir_ / "d" / "design.json"));
   EXPECT_FALSE(design["infeasible"]["before_search"].get<bool>());
   EXPECT_EQ(design["infeasible"]["explanation"].get<std::string>().rfind("no feasible design", 0), 0u);
+  // One line per start saying what became of it (kQuick: 2 starts), before the check.
+  const std::string explanation = design["infeasible"]["explanation"].get<std::string>();
+  EXPECT_NE(explanation.find("\n  start 1: "), std::string::npos) << explanation;
+  EXPECT_NE(explanation.find("\n  start 2: "), std::string::npos) << explanation;
+  EXPECT_LT(explanation.find("\n  start 2: "), explanation.find("\nwhere start "));
   EXPECT_NEAR(design["limits"][1]["tau_max"].get<double>(), tau_gravity / 0.99, 1e-4);  // 6 digits in the file
   EXPECT_EQ(design["check"]["rate_hz"].get<double>(), 1000.0);
   bool margin = false;
-  for (const std::string a : design["infeasible"]["advice"]) margin |= a.rfind("--margin (now 0.02)", 0) == 0;
+  for (const std::string a : design["infeasible"]["advice"]) margin |= a.rfind("margin (now 0.02)", 0) == 0;
   EXPECT_TRUE(margin) << design["infeasible"].dump();
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.json"));

@@ -74,8 +74,11 @@ TEST_F(MountingCliTest, WallMountChangesTheBaseParameters) {
   }
 }
 
-// A pillar through the arm: exit 2 (settings admitting no motion) before any search, the obstacle named in
-// the explanation and in the advice; a scene file with a typo names file and field.
+// A pillar through the arm: a run that fails (exit 1), explained before any
+// search, per obstacle: which link comes too close to which obstacle at the
+// home pose, and what to do; design.json keeps the explanation. A box
+// enclosing the arm's base links the same, naming the obstacle by its index
+// and shape. A scene file with a typo names file and field.
 TEST_F(MountingCliTest, SceneWithoutRoomIsExplainedPerObstacle) {
   const fs::path scene = dir_ / "scene.json";
   std::ofstream(scene) << R"({"obstacles": [{"type": "cylinder", "name": "pillar", "radius": 0.4, "length": 2,
@@ -84,9 +87,23 @@ TEST_F(MountingCliTest, SceneWithoutRoomIsExplainedPerObstacle) {
   const std::string robot = "--robot " + ur + "ur10e_like.urdf --limits " + ur + "lim_acc.json";
   const Result r = Run("design " + robot + " --harmonics 3 --f0 0.2 --samples 60 --starts 1 --scene " +
                        scene.string() + " --out " + (dir_ / "d").string());
-  EXPECT_EQ(r.exit_code, 2) << r.err;  // settings that admit no motion: wrong input (docs/exit-codes.md)
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // it ran and failed (docs/exit-codes.md)
   EXPECT_NE(r.err.find("–pillar clearance"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("the scene's obstacle 'pillar'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at the home pose"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the scene's obstacle 'pillar' (obstacles[0], a cylinder of radius 0.4 m, 2 m long"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("move or remove it, or a --base-pose further from it"), std::string::npos) << r.err;
+  const nlohmann::json design = nlohmann::json::parse(Slurp(dir_ / "d" / "design.json"));
+  EXPECT_TRUE(design["infeasible"]["before_search"].get<bool>());
+  EXPECT_NE(design["infeasible"]["explanation"].get<std::string>().find("pillar"), std::string::npos);
+
+  std::ofstream(scene) << R"({"obstacles": [{"type": "box", "size": [0.5, 0.5, 0.5], "pose": [0, 0, 0.25, 0, 0, 0]}]})";
+  const Result box = Run("design " + robot + " --harmonics 3 --f0 0.2 --samples 60 --starts 1 --scene " +
+                         scene.string() + " --out " + (dir_ / "b").string());
+  EXPECT_EQ(box.exit_code, 1) << box.err;
+  EXPECT_NE(box.err.find("upper_arm_link–obstacle 0 clearance"), std::string::npos) << box.err;
+  EXPECT_NE(box.err.find("the scene's obstacle 'obstacle 0' (obstacles[0], a box 0.5 × 0.5 × 0.5 m at (0, 0, 0.25) m): "
+                         "upper_arm_link ("), std::string::npos) << box.err;
   std::ofstream(scene) << R"({"obstacles": [{"type": "sphere", "radius": 0.1, "pose": [0, 0, 1, 0, 0, 0], "colour": 1}]})";
   const Result bad = Run("design " + robot + " --scene " + scene.string() + " --out " + (dir_ / "d").string());
   EXPECT_NE(bad.exit_code, 0);

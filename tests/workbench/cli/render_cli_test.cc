@@ -108,6 +108,10 @@ TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
       {"--size 4000x4000", 2, "--size: the figure would have 128000000 pixels"},
       {"--size big", 2, "--size: expected WxH in pixels"},
       {"--layout diagonal", 2, "--layout: expected 'grid' or 'strip', got 'diagonal'"},
+      {"--accel 0", 2, "--accel: must be > 0 deg/s^2, got 0"},
+      {"--duration -1", 2, "--duration: must be > 0 s, got -1"},
+      {"--base-pose 0,0,1", 2, "--base-pose"},
+      {"--scene " + (dir_ / "nowhere.json").string(), 2, "nowhere.json"},
       {"--trajectory nowhere.json", 2, "nowhere.json"},  // a wrong input: exit 2
   };
   for (const Case& c : cases) {
@@ -125,6 +129,33 @@ TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find(out.string()), std::string::npos) << r.err;
   ExpectOnlyFiles(dir_, {"fig.png", "stderr", "stdout"});
+}
+
+// The cell and the mounting: a big box beside the robot is drawn (the figure
+// changes, and pixels of the box's sand colour appear); a ceiling-mounted
+// robot (base 2.5 m up, turned over) is drawn hanging from its base: the
+// first link (blue, the base's) moves from below the robot's pixel centroid
+// to above it.
+TEST_F(RenderCliTest, SceneAndBasePoseAreDrawn) {
+  const fs::path scene = dir_ / "scene.json";
+  std::ofstream(scene) << R"({"obstacles": [{"type": "box", "size": [0.6, 0.6, 1.2], "pose": [-0.8, 0.8, 0.6, 0, 0, 0]}]})";
+  const std::string common = "render --times 0 --size 320x240 --out ";
+  ASSERT_EQ(Run(common + (dir_ / "plain.png").string()).exit_code, 0);
+  const Result celled = Run(common + (dir_ / "cell.png").string() + " --scene " + scene.string());
+  ASSERT_EQ(celled.exit_code, 0) << celled.err;
+  const Result ceiling = Run(common + (dir_ / "ceiling.png").string() + " --base-pose 0,0,2.5,3.141592653589793,0,0");
+  ASSERT_EQ(ceiling.exit_code, 0) << ceiling.err;
+  const Image plain = ReadPng(dir_ / "plain.png"), cell = ReadPng(dir_ / "cell.png");
+  // Sand (0.74, 0.69, 0.60) lit: red above green above blue, not grey, not a link colour.
+  const auto sand = [](const std::uint8_t* p) { return p[0] > p[1] + 4 && p[1] > p[2] + 8 && p[0] - p[2] < 60; };
+  long long sand_plain = 0, sand_cell = 0;
+  for (int v = 0; v < plain.height; ++v) {
+    for (int u = 0; u < plain.width; ++u) sand_plain += sand(plain.at(u, v)), sand_cell += sand(cell.at(u, v));
+  }
+  EXPECT_LT(sand_plain, 20);
+  EXPECT_GT(sand_cell, 0.03 * plain.width * plain.height);
+  EXPECT_GT(idbench::testing::FirstLinkBelowCentroid(plain), 10.0);
+  EXPECT_LT(idbench::testing::FirstLinkBelowCentroid(ReadPng(dir_ / "ceiling.png")), -10.0);
 }
 
 TEST_F(RenderCliTest, RunWritesTheFigureUnlessToldNotTo) {

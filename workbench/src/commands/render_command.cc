@@ -10,6 +10,7 @@
 #include "idbench/render/png_codec.h"
 #include "idbench/render/scene_renderer.h"
 #include "number_format.h"
+#include "idbench/workbench/formats/scene_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 
 namespace idbench {
@@ -28,6 +29,7 @@ PoseFigureOptions RenderOptions::figure(double duration) const {
   PoseFigureOptions figure;
   figure.times = times.empty() ? DefaultFigureTimes(duration) : times;
   figure.layout = layout;
+  figure.base_pose = base_pose;
   if (!ParseImageSize(size, &figure.panel_width, &figure.panel_height)) figure.panel_width = figure.panel_height = 0;
   return figure;
 }
@@ -39,18 +41,19 @@ bool RenderOptions::IsValid(std::string* why) const {
   };
   int width = 0, height = 0;
   if (!ParseImageSize(size, &width, &height)) {
-    return fail("--size: expected WxH in pixels (one panel), e.g. 480x360, got '" + size + "'");
+    return fail("size: expected WxH in pixels (one panel), e.g. 480x360, got '" + size + "'");
   }
-  if (!std::isfinite(duration) || duration <= 0.0) return fail("--duration: must be > 0 s, got " + Shortest(duration));
+  if (!std::isfinite(duration) || duration <= 0.0) return fail("duration: must be > 0 s, got " + Shortest(duration));
   if (!std::isfinite(paper_accel_deg_s2) || paper_accel_deg_s2 <= 0.0) {
-    return fail("--accel: must be > 0 deg/s^2, got " + Shortest(paper_accel_deg_s2));
+    return fail("paper_accel_deg_s2: must be > 0 deg/s^2, got " + Shortest(paper_accel_deg_s2));
   }
-  if (std::string out_why; !IsUsableOutputFile(out, "--out", &out_why)) return fail(out_why);
+  if (std::string out_why; !IsUsableOutputFile(out, "out", &out_why)) return fail(out_why);
   // The times alone here (the trajectory's span is not known yet: no "[0, inf]"),
   // then everything but the times against the trajectory, checked once it is known.
   for (double t : times) {
-    if (!std::isfinite(t)) return fail("--times: expected finite times [s], got " + Shortest(t));
+    if (!std::isfinite(t)) return fail("times: expected finite times [s], got " + Shortest(t));
   }
+  if (!base_pose.IsValid(why)) return false;
   PoseFigureOptions figure = this->figure(0.0);
   if (times.empty()) figure.times = {0.0};  // the default times fit any motion
   return figure.IsValid(INFINITY, why);
@@ -65,6 +68,12 @@ std::vector<double> DefaultFigureTimes(double duration) {
     times.push_back(std::min(std::round(t / unit) * unit, duration));
   }
   return times;
+}
+
+PoseFigureOptions MakeRenderFigure(const RenderOptions& options, double duration) {
+  PoseFigureOptions figure = options.figure(duration);
+  if (!options.scene.empty()) figure.scene = ReadSceneFile(options.scene);
+  return figure;
 }
 
 std::unique_ptr<Trajectory> MakeRenderTrajectory(const RobotModel& model, const RenderOptions& options) {

@@ -6,6 +6,7 @@
 #include "number_format.h"
 #include "idbench/workbench/reports/plots.h"
 #include "idbench/workbench/commands/render_command.h"
+#include "idbench/workbench/formats/scene_file.h"
 
 namespace idbench {
 namespace {
@@ -70,6 +71,9 @@ ReportContent MakeDesignReportContent(const RobotModel& model, const DesignComma
   };
   PoseFigureOptions figure;
   figure.times = DefaultFigureTimes(r.trajectory.duration());
+  // The robot where it stands, in its cell (the scene file read again: RunDesign keeps its copy).
+  figure.base_pose = design.base_pose;
+  figure.scene = options.scene.empty() ? design.scene : ReadSceneFile(options.scene);
   content.pose_figure_png = RenderPoseFigurePng(model, r.trajectory, figure);
   content.pose_caption = "The poses of " + model.name() + " along the designed motion.";
   content.tables.push_back({"Identifiability of W on the design grid (cond of W itself, never of WᵀW)",

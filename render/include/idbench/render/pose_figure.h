@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
+#include "idbench/engine/cell.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
 #include "idbench/render/camera.h"
@@ -20,6 +22,11 @@ struct PoseFigureOptions {
   int panel_width = 480;        // [px]
   int panel_height = 360;       // [px]
   CameraView view;
+  // Where the robot stands and what stands around it: the base frame placed
+  // in W (a robot the trajectory moves in its own frame R, drawn at X_WR)
+  // and the cell's obstacles drawn at their poses in W.
+  BasePose base_pose;
+  Cell scene;
 
   static constexpr int kGridColumns = 4;
   static constexpr int kMaxPanels = 26;            // labels (a) … (z)
@@ -31,7 +38,7 @@ struct PoseFigureOptions {
   int rows() const;
 
   // Checks the layout, the sizes and that every time lies in [0, duration];
-  // *why names the bad value (option names as on the command line).
+  // *why names the bad field (layout, times, panel_width, panel_height).
   bool IsValid(double duration, std::string* why) const;
 };
 
@@ -40,7 +47,10 @@ std::string PanelLabel(int k, double t);
 
 // The figure: columns()·panel_width × rows()·panel_height pixels, panel k at
 // column k % columns(), row k / columns(). Options must be valid for the
-// trajectory. Deterministic for a given machine.
+// trajectory. The camera is fitted to the robot's poses and to the parts of
+// the obstacles near them (an obstacle's bounding box clipped to the robot's
+// widened by half its size on every side), so that a wall or a table does not
+// shrink the robot to a speck. Deterministic for a given machine.
 Image RenderPoseFigure(SceneRenderer& renderer, const RobotModel& model, const Trajectory& trajectory,
                        const PoseFigureOptions& options);
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "idbench/engine/cell.h"
 #include "idbench/engine/kinematics.h"
 #include "idbench/engine/robot_model.h"
 
@@ -39,7 +40,18 @@ Eigen::Vector3f LinkColor(int link);
 // for the last link), and a dark marker at every hinge: a pin along the
 // axis sticking out of both links, or a collar when the axis runs along the
 // link (so it would hide inside a pin); a grey pedestal under a base joint
-// that sits above the ground z = 0.
-Scene BuildRobotScene(const RobotModel& model, const RobotData& data);
+// that sits above the ground z = 0. X_WR places the robot's base frame R
+// (the model's world, where `data` holds the poses) in the drawn world W (a
+// mounting, base_pose.h); a mounted robot (X_WR not the identity) gets no
+// pedestal: the mounting says what holds it.
+Scene BuildRobotScene(const RobotModel& model, const RobotData& data,
+                      const Eigen::Isometry3d& X_WR = Eigen::Isometry3d::Identity());
+
+// The colour of the cell's obstacles: a neutral sand, apart from the links'.
+extern const Eigen::Vector3f kObstacleColor;
+
+// The cell's obstacles (cell.h) as primitives at their poses in W, in
+// kObstacleColor, appended to *scene. The floor is the renderer's own.
+void AddCellObstacles(const Cell& cell, Scene* scene);
 
 }  // namespace idbench

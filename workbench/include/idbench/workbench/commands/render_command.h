@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
 #include "idbench/render/image.h"
@@ -23,11 +24,15 @@ struct RenderOptions {
   std::string layout = "grid";        // grid | strip
   std::string size = "480x360";       // one panel, W x H [px]
   std::string out = "out/figure.png";
+  std::string scene;                  // the cell's JSON (scene_file.h), drawn around the robot; "" none
+  BasePose base_pose;                 // where the robot's base stands in the world (base_pose.h)
 
   // The figure options these stand for, for a motion of `duration` seconds
-  // (no times given: DefaultFigureTimes(duration); a malformed size gives 0 x 0).
+  // (no times given: DefaultFigureTimes(duration); a malformed size gives 0 x 0),
+  // without the scene (MakeRenderFigure reads it).
   PoseFigureOptions figure(double duration) const;
-  // Checks what does not need the trajectory; *why names the bad option.
+  // Checks what does not need the trajectory; *why names the bad field
+  // (size, duration, paper_accel_deg_s2, times, layout, out, base_pose).
   bool IsValid(std::string* why) const;
 };
 
@@ -38,6 +43,10 @@ bool ParseImageSize(const std::string& text, int* width, int* height);
 // `duration` seconds: t_k = min(0.15·k·duration, duration), k = 0…7, rounded
 // to 3 significant digits.
 std::vector<double> DefaultFigureTimes(double duration);
+
+// figure(duration) with the scene file read into it. Throws
+// std::invalid_argument naming the file and the field of a bad scene.
+PoseFigureOptions MakeRenderFigure(const RenderOptions& options, double duration);
 
 // The motion to draw (LoadTrajectoryArg). Throws std::invalid_argument naming
 // an unknown motion or a bad file.
