@@ -191,7 +191,7 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
     in_motion = true;
     if (m.quantity == "clearance" && !m.obstacle.empty()) {
       if (m.obstacle == "ground") {
-        add(Format("clearance (now %g m), a home pose or a base_pose with ", options.clearance) + m.link +
+        add(Format("`clearance` (now %g m), a `home` pose or a base_pose with ", options.clearance) + m.link +
             " further from the floor, or \"floor\": false in the scene");
         continue;
       }
@@ -201,14 +201,14 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
       links += (links.empty() ? "" : ", ") + m.link + Format(" (%.3g m)", m.value);
       limit[m.obstacle] = m.limit;
     } else if (m.quantity == "clearance") {
-      add(Format("clearance (now %g m), or a home pose with the links further apart", options.clearance));
+      add(Format("`clearance` (now %g m), or a `home` pose with the links further apart", options.clearance));
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
-      add(joint + "'s range q_min..q_max in the limits file" + (before_search ? ", or a home inside it" : ""));
+      add(joint + "'s range q_min..q_max in the `limits` file" + (before_search ? ", or a `home` inside it" : ""));
     } else if (m.quantity == "tau") {
-      add(joint + "'s torque limit tau_max in the limits file, or a home where gravity loads it less");
+      add(joint + "'s torque limit tau_max in the `limits` file, or a `home` where gravity loads it less");
     } else {
       add(joint + "'s " + (m.quantity == "qd" ? "velocity limit qd_max" : "acceleration limit qdd_max") +
-          " in the limits file, or fewer harmonics, a lower f0 or a longer duration");
+          " in the `limits` file, or fewer `harmonics`, a lower `f0` or a longer `duration`");
     }
   }
   for (const std::string& name : obstacles) {
@@ -218,7 +218,7 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
         ": move or remove it, or a base_pose further from it");
   }
   if (!before_search && (in_motion || advice.empty())) {
-    add(Format("margin (now %g), which tightens every limit during the search", options.margin));
+    add(Format("`margin` (now %g), which tightens every limit during the search", options.margin));
   }
   return advice;
 }

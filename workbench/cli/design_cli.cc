@@ -88,7 +88,7 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
     return kExitFailure;
   }
   const DesignCommandReport& report = *searched;
-  std::fputs(FormatDesignSummary(options, report).c_str(), stdout);
+  std::fputs(context.FlagSpelling(FormatDesignSummary(options, report)).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);
   EnsureOutputDirectory(dir);
   // What a controller would run only from a usable design (or when asked).
