@@ -207,9 +207,16 @@ void GuiApp::Impl::DrawLogTab() {
   widgets.Combo("log.angle_unit", "angle unit", &id.format.angle_unit, {"rad", "deg"});
   ImGui::EndDisabled();
   ImGui::SameLine();
-  if (JobButton("log.identify", "Identify", !busy && !id.data.empty(), session.running(JobKind::kIdentify),
-                "identifying (reading, folding, solving)..."))
-    session.StartIdentify();
+  const bool identifying = session.running(JobKind::kIdentify);
+  if (widgets.Button("log.identify", "Identify", !busy && !id.data.empty())) session.StartIdentify();
+  ImGui::SameLine();
+  if (widgets.Button("log.cancel", "Cancel", identifying)) session.CancelIdentify();
+  if (identifying) {  // how far it is, and what it does
+    const IdentifyProgress progress = session.identify_progress();
+    ImGui::SameLine();
+    ImGui::ProgressBar(static_cast<float>(progress.fraction), ImVec2(-1, 0), progress.stage.c_str());
+    widgets.Record("log.progress");
+  }
   if (!text_error.empty()) ImGui::TextColored(kErrorColor, "%s", text_error.c_str());
   DrawLogPreview();
   DrawLogResults();
