@@ -269,6 +269,11 @@ frames 2
   const WidgetEntry* plot = gui.widgets().Find("log.plot.1");
   ASSERT_NE(plot, nullptr);
   EXPECT_GT(SaturatedPixels(gui.Screenshot(), plot->rect), 50);
+  // The residuals measured − predicted instead (log.plot_residuals).
+  RunScript(gui, "set log.plot_residuals true\nframes 2\n");
+  plot = gui.widgets().Find("log.plot.1");
+  ASSERT_NE(plot, nullptr);
+  EXPECT_GT(SaturatedPixels(gui.Screenshot(), plot->rect), 50);
   // Refused values name what is wrong and leave the options as they were.
   std::string why;
   EXPECT_FALSE(gui.Set("log.friction", "viscous,sticky", &why));
