@@ -91,6 +91,7 @@ CliCommand AddRenderCommand(CLI::App* app, CliContext* context);
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context);
 CliCommand AddCompareCommand(CLI::App* app, CliContext* context);
 CliCommand AddReportCommand(CLI::App* app, CliContext* context);
+CliCommand AddExportCommand(CLI::App* app, CliContext* context);
 CliCommand AddGuiCommand(CLI::App* app, CliContext* context);
 
 // The `idbench` command line (idbench_app.cc): sets up `app` (description,

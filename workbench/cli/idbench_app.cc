@@ -16,7 +16,7 @@ std::vector<CliCommand> AddIdbenchCommands(CLI::App* app, CliContext* context) {
   return {AddRunCommand(app, context),      AddSimulateCommand(app, context),   AddIdentifyCommand(app, context),
           AddGainsCommand(app, context),    AddPayloadCommand(app, context),    AddMonteCarloCommand(app, context),
           AddRenderCommand(app, context),   AddDesignCommand(app, context),     AddCompareCommand(app, context),
-          AddReportCommand(app, context),   AddGuiCommand(app, context)};
+          AddReportCommand(app, context),   AddExportCommand(app, context),     AddGuiCommand(app, context)};
 }
 
 }  // namespace idbench::cli

@@ -13,9 +13,12 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "idbench/excitation/builtin_motions.h"
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/gui/gui_script.h"
 #include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/logs/joint_log_csv_writer.h"
+#include "ident/synthetic_log.h"
 #include "render/image_test_util.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 
@@ -266,6 +269,11 @@ frames 2
   const WidgetEntry* plot = gui.widgets().Find("log.plot.1");
   ASSERT_NE(plot, nullptr);
   EXPECT_GT(SaturatedPixels(gui.Screenshot(), plot->rect), 50);
+  // The residuals measured − predicted instead (log.plot_residuals).
+  RunScript(gui, "set log.plot_residuals true\nframes 2\n");
+  plot = gui.widgets().Find("log.plot.1");
+  ASSERT_NE(plot, nullptr);
+  EXPECT_GT(SaturatedPixels(gui.Screenshot(), plot->rect), 50);
   // Refused values name what is wrong and leave the options as they were.
   std::string why;
   EXPECT_FALSE(gui.Set("log.friction", "viscous,sticky", &why));
@@ -274,6 +282,35 @@ frames 2
   EXPECT_FALSE(gui.Set("log.time_window", "1", &why));
   EXPECT_EQ(session.identify.time_window, (std::vector<double>{0.5, 3.5}));
   if (!HasFailure()) fs::remove_all(out);
+}
+
+// Identify on a long log shows its progress while frames keep coming, and
+// Cancel (log.cancel) ends it: a message says so and nothing is identified.
+TEST(HeadlessGuiTest, LogTabIdentifyShowsProgressAndCancels) {
+  const fs::path out = TempDir("cancel");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  // 100 s at 1 kHz: 13 streaming blocks per pass.
+  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 100.0});
+  const std::string log = (out / "long.csv").string();
+  std::ofstream(log) << FormatJointLogCsv(
+      idbench::testing::SyntheticJointLog(session.model(), *motion, Eigen::VectorXd::LinSpaced(100001, 0.0, 100.0)));
+  RunScript(gui, "click tab.log\nset log.data " + log + "\nclick log.identify\n");
+  int frames = 0;
+  while (session.identify_progress().fraction == 0.0 && session.running(JobKind::kIdentify) && frames < 100000) {
+    gui.RenderFrame();
+    ++frames;
+  }
+  ASSERT_TRUE(session.running(JobKind::kIdentify));
+  EXPECT_GT(session.identify_progress().fraction, 0.0);
+  EXPECT_LT(session.identify_progress().fraction, 1.0);
+  EXPECT_NE(gui.widgets().Find("log.progress"), nullptr);
+  RunScript(gui, "click log.cancel\nwait identify 120\n");
+  EXPECT_FALSE(session.identify_report().has_value());
+  ASSERT_FALSE(session.messages().empty());
+  EXPECT_NE(session.messages().back().text.find("cancelled"), std::string::npos) << session.messages().back().text;
+  EXPECT_TRUE(session.last_error().empty()) << session.last_error();
+  fs::remove_all(out);
 }
 
 // A long design runs while frames keep coming, shows progress, and stops on

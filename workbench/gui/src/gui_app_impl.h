@@ -67,6 +67,7 @@ struct GuiApp::Impl {
   std::string preview_path;     // the log previewed, and its first lines split at commas
   std::vector<std::vector<std::string>> preview_rows;
   bool plot_held_out = false;   // the torque plots show the held-out log
+  bool plot_residuals = false;  // the torque plots show measured − predicted
 
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one

@@ -2,8 +2,9 @@
 // dropped onto the window), a preview of the log's first rows with the column
 // mapping, the friction terms and the estimator, a held-out log; Identify runs
 // `idbench identify`'s library call on session.identify (the same options
-// struct, so the same numbers), then shows measured against predicted torque
-// per joint, the parameter table with σ and status, and the physically
+// struct, so the same numbers) on a worker thread, with a progress bar and
+// Cancel (log.cancel), then shows measured against predicted torque
+// per joint (or their residuals), the parameter table with σ and status, and the physically
 // consistent fit's verdict. Export is in the Export tab (export.urdf).
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -111,8 +112,9 @@ std::vector<std::vector<std::string>> ReadPreview(const std::string& path) {
   return rows;
 }
 
-// One joint's measured (light) and predicted (orange) torque against time, in a box of `size`.
-void TorquePlot(const char* label, const TorqueSeries& series, int joint, ImVec2 size) {
+// One joint's measured (light) and predicted (orange) torque against time, or
+// (residual) the residual measured − predicted (red), in a box of `size`.
+void TorquePlot(const char* label, const TorqueSeries& series, int joint, bool residual, ImVec2 size) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton(label, size);
@@ -122,8 +124,15 @@ void TorquePlot(const char* label, const TorqueSeries& series, int joint, ImVec2
   const Eigen::Index n = series.t.size();
   if (n < 2) return;
   const Eigen::VectorXd measured = series.measured.col(joint), predicted = series.predicted.col(joint);
-  const double lo = std::min(measured.minCoeff(), predicted.minCoeff());
-  const double hi = std::max(measured.maxCoeff(), predicted.maxCoeff());
+  const Eigen::VectorXd error = measured - predicted;
+  std::vector<std::pair<const Eigen::VectorXd*, ImU32>> lines;
+  if (residual) lines = {{&error, IM_COL32(255, 90, 90, 255)}};
+  else lines = {{&measured, IM_COL32(220, 220, 220, 255)}, {&predicted, IM_COL32(255, 150, 40, 255)}};
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& [values, color] : lines) {
+    lo = std::min(lo, values->minCoeff());
+    hi = std::max(hi, values->maxCoeff());
+  }
   const double span = hi > lo ? hi - lo : 1.0;
   const double t0 = series.t[0], t1 = series.t[n - 1] > t0 ? series.t[n - 1] : t0 + 1.0;
   const float top = p0.y + 14.0f, height = size.y - 18.0f;
@@ -133,14 +142,13 @@ void TorquePlot(const char* label, const TorqueSeries& series, int joint, ImVec2
   };
   // At most ~2 points per pixel.
   const Eigen::Index step = std::max<Eigen::Index>(1, n / static_cast<Eigen::Index>(2 * size.x));
-  for (const auto& [values, color] : {std::pair{&measured, IM_COL32(220, 220, 220, 255)},
-                                      std::pair{&predicted, IM_COL32(255, 150, 40, 255)}}) {
+  for (const auto& [values, color] : lines) {
     std::vector<ImVec2> points;
     for (Eigen::Index k = 0; k < n; k += step) points.push_back(point(k, (*values)[k]));
     draw->AddPolyline(points.data(), static_cast<int>(points.size()), color, 0, 1.0f);
   }
   char text[160];
-  const double rms = std::sqrt((predicted - measured).squaredNorm() / static_cast<double>(n));
+  const double rms = std::sqrt(error.squaredNorm() / static_cast<double>(n));
   std::snprintf(text, sizeof text, "%s  [%.3g, %.3g] N m  rms %.3g", label, lo, hi, rms);
   draw->AddText(ImVec2(p0.x + 4.0f, p0.y + 1.0f), IM_COL32(200, 200, 200, 255), text);
 }
@@ -207,9 +215,16 @@ void GuiApp::Impl::DrawLogTab() {
   widgets.Combo("log.angle_unit", "angle unit", &id.format.angle_unit, {"rad", "deg"});
   ImGui::EndDisabled();
   ImGui::SameLine();
-  if (JobButton("log.identify", "Identify", !busy && !id.data.empty(), session.running(JobKind::kIdentify),
-                "identifying (reading, folding, solving)..."))
-    session.StartIdentify();
+  const bool identifying = session.running(JobKind::kIdentify);
+  if (widgets.Button("log.identify", "Identify", !busy && !id.data.empty())) session.StartIdentify();
+  ImGui::SameLine();
+  if (widgets.Button("log.cancel", "Cancel", identifying)) session.CancelIdentify();
+  if (identifying) {  // how far it is, and what it does
+    const IdentifyProgress progress = session.identify_progress();
+    ImGui::SameLine();
+    ImGui::ProgressBar(static_cast<float>(progress.fraction), ImVec2(-1, 0), progress.stage.c_str());
+    widgets.Record("log.progress");
+  }
   if (!text_error.empty()) ImGui::TextColored(kErrorColor, "%s", text_error.c_str());
   DrawLogPreview();
   DrawLogResults();
@@ -348,7 +363,10 @@ void GuiApp::Impl::DrawTorquePlots() {
   } else {
     plot_held_out = false;
   }
-  ImGui::TextColored(kDimColor, "measured (light) and predicted (orange) torque [N m] against time");
+  widgets.Checkbox("log.plot_residuals", "residuals", &plot_residuals);
+  ImGui::SameLine();
+  ImGui::TextColored(kDimColor, plot_residuals ? "residual: measured - predicted torque [N m] against time"
+                                               : "measured (light) and predicted (orange) torque [N m] against time");
   const std::optional<TorqueSeries>& series = plot_held_out ? session.held_out_torques() : session.fit_torques();
   if (!series) return;
   const int n_dof = static_cast<int>(series->measured.cols());
@@ -360,7 +378,7 @@ void GuiApp::Impl::DrawTorquePlots() {
   for (int j = 0; j < n_dof; ++j) {
     if (j % 2 == 1) ImGui::SameLine();
     const std::string name = j < session.model().n_dof() ? session.model().link(j).joint_name : std::to_string(j + 1);
-    TorquePlot(name.c_str(), *series, j, size);
+    TorquePlot(name.c_str(), *series, j, plot_residuals, size);
     widgets.Record("log.plot." + std::to_string(j + 1));
   }
 }

@@ -244,13 +244,41 @@ void Session::StartIdentify() {
   if (!options.IsValid(&why) || !options.format.IsValidFor(model_->n_dof(), &why) ||
       !options.plausibility.IsValidFor(*model_, &why))
     return Error("identify: " + why);
-  StartJob(JobKind::kIdentify, [this, model = model_, options](const std::atomic<bool>&) {
-    auto report = std::make_shared<IdentifyReport>(RunIdentify(*model, options));
+  {
+    const std::lock_guard<std::mutex> lock(identify_progress_mutex_);
+    identify_progress_ = {0.0, "starting"};
+  }
+  StartJob(JobKind::kIdentify, [this, model = model_, options](const std::atomic<bool>& stop) {
+    // RunIdentify's stages fill 90 % of the bar, the predicted torques the rest.
+    constexpr double kIdentifyShare = 0.9;
+    auto show = [this](double fraction, const std::string& stage) {
+      const std::lock_guard<std::mutex> lock(identify_progress_mutex_);
+      identify_progress_ = {fraction, stage};
+    };
+    IdentifyControl control;
+    control.stop = &stop;
+    control.progress = [&](const IdentifyProgress& p) { show(kIdentifyShare * p.fraction, p.stage); };
+    auto report = std::make_shared<IdentifyReport>(RunIdentify(*model, options, control));
+    auto cancelled = std::function<void()>([this] { Info("identify: cancelled; the previous identification is kept"); });
+    if (report->status == IdentifyStatus::kCancelled) return cancelled;
     // The torque plots: measured against predicted, on the fit log and the held-out one.
-    auto fit = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, false));
-    std::shared_ptr<TorqueSeries> held_out;
-    if (report->held_out_prepared)
-      held_out = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, true));
+    const double n_plots = report->held_out_prepared ? 2.0 : 1.0;
+    StreamObserver observer;
+    observer.stop = &stop;
+    double plot = 0.0;
+    observer.progress = [&](double f) {
+      show(kIdentifyShare + (1.0 - kIdentifyShare) * (plot + f) / n_plots, "predicting the torques of the plots");
+    };
+    std::shared_ptr<TorqueSeries> fit, held_out;
+    try {
+      fit = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, false, &observer));
+      plot = 1.0;
+      if (report->held_out_prepared)
+        held_out = std::make_shared<TorqueSeries>(PredictIdentifiedTorques(*model, options, *report, true, &observer));
+    } catch (const StreamStopped&) {
+      return cancelled;
+    }
+    show(1.0, "done");
     return std::function<void()>([this, report, options, fit, held_out] {
       identify_report_ = std::move(*report);
       identified_with_ = options;
@@ -271,6 +299,13 @@ void Session::StartIdentify() {
       }
     });
   });
+}
+
+void Session::CancelIdentify() { job(JobKind::kIdentify).RequestStop(); }
+
+IdentifyProgress Session::identify_progress() const {
+  const std::lock_guard<std::mutex> lock(identify_progress_mutex_);
+  return identify_progress_;
 }
 
 std::vector<IdentifiedRow> Session::IdentifiedRows() const {

@@ -82,26 +82,54 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   return true;
 }
 
-IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options) {
-  // The report keeps references to the model: the caller mounts it (MountRobot).
-  if (!IsMountedAt(model, options.base_pose)) {
-    throw std::invalid_argument("base_pose: the model's gravity is not the world's -z seen from this base; mount the "
-                                "model (MountRobot)");
-  }
-  PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true));
-  std::optional<PreparedLog> held_out;
-  std::optional<PreparedLog> held_out_whole;
-  if (!options.validate.empty()) held_out = PrepareJointLog(options.validate, model, options.preparation(false));
-  if (!options.validate.empty() && !options.validate_window.empty()) {
-    IdentifyOptions whole = options;
-    whole.validate_window.clear();
-    held_out_whole = PrepareJointLog(options.validate, model, whole.preparation(false));
-  }
-  return IdentifyPreparedLogs(model, options, std::move(data), std::move(held_out), std::move(held_out_whole));
-}
+namespace {
 
-IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
-                                    std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole) {
+// The stages of a run as equal shares of [0, 1] (IdentifyControl): Next()
+// starts one, checking the stop flag, and gives the observer its passes report to.
+class IdentifyStages {
+ public:
+  IdentifyStages(const IdentifyControl* control, int n_stages) : control_(control), n_stages_(n_stages) {
+    if (!control_) return;
+    observer_.stop = control_->stop;
+    observer_.progress = [this](double fraction) { Report(static_cast<double>(stage_) + fraction); };
+  }
+  // Starts the next stage, named `stage`; throws StreamStopped once stop is set.
+  const StreamObserver* Next(std::string stage) {
+    if (!control_) return nullptr;
+    if (control_->stop && control_->stop->load()) throw StreamStopped();
+    if (started_) ++stage_;
+    started_ = true;
+    name_ = std::move(stage);
+    Report(static_cast<double>(stage_));
+    return &observer_;
+  }
+  void Done() {
+    if (!control_) return;
+    if (control_->stop && control_->stop->load()) throw StreamStopped();
+    name_ = "done";
+    Report(static_cast<double>(n_stages_));
+  }
+
+ private:
+  // `stages` done of n_stages_, never less than reported before.
+  void Report(double stages) {
+    fraction_ = std::clamp(std::max(fraction_, stages / static_cast<double>(n_stages_)), 0.0, 1.0);
+    if (control_->progress) control_->progress({fraction_, name_});
+  }
+
+  const IdentifyControl* control_;
+  int n_stages_;
+  int stage_ = 0;
+  bool started_ = false;
+  double fraction_ = 0.0;
+  std::string name_;
+  StreamObserver observer_;
+};
+
+// IdentifyPreparedLogs, its stages (folding each log, the solve) reported to `stages`.
+IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
+                                std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole,
+                                IdentifyStages* stages) {
   IdentifyReport report;
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
@@ -118,8 +146,11 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
   // The equations streamed into factors, then solved.
   const BaseParameters base = ComputeBaseParameters(model, id_options.friction, id_options.base);
   try {
-    report.identification =
-        IdentifyJointTorque(model, base, FoldPreparedLog(data, model, id_options.friction, base), id_options);
+    const StackedFactors factors = FoldPreparedLog(data, model, id_options.friction, base, {}, nullptr,
+                                                   LogPreparationOptions::kMaxHeldSamples,
+                                                   stages->Next("identifying from " + options.data));
+    stages->Next("solving (" + options.estimator + ")");
+    report.identification = IdentifyJointTorque(model, base, factors, id_options);
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     throw std::invalid_argument(what.rfind(options.data + ":", 0) == 0 ? what : options.data + ": " + what);
@@ -128,26 +159,73 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
   if (held_out) {
     for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));
     for (std::string& warning : held_out->warnings) report.warnings.push_back(std::move(warning));
-    report.validation = PredictTorques(FoldPreparedLog(*held_out, model, id_options.friction, base),
+    report.validation = PredictTorques(FoldPreparedLog(*held_out, model, id_options.friction, base, {}, nullptr,
+                                                       LogPreparationOptions::kMaxHeldSamples,
+                                                       stages->Next("validating on " + options.validate)),
                                        report.identification.beta);
     report.held_out_log = std::move(held_out->log);
     report.held_out_filter = held_out->parallel_filter;
     report.held_out_prepared = std::make_shared<PreparedLog>(std::move(*held_out));
     if (held_out_whole) {  // the whole file, beside the window
-      report.validation_whole_file = PredictTorques(FoldPreparedLog(*held_out_whole, model, id_options.friction, base),
-                                                    report.identification.beta);
+      report.validation_whole_file =
+          PredictTorques(FoldPreparedLog(*held_out_whole, model, id_options.friction, base, {}, nullptr,
+                                         LogPreparationOptions::kMaxHeldSamples,
+                                         stages->Next("validating on the whole of " + options.validate)),
+                         report.identification.beta);
     }
   }
+  stages->Done();
   return report;
 }
 
+}  // namespace
+
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options, const IdentifyControl& control) {
+  // The report keeps references to the model: the caller mounts it (MountRobot).
+  if (!IsMountedAt(model, options.base_pose)) {
+    throw std::invalid_argument("base_pose: the model's gravity is not the world's -z seen from this base; mount the "
+                                "model (MountRobot)");
+  }
+  // Stages: each log read, then folded, and the solve.
+  const int n_logs = 1 + int(!options.validate.empty()) + int(!options.validate.empty() && !options.validate_window.empty());
+  IdentifyStages stages(&control, 2 * n_logs + 1);
+  try {
+    PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true),
+                                       stages.Next("reading " + options.data));
+    std::optional<PreparedLog> held_out;
+    std::optional<PreparedLog> held_out_whole;
+    if (!options.validate.empty()) {
+      held_out = PrepareJointLog(options.validate, model, options.preparation(false),
+                                 stages.Next("reading " + options.validate));
+    }
+    if (!options.validate.empty() && !options.validate_window.empty()) {
+      IdentifyOptions whole = options;
+      whole.validate_window.clear();
+      held_out_whole = PrepareJointLog(options.validate, model, whole.preparation(false),
+                                       stages.Next("reading the whole of " + options.validate));
+    }
+    return IdentifyPrepared(model, options, std::move(data), std::move(held_out), std::move(held_out_whole), &stages);
+  } catch (const StreamStopped&) {
+    IdentifyReport cancelled;
+    cancelled.status = IdentifyStatus::kCancelled;
+    return cancelled;
+  }
+}
+
+IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
+                                    std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole) {
+  IdentifyStages none(nullptr, 1);
+  return IdentifyPrepared(model, options, std::move(data), std::move(held_out), std::move(held_out_whole), &none);
+}
+
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
-                                      const IdentifyReport& report, bool held_out) {
+                                      const IdentifyReport& report, bool held_out, const StreamObserver* observer) {
   const JointTorqueIdentification& id = report.identification;
   if (held_out && !report.held_out_prepared) throw std::invalid_argument("no held-out log was identified with");
   const PreparedLog& log = held_out ? *report.held_out_prepared : *report.prepared;
   TorqueSeries series;
-  FoldPreparedLog(log, model, options.friction_model(), id.base, id.beta, &series);
+  FoldPreparedLog(log, model, options.friction_model(), id.base, id.beta, &series,
+                  LogPreparationOptions::kMaxHeldSamples, observer);
   return series;
 }
 

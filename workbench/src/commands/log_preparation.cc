@@ -37,26 +37,37 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
 
 namespace {
 
-// A line on stderr, at most every 2 s, once the work has taken 3 s.
+// A pass's progress: to the observer (which may stop it), and as a line on
+// stderr, at most every 2 s, once the work has taken 3 s (when `print`).
 class ProgressLine {
  public:
-  explicit ProgressLine(std::string what) : what_(std::move(what)) {}
+  ProgressLine(std::string what, bool print, const StreamObserver* observer)
+      : what_(std::move(what)), print_(print), observer_(observer) {}
   ~ProgressLine() {
     if (shown_) std::fprintf(stderr, "\r%s: done%30s\n", what_.c_str(), "");
   }
+  // Throws StreamStopped once the observer's stop is set.
   void Update(Eigen::Index done, Eigen::Index total) {
+    const double fraction = std::clamp(static_cast<double>(done) / static_cast<double>(std::max<Eigen::Index>(total, 1)),
+                                       0.0, 1.0);
+    if (observer_) {
+      if (observer_->stop && observer_->stop->load()) throw StreamStopped();
+      if (observer_->progress) observer_->progress(fraction);
+    }
+    if (!print_) return;
     const auto now = std::chrono::steady_clock::now();
     if (now - start_ < std::chrono::seconds(3) || now - last_ < std::chrono::seconds(2)) return;
     last_ = now;
     shown_ = true;
-    std::fprintf(stderr, "\r%s: %.0f %% of %lld samples", what_.c_str(),
-                 100.0 * static_cast<double>(done) / static_cast<double>(std::max<Eigen::Index>(total, 1)),
+    std::fprintf(stderr, "\r%s: %.0f %% of %lld samples", what_.c_str(), 100.0 * fraction,
                  static_cast<long long>(total));
     std::fflush(stderr);
   }
 
  private:
   std::string what_;
+  bool print_;
+  const StreamObserver* observer_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_;
   bool shown_ = false;
 };
@@ -119,11 +130,12 @@ void StreamPreparedSamples(const PreparedLog& log, const StreamedLogFilter::Sink
 
 }  // namespace
 
-PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options) {
+PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options,
+                            const StreamObserver* observer) {
   std::shared_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
   // A log description's time window, unless an option gives one too.
   const std::vector<double> described = source->layout().time_window;
-  if (described.empty()) return PrepareJointLogSource(std::move(source), path, options);
+  if (described.empty()) return PrepareJointLogSource(std::move(source), path, options, observer);
   if (!options.time_window.empty()) {
     throw std::invalid_argument(path + ": .time_window (" + Shortest(described[0]) + "," + Shortest(described[1]) +
                                 ") and the option " + options.window_field + " (" + Shortest(options.time_window[0]) +
@@ -133,7 +145,7 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
   LogPreparationOptions windowed = options;
   windowed.time_window = described;
   windowed.window_field = ".time_window";
-  return PrepareJointLogSource(std::move(source), path, windowed);
+  return PrepareJointLogSource(std::move(source), path, windowed, observer);
 }
 
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,
@@ -144,7 +156,7 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
 }
 
 PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,
-                                  const LogPreparationOptions& options) {
+                                  const LogPreparationOptions& options, const StreamObserver* observer) {
   PreparedLog out;
   const JointLogLayout& layout = source->layout();
   out.path = path;
@@ -161,6 +173,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
     source->Rewind();
     double previous = 0.0;
     while (source->Next(kStreamBlockSamples, &chunk)) {
+      if (observer && observer->stop && observer->stop->load()) throw StreamStopped();
       for (double t : chunk.samples.t) {
         if (n_total == 0) t_first = t;
         t_last = t;
@@ -296,7 +309,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
   JointLog& held = out.log;
   held.t.resize(m);
   for (Eigen::MatrixXd* x : {&held.q, &held.qd, &held.qdd, &held.tau}) x->resize(m, layout.n_dof);
-  ProgressLine progress(path + ": filtering");
+  ProgressLine progress(path + ": filtering", out.n_raw > kStreamBlockSamples, observer);
   StreamPreparedSamples(out, [&](const JointLog& prepared, Eigen::Index s0) {
     for (Eigen::Index s = (s0 + k - 1) / k * k; s < s0 + prepared.n_samples(); s += k) {
       const Eigen::Index r = s - s0;
@@ -306,13 +319,13 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
       held.qdd.row(s / k) = prepared.qdd.row(r);
       held.tau.row(s / k) = prepared.tau.row(r);
     }
-  }, out.n_raw > kStreamBlockSamples ? &progress : nullptr);
+  }, &progress);
   return out;
 }
 
 StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
                                const BaseParameters& base, const Eigen::VectorXd& series_beta, TorqueSeries* series,
-                               Eigen::Index max_series_points) {
+                               Eigen::Index max_series_points, const StreamObserver* observer) {
   StreamedEquationsSettings settings;
   settings.filter = log.parallel_filter;
   settings.n_samples = log.n_samples;
@@ -322,9 +335,8 @@ StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, 
   }
   try {
     StreamedJointEquations equations(model, friction, base, settings);
-    ProgressLine progress(log.path + ": identifying");
-    StreamPreparedSamples(log, [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); },
-                          log.n_raw > kStreamBlockSamples ? &progress : nullptr);
+    ProgressLine progress(log.path + ": identifying", log.n_raw > kStreamBlockSamples, observer);
+    StreamPreparedSamples(log, [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); }, &progress);
     if (!equations.done()) throw std::logic_error(log.path + ": the log ended early");
     if (equations.factors().n_samples() * model.n_dof() <= base.n_base()) {
       throw std::invalid_argument("joint log has " + std::to_string(equations.factors().n_samples()) +

@@ -96,6 +96,9 @@ class Session {
   void StopDesign();
   void StartSimulate();
   void StartIdentify();
+  // Asks a running identify to stop: it ends with "cancelled", the previous
+  // identification kept.
+  void CancelIdentify();
   void StartCompare();
   // The per-body experiment along the current motion (its whole duration).
   void StartPerBody();
@@ -112,6 +115,9 @@ class Session {
   const std::optional<DesignCommandReport>& design_report() const { return design_report_; }
   // Best feasible criterion over all starts after each progress report (live).
   std::vector<double> DesignCurve() const;
+  // How far the running identify is (live): RunIdentify's stages, then the
+  // predicted torques of the plots.
+  IdentifyProgress identify_progress() const;
   const std::optional<JointLog>& log() const { return log_; }
   const std::optional<IdentifyReport>& identify_report() const { return identify_report_; }
   // The options identify_report() was made with.
@@ -179,6 +185,9 @@ class Session {
   mutable std::mutex curve_mutex_;
   std::vector<double> curve_;             // best over all starts, per progress report
   std::vector<double> start_best_;        // per start (worker side)
+
+  mutable std::mutex identify_progress_mutex_;
+  IdentifyProgress identify_progress_;    // worker side writes, the UI reads
 
   std::vector<SessionMessage> messages_;
   BackgroundJob jobs_[kJobKinds];

@@ -2,6 +2,8 @@
 // (simulated or recorded), with an optional held-out log for validation.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,7 +60,28 @@ struct IdentifyOptions {
   bool IsValid(std::string* why) const;
 };
 
+// How far a run is (IdentifyControl::progress).
+struct IdentifyProgress {
+  double fraction = 0.0;  // of the whole run, in [0, 1], non-decreasing; 1 when done
+  std::string stage;      // what runs now, e.g. "reading log.csv", "solving (pc)"
+};
+
+// Progress and cancel of RunIdentify (the GUI's progress bar and Cancel), as
+// DesignControl is the design's. The run is split into equal stages: each
+// pass over a log (reading, folding its equations) and the solve; a pass
+// reports per block of samples, the solve at its start and end.
+struct IdentifyControl {
+  const std::atomic<bool>* stop = nullptr;  // set to end the run early: IdentifyStatus::kCancelled
+  std::function<void(const IdentifyProgress&)> progress;  // called on the thread running RunIdentify
+};
+
+enum class IdentifyStatus {
+  kDone,
+  kCancelled,  // control.stop was set: the report holds nothing else
+};
+
 struct IdentifyReport {
+  IdentifyStatus status = IdentifyStatus::kDone;
   // As identified (after filtering, if any): every sample up to
   // LogPreparationOptions::kMaxHeldSamples, else every k-th (plots, playback).
   JointLog log;
@@ -80,7 +103,10 @@ struct IdentifyReport {
 
 // Reads the logs and identifies. Throws std::invalid_argument naming the file,
 // line and column of bad data, or the option that does not fit the data.
-IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options);
+// Writes no file. Once control.stop is set, returns a report with status
+// kCancelled (at the next block of samples, or after the solve).
+IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& options,
+                           const IdentifyControl& control = {});
 
 // The same for logs already prepared (PrepareJointLog or
 // PrepareRecordedJointLog, e.g. arrays from Python); options.data and
@@ -94,8 +120,10 @@ IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptio
 // identification log or the held-out one, parallel-filtered as the RMS
 // numbers score them (PredictTorqueSeries), streamed (FoldPreparedLog): every
 // kept equation up to LogPreparationOptions::kMaxHeldSamples, else every k-th.
+// With an observer: its progress over the pass, StreamStopped once its stop is set.
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,
-                                      const IdentifyReport& report, bool held_out);
+                                      const IdentifyReport& report, bool held_out,
+                                      const StreamObserver* observer = nullptr);
 
 // Whether identified.urdf and joints.yaml are written: the verdict is fit to
 // load, or options.write_unverified.

@@ -7,6 +7,8 @@
 // regressor and the fold, so memory does not grow with the log's length.
 #pragma once
 
+#include <atomic>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -43,6 +45,21 @@ struct LogPreparationOptions {
   bool IsValid(std::string* why) const;
 };
 
+// Progress and stop of one streamed pass over a log (a front end's progress
+// bar and Cancel): the pass reports the fraction of its samples done, and
+// ends early by throwing StreamStopped once *stop is set. Both are called and
+// read on the thread running the pass.
+struct StreamObserver {
+  const std::atomic<bool>* stop = nullptr;
+  std::function<void(double fraction)> progress;  // in [0, 1], non-decreasing within a pass
+};
+
+// Thrown by a pass whose StreamObserver::stop is set; RunIdentify turns it
+// into IdentifyStatus::kCancelled.
+struct StreamStopped : std::exception {
+  const char* what() const noexcept override { return "stopped"; }
+};
+
 struct PreparedLog {
   // The prepared log (t, q, qd, qdd, τ or currents): every log_stride-th of
   // its n_samples samples, all of them up to max_held_samples (plots,
@@ -73,8 +90,11 @@ struct PreparedLog {
 // and column where there is one): the parser's errors, a time window outside
 // the log or leaving fewer than 4 samples, a gap longer than the bound, or a
 // log too short for the filter. A log with qd and qdd is decimated by
-// filter.decimation (every k-th sample kept) without filtering.
-PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options);
+// filter.decimation (every k-th sample kept) without filtering. With an
+// observer: its progress over the pass that holds the prepared samples, and
+// StreamStopped once its stop is set.
+PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options,
+                            const StreamObserver* observer = nullptr);
 
 // The same for a log already read (e.g. arrays from Python: lines are then
 // row numbers); `source` names it in messages. options.format is not used.
@@ -83,7 +103,7 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
 
 // The same for a log opened as a source; `path` names it in messages.
 PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,
-                                  const LogPreparationOptions& options);
+                                  const LogPreparationOptions& options, const StreamObserver* observer = nullptr);
 
 // Streams a prepared log's equations for `base` into factors: the source
 // read again in chunks of kStreamBlockSamples, filtered, the regressor
@@ -91,11 +111,13 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
 // series_beta (n_base), *series gets the measured and predicted torques of
 // at most max_series_points kept equations (every k-th; all when fewer).
 // A progress line goes to stderr when the work takes more than a few
-// seconds. Throws std::invalid_argument naming the path for too few
-// equations and the source's errors.
+// seconds (and to the observer, if any: StreamStopped once its stop is
+// set). Throws std::invalid_argument naming the path for too few equations
+// and the source's errors.
 StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
                                const BaseParameters& base, const Eigen::VectorXd& series_beta = {},
                                TorqueSeries* series = nullptr,
-                               Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples);
+                               Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples,
+                               const StreamObserver* observer = nullptr);
 
 }  // namespace idbench

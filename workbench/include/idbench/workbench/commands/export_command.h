@@ -1,0 +1,50 @@
+// `idbench export`: an identification's robot model again, in a format, from
+// what `identify` wrote (identified.json: its friction terms, the physically
+// consistent standard parameters and their verdict) and the robot it
+// identified: identified.xml (MJCF, formats/mjcf_writer.h) or identified.urdf,
+// the same bytes `identify` writes for them.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "idbench/engine/base_pose.h"
+#include "idbench/engine/robot_model.h"
+#include "idbench/engine/transmission.h"
+
+namespace idbench {
+
+struct ExportOptions {
+  std::string robot = "puma560";  // the robot identified: built-in name or URDF path
+  BasePose base_pose;             // as identified: the model given to RunExport must be mounted so
+  std::string identified;         // identified.json, as `identify` wrote it (required)
+  std::string format = "mjcf";    // mjcf (identified.xml) | urdf (identified.urdf)
+  // Write it also when the physically consistent estimate is not fit to load
+  // (the verdict in identified.json): the user accepts it.
+  bool write_unverified = false;
+  std::string out_dir = "out/export";
+
+  // The file written: identified.xml or identified.urdf.
+  std::string file_name() const;
+  // Checks the options alone; *why names the bad field.
+  bool IsValid(std::string* why) const;
+};
+
+struct ExportReport {
+  bool fit_to_load = false;  // identified.json's verdict
+  // When not fit to load: the verdict, its cause and whether the file is
+  // written (write_unverified); empty otherwise.
+  std::string refused;
+  bool writes = false;       // fit to load, or write_unverified
+  std::string content;       // the file's text (set when writes)
+};
+
+// Reads options.identified and rebuilds the identified robot model from
+// `model` (loaded and mounted as identified; transmission: the URDF's, for
+// terms identified on the actuator side). Throws std::invalid_argument naming
+// identified.json's field for a file that is not identify's, or that was
+// identified on another robot (its standard parameters' names differ).
+ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
+                       const std::optional<Transmission>& transmission = std::nullopt);
+
+}  // namespace idbench
