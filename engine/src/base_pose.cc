@@ -54,7 +54,7 @@ bool ParseBasePose(const std::string& text, BasePose* pose, std::string* why) {
     const bool last = i == 5;
     if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x) ||
         (last ? comma != std::string::npos : comma == std::string::npos)) {
-      if (why) *why = "base pose: expected six numbers x,y,z,roll,pitch,yaw [m, rad], got '" + text.substr(0, 200) + "'";
+      if (why) *why = "base_pose: expected six numbers x,y,z,roll,pitch,yaw [m, rad], got '" + text.substr(0, 200) + "'";
       return false;
     }
     v[static_cast<size_t>(i)] = x;

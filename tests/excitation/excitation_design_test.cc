@@ -185,7 +185,7 @@ TEST(ExcitationDesignTest, NoFeasibleStartIsExplainedAfterTheSearch) {
     EXPECT_NE(std::string(e.what()).find("no feasible design"), std::string::npos) << e.what();
     EXPECT_EQ(e.check().rate_hz, 1000.0);
     bool margin = false;
-    for (const std::string& a : e.advice()) margin |= a.rfind("margin (now 0.02)", 0) == 0;
+    for (const std::string& a : e.advice()) margin |= a.rfind("`margin` (now 0.02)", 0) == 0;
     EXPECT_TRUE(margin) << e.what();
   }
 }

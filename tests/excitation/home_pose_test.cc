@@ -139,7 +139,7 @@ TEST(HomePoseTest, ShoulderRangeInTheFloorIsExplainedBeforeTheSearch) {
     EXPECT_TRUE(ground) << e.what();
     EXPECT_NE(std::string(e.what()).find("below its minimum"), std::string::npos) << e.what();
     ASSERT_FALSE(e.advice().empty());
-    EXPECT_EQ(e.advice()[0].rfind("clearance (now 0.01 m)", 0), 0u) << e.what();
+    EXPECT_EQ(e.advice()[0].rfind("`clearance` (now 0.01 m)", 0), 0u) << e.what();
     // The shoulder's range holds the arm there: the advice names it too.
     bool shoulder_range = false;
     for (const std::string& a : e.advice()) shoulder_range |= a.find("joint 2's range q_min..q_max (0.3..0.5 rad)") == 0;

@@ -114,7 +114,7 @@ TEST_F(DesignCliTest, RobotReadyCsvWithRampsFromAndToTheHome) {
   const Result sharp = Run(common + (dir_ / "c").string() + " --ramp 0.05");
   EXPECT_EQ(sharp.exit_code, 1);
   EXPECT_NE(sharp.out.find("INFEASIBLE"), std::string::npos) << sharp.out;
-  EXPECT_NE(sharp.out.find("  ramp_seconds (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
+  EXPECT_NE(sharp.out.find("  --ramp (now 0.05 s): longer ramps"), std::string::npos) << sharp.out;
 }
 
 // The search ran and found nothing feasible (a home whose gravity torque is
@@ -144,7 +144,7 @@ TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
   EXPECT_NEAR(design["limits"][1]["tau_max"].get<double>(), tau_gravity / 0.99, 1e-4);  // 6 digits in the file
   EXPECT_EQ(design["check"]["rate_hz"].get<double>(), 1000.0);
   bool margin = false;
-  for (const std::string a : design["infeasible"]["advice"]) margin |= a.rfind("margin (now 0.02)", 0) == 0;
+  for (const std::string a : design["infeasible"]["advice"]) margin |= a.rfind("`margin` (now 0.02)", 0) == 0;
   EXPECT_TRUE(margin) << design["infeasible"].dump();
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.json"));

@@ -131,14 +131,14 @@ TEST_F(RenderCliTest, BadInputIsOneMessageAndWritesNothing) {
   ExpectOnlyFiles(dir_, {"fig.png", "stderr", "stdout"});
 }
 
-// The cell and the mounting: a big box beside the robot is drawn (the figure
+// The cell and the mounting: a big box in front of the robot, beside it, is drawn (the figure
 // changes, and pixels of the box's sand colour appear); a ceiling-mounted
 // robot (base 2.5 m up, turned over) is drawn hanging from its base: the
 // first link (blue, the base's) moves from below the robot's pixel centroid
 // to above it.
 TEST_F(RenderCliTest, SceneAndBasePoseAreDrawn) {
   const fs::path scene = dir_ / "scene.json";
-  std::ofstream(scene) << R"({"obstacles": [{"type": "box", "size": [0.6, 0.6, 1.2], "pose": [-0.8, 0.8, 0.6, 0, 0, 0]}]})";
+  std::ofstream(scene) << R"({"obstacles": [{"type": "box", "size": [0.6, 0.6, 1.2], "pose": [-0.8, -0.8, 0.6, 0, 0, 0]}]})";
   const std::string common = "render --times 0 --size 320x240 --out ";
   ASSERT_EQ(Run(common + (dir_ / "plain.png").string()).exit_code, 0);
   const Result celled = Run(common + (dir_ / "cell.png").string() + " --scene " + scene.string());
@@ -152,8 +152,9 @@ TEST_F(RenderCliTest, SceneAndBasePoseAreDrawn) {
   for (int v = 0; v < plain.height; ++v) {
     for (int u = 0; u < plain.width; ++u) sand_plain += sand(plain.at(u, v)), sand_cell += sand(cell.at(u, v));
   }
-  EXPECT_LT(sand_plain, 20);
-  EXPECT_GT(sand_cell, 0.03 * plain.width * plain.height);
+  // A few shaded pixels of the orange link pass the test too (61 of 76800).
+  EXPECT_LT(sand_plain, 0.005 * plain.width * plain.height);
+  EXPECT_GT(sand_cell - sand_plain, 0.03 * plain.width * plain.height);  // 4264 when written
   EXPECT_GT(idbench::testing::FirstLinkBelowCentroid(plain), 10.0);
   EXPECT_LT(idbench::testing::FirstLinkBelowCentroid(ReadPng(dir_ / "ceiling.png")), -10.0);
 }

@@ -311,5 +311,9 @@ def test_an_impossible_design_is_a_value_error_with_the_command_lines_explanatio
     assert code == 2, err
     with pytest.raises(ValueError) as raised:
         idbench.design(robot, limits=str(tmp_path / "limits.json"))
-    assert str(raised.value) == err.strip().split("idbench: error: ", 1)[1]
+    # The command line's explanation, its options spelled as keywords, not flags.
+    cli_message = err.strip().split("idbench: error: ", 1)[1]
+    assert "--clearance (now 0.01 m), a --home pose or a --base-pose with" in cli_message
+    as_keywords = cli_message.replace("--clearance", "`clearance`").replace("--home", "`home`")
+    assert str(raised.value) == as_keywords.replace("--base-pose", "base_pose")
     assert "ground" in str(raised.value)
