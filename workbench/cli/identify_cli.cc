@@ -68,7 +68,7 @@ int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool w
   std::printf("wrote %s%s%s\n", (dir / "identified.json").c_str(),
               model_files ? (", " + (dir / "identified.urdf").string() + ", identified.xml and joints.yaml").c_str() : "",
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
-  const std::string refused = RefusedModelMessage(options, report, OptionNames::kCommandLine);
+  const std::string refused = context.FlagSpelling(RefusedModelMessage(options, report));
   if (refused.empty()) return 0;
   if (options.write_unverified) {
     std::fprintf(stderr, "idbench: warning: %s\n", refused.c_str());

@@ -55,6 +55,11 @@ PreparedLog PrepareLogArgument(const py::object& log, const std::string& source,
                                const LogPreparationOptions& options);
 
 // Each adds its part of the module to `m`, in this order (the order of help(idbench)).
+// A library message with its option fields spelled as this module's keyword
+// arguments (locked_joints → lock, plausibility.total_mass → total_mass);
+// errors raised to Python pass through it (idbench_module.cc).
+std::string KeywordSpelling(const std::string& message);
+
 void BindRobot(py::module_& m);
 void BindIdentify(py::module_& m);
 void BindPayload(py::module_& m);

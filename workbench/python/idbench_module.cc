@@ -34,9 +34,13 @@ constexpr idbench::FieldSpelling kKeywordSpellings[] = {
     {"plausibility.cost_tolerance", "cost_tolerance"},
     {"write_unverified", "write_unverified=True"}};
 
-std::string KeywordSpelling(const char* message) { return idbench::SpellFields(message, kKeywordSpellings); }
-
 }  // namespace
+
+namespace idbench::python {
+
+std::string KeywordSpelling(const std::string& message) { return SpellFields(message, kKeywordSpellings); }
+
+}  // namespace idbench::python
 
 PYBIND11_MODULE(idbench, m) {
   using namespace idbench;
@@ -52,15 +56,15 @@ PYBIND11_MODULE(idbench, m) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const InfeasibleDesign& e) {
-      PyErr_SetString(e.before_search() ? PyExc_ValueError : PyExc_RuntimeError, KeywordSpelling(e.what()).c_str());
+      PyErr_SetString(e.before_search() ? PyExc_ValueError : PyExc_RuntimeError, python::KeywordSpelling(e.what()).c_str());
     } catch (const py::builtin_exception&) {
       throw;  // pybind11's own (TypeError, ...): its translator
     } catch (const py::error_already_set&) {
       throw;
     } catch (const std::invalid_argument& e) {
-      PyErr_SetString(PyExc_ValueError, KeywordSpelling(e.what()).c_str());
+      PyErr_SetString(PyExc_ValueError, python::KeywordSpelling(e.what()).c_str());
     } catch (const std::runtime_error& e) {
-      PyErr_SetString(PyExc_RuntimeError, KeywordSpelling(e.what()).c_str());
+      PyErr_SetString(PyExc_RuntimeError, python::KeywordSpelling(e.what()).c_str());
     }
   });
   python::BindRobot(m);

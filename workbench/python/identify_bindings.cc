@@ -50,7 +50,7 @@ py::dict VerdictDict(const JointTorqueIdentification& id) {
   verdict["fit_to_load"] = v.fit_to_load();
   verdict["message"] = v.message;
   verdict["cause"] = v.fit_to_load() ? py::object(py::none())
-                                     : py::object(py::str(InFrontEndTerms(v.cause, OptionNames::kPython)));
+                                     : py::object(py::str(KeywordSpelling(v.cause)));
   verdict["cost_excess_percent"] = 100.0 * v.cost_excess;
   verdict["cost_tolerance_percent"] = 100.0 * v.cost_tolerance;
   py::list bounds;

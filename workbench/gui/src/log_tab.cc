@@ -297,7 +297,7 @@ void GuiApp::Impl::DrawLogResults() {
   ImGui::TextWrapped("%s", verdict.message.c_str());
   widgets.Record("log.verdict");
   if (!verdict.fit_to_load())
-    ImGui::TextWrapped("%s", InFrontEndTerms(verdict.cause, OptionNames::kCommandLine).c_str());
+    ImGui::TextWrapped("%s", verdict.cause.c_str());
   const std::vector<ActiveBound>& bounds = ident.consistent.bounds_at_optimum;
   if (ImGui::BeginTabBar("log_results")) {
     const bool torques = ImGui::BeginTabItem("Torques");

@@ -489,7 +489,7 @@ bool Session::ExportIdentifiedModel() {
   const IdentifyReport& report = *identify_report_;
   if (!Export("identified.json", [&] { return FormatIdentifiedJson(*model_, options, report); })) return false;
   if (!WritesRobotModel(options, report)) {  // the verdict refuses it (issue 20)
-    Error("export: " + RefusedModelMessage(options, report, OptionNames::kCommandLine));
+    Error("export: " + RefusedModelMessage(options, report));
     return false;
   }
   return Export("identified.urdf", [&] { return FormatIdentifiedUrdf(*model_, options, report); }) &&

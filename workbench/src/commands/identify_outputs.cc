@@ -242,7 +242,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"status", ToKey(v.status)},
       {"fit_to_load", v.fit_to_load()},
       {"message", v.message},
-      {"cause", v.fit_to_load() ? json(nullptr) : json(InFrontEndTerms(v.cause, OptionNames::kCommandLine))},
+      {"cause", v.fit_to_load() ? json(nullptr) : json(v.cause)},
       {"converged", id.consistent.converged},
       {"cost_excess_percent", 100.0 * v.cost_excess},
       {"cost_tolerance_percent", 100.0 * v.cost_tolerance},

@@ -129,17 +129,12 @@ TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOpt
 // load, or options.write_unverified.
 bool WritesRobotModel(const IdentifyOptions& options, const IdentifyReport& report);
 
-// The option names of a front end in library text: the fields of
-// PlausibilitySettings ("plausibility.com_in_geometry = false") become the
-// command line's flags ("--com-bound none") or Python's keywords
-// ("com_bound='none'").
-enum class OptionNames { kCommandLine, kPython };
-std::string InFrontEndTerms(std::string text, OptionNames names);
-
 // When the estimate is not fit to load: one message with the verdict, the
-// binding constraints by link, the likely cause and fix, in the front end's
-// option names. Empty when it is fit to load.
-std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyReport& report, OptionNames names);
+// binding constraints by link, the likely cause and fix, naming the options'
+// fields ("plausibility.com_in_geometry = false", write_unverified), which
+// each front end spells its own way (field_spelling.h). Empty when it is
+// fit to load.
+std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyReport& report);
 
 // %σ of a value as printed: 100 σ/|value|, or NaN where |value| ≤ 3σ (the
 // value is indistinguishable from zero, and a ratio to it means nothing:
