@@ -197,7 +197,10 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
 
   // Clearance is constrained on the grid; where the fine check finds the
   // links closer between grid instants, those instants join this start's
-  // grid and the search resumes from its best point (at most twice).
+  // grid and the search resumes from its best point (at most twice). The
+  // rounds share one third of max_evaluations: a repair near a found
+  // optimum, not a second search (which doubled a start's time).
+  const int repair_end = run.evaluations + std::max(1, budget / 3);
   for (int round = 0; round < 2 && problem.clearance() && run.best_theta.size() > 0 && run.Resumable(result);
        ++round) {
     const FeasibilityCheck fine = CheckTrajectoryLimits(regressor.model(), limits,
@@ -207,12 +210,12 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
     for (const ConstraintMargin& m : fine.margins) {
       if (m.quantity == "clearance" && m.margin < 0.0) problem.AddClearanceInstant(m.time, &*run.ws), added = true;
     }
-    if (!added) break;
+    if (!added || run.evaluations >= repair_end) break;
     theta = run.best_theta;
     run.best_value = kInf;
     run.best_theta.resize(0);
     run.SelectRows(theta.data());
-    result = run.Optimize(lower, upper, t_begin, &theta, budget);
+    result = run.Optimize(lower, upper, t_begin, &theta, repair_end - run.evaluations);
   }
   run.last_theta = theta;
   summary.best_value = run.best_value;

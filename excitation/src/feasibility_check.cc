@@ -156,6 +156,14 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
   return check;
 }
 
+bool InfeasibleDesign::settings_admit_no_motion() const {
+  if (!before_search_) return false;
+  for (const ConstraintMargin& m : check_.margins) {
+    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return false;
+  }
+  return true;
+}
+
 InfeasibleDesign::InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
                                    bool before_search)
     : std::runtime_error([&] {

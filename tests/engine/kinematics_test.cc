@@ -7,6 +7,7 @@
 
 #include "engine/test_util.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/urdf.h"
 
 namespace idbench {
 namespace {
@@ -70,6 +71,33 @@ TEST(KinematicsTest, Paper6rInitialPoseMatchesTheDrawing) {
   EXPECT_LT((d.R_WB[0].col(0) - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
   EXPECT_LT((d.R_WB[4].col(0) - Eigen::Vector3d::UnitX()).norm(), 1e-15);
   for (int i = 0; i < 6; ++i) EXPECT_LT((d.R_WB[static_cast<size_t>(i)].col(1) - Eigen::Vector3d::UnitY()).norm(), 1e-15);
+}
+
+// tests/data/panda_like writes Franka's joint origins as URDF origins (xyz,
+// roll); the link frames must be those of Franka's published modified DH
+// table (Craig: RotX(alpha) TransX(a) RotZ(q) TransZ(d)), written here from
+// the table, at random poses, to 1e-12.
+TEST(KinematicsTest, PandaLikeFixtureHasFrankasDhKinematics) {
+  const RobotModel model = LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/panda_like/panda_like.urdf").model;
+  ASSERT_EQ(model.n_dof(), 7);
+  const double pi = 3.14159265358979323846;
+  const double a[7] = {0, 0, 0, 0.0825, -0.0825, 0, 0.088};
+  const double d[7] = {0.333, 0, 0.316, 0, 0.384, 0, 0};
+  const double alpha[7] = {0, -pi / 2, pi / 2, pi / 2, -pi / 2, pi / 2, pi / 2};
+  std::mt19937 rng(5);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(7);
+  KinematicsData<double> k(model);
+  for (int pose = 0; pose < 20; ++pose) {
+    const Eigen::VectorXd q = RandomVector(7, 2.5, &rng);
+    ComputeKinematicsT<double>(model, q, zero, zero, &k);
+    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+    for (int i = 0; i < 7; ++i) {
+      X_WB = X_WB * Eigen::AngleAxisd(alpha[i], Eigen::Vector3d::UnitX()) * Eigen::Translation3d(a[i], 0, 0) *
+             Eigen::AngleAxisd(q[i], Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(0, 0, d[i]);
+      EXPECT_LT((k.p_WBo_W[static_cast<size_t>(i)] - X_WB.translation()).norm(), 1e-12) << "link " << i + 1;
+      EXPECT_LT((k.R_WB[static_cast<size_t>(i)] - X_WB.linear()).norm(), 1e-12) << "link " << i + 1;
+    }
+  }
 }
 
 TEST(KinematicsTest, RejectsWrongSizes) {

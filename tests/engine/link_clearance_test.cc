@@ -436,9 +436,10 @@ TEST(LinkClearanceTest, CapsuleAndReachBoundsNeverExceedTheGjkDistance) {
   ball.X_WO.translation() = Eigen::Vector3d(-0.4, 0.3, 0.8);
   cell.obstacles = {box, ball};
   const RobotModel ur = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/ur10e_like/ur10e_like.urdf").model;
+  const RobotModel panda = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/panda_like/panda_like.urdf").model;
   const RobotModel puma = MakePuma560();
   int bounded = 0, checked = 0;
-  for (const RobotModel* model : {&puma, &ur}) {
+  for (const RobotModel* model : {&puma, &ur, &panda}) {
     const ClearanceModel clearance(*model, 0.01, model == &ur ? cell : Cell());
     const int n = model->n_dof();
     KinematicsData<double> k(*model), k2(*model);

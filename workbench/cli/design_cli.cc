@@ -1,8 +1,6 @@
 // `idbench design`: an excitation trajectory (Fourier series) optimised for
 // identification within the joint limits; its flags fill DesignCommandOptions.
 // Ctrl-C stops the search and keeps the best feasible design so far.
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "cli_command.h"
+#include "ctrl_c_stop.h"
 #include "common_flags.h"
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
@@ -39,33 +38,16 @@ struct DesignFlags {
   bool report = false;   // --report
 };
 
-// Ctrl-C during a design: stop and keep the best feasible design so far.
-std::atomic<bool> g_stop_requested{false};
-extern "C" void RequestStop(int) { g_stop_requested = true; }
-
-// Whether an InfeasibleDesign is a run that failed (exit 1) rather than
-// settings that admit no motion (exit 2): the search ran, or the scene's
-// obstacles leave the arm no room (the cell is where the robot stands, not
-// a malformed option; docs/exit-codes.md).
-bool RanAndFailed(const InfeasibleDesign& e) {
-  if (!e.before_search()) return true;
-  for (const ConstraintMargin& m : e.check().margins) {
-    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return true;
-  }
-  return false;
-}
-
-// The search, under Ctrl-C. A design that ran and failed (RanAndFailed)
+// The search, under Ctrl-C. A design that ran and failed (not
+// InfeasibleDesign::settings_admit_no_motion)
 // writes design.json with the diagnostics before it is thrown on.
 DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options) {
   const std::filesystem::path dir(options.out_dir);
-  std::signal(SIGINT, RequestStop);
+  const CtrlCStop ctrl_c;  // Ctrl-C: stop and keep the best feasible design so far
   try {
-    DesignCommandReport report = RunDesign(model, options, &g_stop_requested);
-    std::signal(SIGINT, SIG_DFL);
-    return report;
+    return RunDesign(model, options, ctrl_c.flag());
   } catch (const InfeasibleDesign& e) {  // the search ran, or the cell has no room: design.json explains it
-    if (RanAndFailed(e)) {
+    if (!e.settings_admit_no_motion()) {
       EnsureOutputDirectory(dir);
       WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, options, e));
     }
@@ -83,7 +65,7 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
   try {
     searched.emplace(SearchDesign(model, options));
   } catch (const InfeasibleDesign& e) {
-    if (!RanAndFailed(e)) throw;  // settings that admit no motion: exit 2 (main)
+    if (e.settings_admit_no_motion()) throw;  // settings that admit no motion: exit 2 (main)
     std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return kExitFailure;
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_command.h"
+#include "ctrl_c_stop.h"
 #include "common_flags.h"
 #include "log_reading_flags.h"
 #include "idbench/workbench/commands/identify_command.h"
@@ -45,7 +46,19 @@ int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool w
       MountRobot(LoadRobotOrThrow(options.robot, load, &options.format.transmission), options.base_pose);
   if (!options.format.IsValidFor(model.n_dof(), &why)) return context.UsageError(why);
   if (!options.plausibility.IsValidFor(model, &why)) return context.UsageError(why);
-  const IdentifyReport report = RunIdentify(model, options);
+  // Ctrl-C: stop at the next block of samples (or after the solve), write nothing.
+  std::string stage;
+  const IdentifyReport report = [&] {
+    const CtrlCStop ctrl_c;
+    IdentifyControl control;
+    control.stop = ctrl_c.flag();
+    control.progress = [&stage](const IdentifyProgress& p) { stage = p.stage; };
+    return RunIdentify(model, options, control);
+  }();
+  if (report.status == IdentifyStatus::kCancelled) {
+    std::fprintf(stderr, "idbench: error: identify stopped (Ctrl-C) while %s: nothing written\n", stage.c_str());
+    return kExitFailure;
+  }
   context.PrintWarnings(report.warnings);
   std::fputs(FormatIdentifyTables(model, options, report).c_str(), stdout);
   const std::filesystem::path dir(options.out_dir);

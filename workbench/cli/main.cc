@@ -46,8 +46,8 @@ int main(int argc, char** argv) {
     return context.UsageError(e.what());
   } catch (const idbench::InfeasibleDesign& e) {
     // Settings that admit no motion are wrong input (nothing ran); a search
-    // that found nothing feasible ran and failed.
-    if (e.before_search()) return context.UsageError(e.what());
+    // that found nothing feasible, or a cell without room, ran and failed.
+    if (e.settings_admit_no_motion()) return context.UsageError(e.what());
     std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return idbench::cli::kExitFailure;
   } catch (const std::exception& e) {

@@ -3,32 +3,11 @@
 UR10e-sized arm whose mid-range pose (q = 0) holds it horizontally with the
 shoulder axis 0.16 m above the floor and the wrist 1.5 cm above it; effort and
 velocity limits as UR10e's data sheet. Deterministic; run from this folder."""
-import math
+import os
+import sys
 
-SIDES = 16
-
-
-def prism(name, axis, start, end, radius):
-    """A 16-sided prism of the given radius along axis ('x', 'y' or 'z') from start to end [m]."""
-    def point(t, a):
-        u, v = radius * math.cos(a), radius * math.sin(a)
-        return {'x': (t, u, v), 'y': (v, t, u), 'z': (u, v, t)}[axis]
-    tris = []
-    for k in range(SIDES):
-        a0, a1 = 2 * math.pi * k / SIDES, 2 * math.pi * (k + 1) / SIDES
-        p00, p01, p10, p11 = point(start, a0), point(start, a1), point(end, a0), point(end, a1)
-        tris += [(p00, p10, p11), (p00, p11, p01)]
-        c0 = {'x': (start, 0, 0), 'y': (0, start, 0), 'z': (0, 0, start)}[axis]
-        c1 = {'x': (end, 0, 0), 'y': (0, end, 0), 'z': (0, 0, end)}[axis]
-        tris += [(c0, p01, p00), (c1, p10, p11)]
-    with open(f'meshes/{name}.stl', 'w') as f:
-        f.write(f'solid {name}\n')
-        for t in tris:
-            f.write('  facet normal 0 0 0\n    outer loop\n')
-            for p in t:
-                f.write('      vertex %.6f %.6f %.6f\n' % p)
-            f.write('    endloop\n  endfacet\n')
-        f.write(f'endsolid {name}\n')
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+from prism_stl import prism_triangles, write_stl  # noqa: E402
 
 
 # link: (mesh axis, start, end, radius, mass, centre of mass)
@@ -63,7 +42,7 @@ def inertia(axis, start, end, radius, mass):
 def main():
     out = ['<?xml version="1.0"?>', '<robot name="ur10e_like">']
     for name, (axis, start, end, radius, mass, com) in LINKS.items():
-        prism(name, axis, start, end, radius)
+        write_stl(f'meshes/{name}.stl', name, prism_triangles(axis, start, end, radius))
         ixx, iyy, izz = inertia(axis, start, end, radius, mass)
         mesh = f'<geometry><mesh filename="meshes/{name}.stl"/></geometry>'
         out += [f'  <link name="{name}">',

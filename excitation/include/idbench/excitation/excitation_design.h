@@ -185,6 +185,12 @@ class InfeasibleDesign : public std::runtime_error {
   const FeasibilityCheck& check() const { return check_; }
   const std::vector<std::string>& advice() const { return advice_; }
   bool before_search() const { return before_search_; }
+  // The settings are wrong whatever the robot's surroundings (exit 2,
+  // ValueError): seen before the search and no obstacle but the ground
+  // violated. Otherwise it ran and failed (exit 1, RuntimeError): the search
+  // found nothing feasible, or the cell's obstacles leave the arm no room
+  // (the cell is where the robot stands, not a malformed option).
+  bool settings_admit_no_motion() const;
 
  private:
   FeasibilityCheck check_;
