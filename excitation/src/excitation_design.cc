@@ -212,17 +212,36 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   worker();
   for (std::thread& t : pool) t.join();
 
-  // The best feasible start; ties go to the lower index (deterministic).
-  int best = -1;
+  // The starts feasible on the grid, best first; ties go to the lower index
+  // (deterministic).
+  std::vector<int> ranked;
   for (int s = 0; s < options.starts; ++s) {
-    const StartRun& run = runs[static_cast<size_t>(s)];
-    if (run.best_theta.size() > 0 && (best < 0 || run.best_value < runs[static_cast<size_t>(best)].best_value)) {
-      best = s;
-    }
+    if (runs[static_cast<size_t>(s)].best_theta.size() > 0) ranked.push_back(s);
   }
-  if (best < 0) internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, summaries, &runs);
+  if (ranked.empty()) internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, summaries, &runs);
+  std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
+    return runs[static_cast<size_t>(a)].best_value < runs[static_cast<size_t>(b)].best_value;
+  });
+  // The winner: the best whose motion also meets every limit at the check
+  // rate. The grid can miss a pair's dip between its instants when a start's
+  // clearance repairs ran out; a lesser start that holds everywhere beats
+  // it. When none does, the best on the grid (its check says why it is not usable).
+  auto make_result = [&](int s) {
+    const StartRun& run = runs[static_cast<size_t>(s)];
+    DesignResult r(problem.Trajectory(run.best_theta), problem.Trajectory(run.start_theta));
+    r.ramp_seconds = options.ramp_seconds;
+    r.home = problem.home();
+    r.check = CheckTrajectoryLimits(regressor.model(), limits, r.RobotTrajectory(), options.check_rate_hz,
+                                    problem.clearance());
+    return r;
+  };
+  int best = ranked.front();
+  DesignResult result = make_result(best);
+  for (size_t k = 1; k < ranked.size() && !result.check.feasible(); ++k) {
+    DesignResult next = make_result(ranked[k]);
+    if (next.check.feasible()) best = ranked[k], result = std::move(next);
+  }
   const StartRun& winner = runs[static_cast<size_t>(best)];
-  DesignResult result(problem.Trajectory(winner.best_theta), problem.Trajectory(winner.start_theta));
   result.starts = summaries;
   result.home = problem.home();
   result.home_source = home_source;
@@ -248,9 +267,6 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                              std::to_string(result.final.rank) + " of " + std::to_string(regressor.n_parameters()) +
                              "); check the limits of the joints involved:" + unexcited + held);
   }
-  result.ramp_seconds = options.ramp_seconds;
-  result.check = CheckTrajectoryLimits(regressor.model(), limits, result.RobotTrajectory(), options.check_rate_hz,
-                                       problem.clearance());
   result.stopped = control.stop && control.stop->load();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return result;

@@ -123,8 +123,15 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.margin = kInf;
     worst.push_back(m);
   }
-  std::vector<Clearance> distances;
-  std::vector<double> closest(n_pairs);
+  // Per pair, the last instant GJK measured (its joint angles and distance,
+  // or the capsules' lower bound when pruned): a later instant is skipped
+  // while that distance, less how far the joints have moved the two sides
+  // since (ClearancePair::reach), stays above the pair's least distance so
+  // far. At 1 kHz the joints move little between instants, so GJK runs
+  // mostly where a pair nears a new minimum; the minima are unchanged.
+  constexpr double kGjkTolerance = 1e-7;  // [m]
+  Eigen::MatrixXd anchor_q(n, static_cast<Eigen::Index>(n_pairs));
+  std::vector<double> anchor_distance(n_pairs, -kInf);
   RobotData data(model);
   JointState x(n);
   const long steps = static_cast<long>(std::floor(trajectory.duration() * rate_hz + 1e-9));
@@ -141,13 +148,21 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
         if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
       }
     }
-    if (n_pairs == 0) continue;
-    for (size_t i = 0; i < n_pairs; ++i) closest[i] = worst[static_cast<size_t>(5 * n) + i].value;
-    clearance->Compute(data, &distances, &closest);  // data holds the poses InverseDynamics computed
     for (size_t i = 0; i < n_pairs; ++i) {
       ConstraintMargin& w = worst[static_cast<size_t>(5 * n) + i];
-      const double margin = distances[i].distance - w.limit;
-      if (margin < w.margin) w.margin = margin, w.time = t, w.value = distances[i].distance;
+      const Eigen::Index a = static_cast<Eigen::Index>(i);
+      double moved_bound = anchor_distance[i] - kGjkTolerance;
+      const std::vector<double>& reach = clearance->pairs()[i].reach;
+      for (int j = 0; j < n && moved_bound > w.value; ++j) {
+        moved_bound -= reach[static_cast<size_t>(j)] * std::abs(x.q[j] - anchor_q(j, a));
+      }
+      if (moved_bound > w.value) continue;
+      // data holds the poses InverseDynamics computed.
+      const double distance = clearance->ComputePair(data, static_cast<int>(i), w.value).distance;
+      anchor_distance[i] = distance;
+      anchor_q.col(a) = x.q;
+      const double margin = distance - w.limit;
+      if (margin < w.margin) w.margin = margin, w.time = t, w.value = distance;
     }
   }
   for (const ConstraintMargin& m : worst) {
