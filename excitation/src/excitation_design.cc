@@ -190,6 +190,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                                        "(MountRobot)", want.x(), want.y(), want.z()));
   }
   CheckDesignLimits(regressor.model(), limits);
+  options.actuators.Check(regressor.model().n_dof());
   CheckDesignFitsInMemory(regressor, options);
   const auto t_begin = std::chrono::steady_clock::now();
   DesignProblem problem(regressor, limits, options);
@@ -250,7 +251,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   }
   result.ramp_seconds = options.ramp_seconds;
   result.check = CheckTrajectoryLimits(regressor.model(), limits, result.RobotTrajectory(), options.check_rate_hz,
-                                       problem.clearance());
+                                       problem.clearance(), options.actuators);
   result.stopped = control.stop && control.stop->load();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   return result;
