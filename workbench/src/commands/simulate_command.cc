@@ -115,28 +115,18 @@ MotorSideLog SimulateMotorSideLog(const RobotModel& model, const Transmission& t
     motor.qdd = step.qdd;  // joint side: a log has no motor accelerations
     motor.tau = At.solve(step.tau);
   }
-  const JointLog measured = Measure(steps, options.sensors);
+  MotorSideLog out;
+  out.motor = Measure(steps, options.sensors);
+  out.transmission = transmission;
   SensorOptions exact;
   exact.rate_hz = options.sensors.rate_hz;
-  MotorSideLog out;
-  out.t = measured.t;
-  out.theta_m = measured.q;
-  out.thetad_m = measured.qd;
-  out.qdd = measured.qdd;
-  out.tau_m = measured.tau;
-  out.transmission = transmission;
   out.joint = Measure(joint_steps, exact);
   return out;
 }
 
 std::string FormatMotorSideLogCsv(const MotorSideLog& log) {
   // The joint-log writer's numbers under motor-side column names.
-  JointLog rows;
-  rows.t = log.t;
-  rows.q = log.theta_m;
-  rows.qd = log.thetad_m;
-  rows.qdd = log.qdd;
-  rows.tau = log.tau_m;
+  const JointLog& rows = log.motor;
   std::string csv = FormatJointLogCsv(rows);
   std::string header = "t";
   for (const char* prefix : {"qm", "qdm", "qdd", "taum"}) {
