@@ -100,3 +100,22 @@ def test_simulate_through_a_transmission_returns_the_motor_side(tmp_path):
     np.testing.assert_allclose(log["tau"], plain["tau"] + own @ a, rtol=1e-9, atol=1e-9)
     with pytest.raises(ValueError, match="motor_viscous"):
         idbench.simulate(idbench.Robot("paper6r"), "general", duration=1.0, motor_viscous=[1.0])
+
+
+def test_design_keeps_a_motor_limit_through_its_transmission(tmp_path):
+    """design(transmission=...) keeps the limits file's "actuators"; without one they are refused by field."""
+    (tmp_path / "wrist.json").write_text(json.dumps({"actuator_from_joint": A}))
+    joints = [{"q_min": -3, "q_max": 3, "qd_max": 1, "qdd_max": 3}] * 6
+    (tmp_path / "limits.json").write_text(json.dumps({"joints": joints, "actuators": [{}] * 5 + [{"qd_max": 20}]}))
+    robot = idbench.Robot("paper6r")
+    quick = dict(harmonics=2, f0=0.5, samples=40, starts=1, max_evaluations=25, clearance=-1,
+                 limits=str(tmp_path / "limits.json"))
+    with pytest.raises(ValueError, match="^transmission: "):
+        idbench.design(robot, **quick)
+    result = idbench.design(robot, transmission=str(tmp_path / "wrist.json"), **quick)
+    assert result.feasible
+    design = json.loads(result.design_json)
+    assert design["actuators"][5]["qd_max"] == 20
+    rows = np.loadtxt(result.trajectory_csv.splitlines()[1:], delimiter=",")
+    qd = rows[:, 7:13]
+    assert np.abs(qd @ np.array(A, dtype=float).T)[:, 5].max() <= 20
