@@ -49,7 +49,7 @@ void DescribeProgress(DesignStartSummary* s) {
   }
   const StartRun& run = (*runs)[static_cast<size_t>(least)];
   FeasibilityCheck check = CheckTrajectoryLimits(model, limits, problem.Trajectory(run.last_theta),
-                                                 options.check_rate_hz, problem.clearance());
+                                                 options.check_rate_hz, problem.clearance(), options.actuators);
   std::vector<std::string> advice = RelaxationAdvice(check, options, false);
   // What became of each start, then the check of the least violating one.
   std::string starts;

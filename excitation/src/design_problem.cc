@@ -25,6 +25,7 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
                              const DesignOptions& options)
     : regressor_(regressor),
       limits_(limits),
+      actuators_(options.actuators),
       criterion_(options.criterion),
       f0_(options.f0),
       duration_(options.period_duration()),
@@ -59,6 +60,23 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
     row_times_ = DesignSampleTimes(row_grid);
   }
   BuildLinearRows();
+  // The torque limits: each joint's, then each motor's through A⁻ᵀ.
+  for (int j = 0; j < n_; ++j) {
+    const double tau_max = limits_[static_cast<size_t>(j)].tau_max;
+    if (!std::isfinite(tau_max)) continue;
+    torque_limits_.push_back({Eigen::VectorXd::Unit(n_, j), tau_max,
+                              "torque limit of joint '" + regressor.model().link(j).joint_name + "'"});
+  }
+  if (!actuators_.empty()) {
+    const Eigen::MatrixXd motor_from_joint = actuators_.MotorTorqueFromJoint();
+    for (int k = 0; k < n_; ++k) {
+      const double tau_max = actuators_.motors[static_cast<size_t>(k)].tau_max;
+      if (!std::isfinite(tau_max)) continue;
+      torque_limits_.push_back({motor_from_joint.row(k).transpose(), tau_max,
+                                "torque limit of motor " + std::to_string(k + 1) + " (joints " +
+                                    actuators_.DrivenJoints(regressor.model(), k) + ")"});
+    }
+  }
   clearance_ = options.MakeClearance(regressor.model());
   if (clearance_) {
     clearance_stride_ = (options.samples + 99) / 100;
@@ -92,8 +110,7 @@ void DesignProblem::set_home(const Eigen::VectorXd& q) {
 }
 
 int DesignProblem::n_torque_constraints() const {
-  return static_cast<int>(
-      std::count_if(limits_.begin(), limits_.end(), [](const JointLimits& l) { return std::isfinite(l.tau_max); }));
+  return static_cast<int>(torque_limits_.size());
 }
 
 int DesignProblem::n_nonlinear_constraints() const {
@@ -112,7 +129,8 @@ FourierSeriesTrajectory DesignProblem::Trajectory(const Eigen::VectorXd& theta) 
 }
 
 double DesignProblem::LinearValue(const LinearRow& row, const double* theta) const {
-  return row.coefficients.dot(Eigen::Map<const Eigen::VectorXd>(theta + row.joint * block_, block_)) - row.rhs;
+  return row.coefficients.dot(Eigen::Map<const Eigen::VectorXd>(theta + row.joint * block_, row.coefficients.size())) -
+         row.rhs;
 }
 
 double DesignProblem::MaxLinearViolation(const double* theta) const {
@@ -186,35 +204,33 @@ void DesignProblem::NonlinearConstraints(const double* theta, double* result, do
   const DesignRegressor& tr = *torque_regressor_;
   Eigen::MatrixXd& rows = ws->torque_rows;
   rows.resize(n_, tr.n_parameters());
-  Eigen::VectorXd worst = Eigen::VectorXd::Constant(n_, -kInf), sign = Eigen::VectorXd::Ones(n_);
-  std::vector<size_t> at(static_cast<size_t>(n_), 0);
+  const int m = n_torque_constraints();
+  Eigen::VectorXd worst = Eigen::VectorXd::Constant(m, -kInf), sign = Eigen::VectorXd::Ones(m);
+  std::vector<size_t> at(static_cast<size_t>(m), 0);
   for (size_t k = 0; k < times_.size(); ++k) {
     tr.Rows(ws->x[k], &ws->regressor, rows);
     const Eigen::VectorXd tau = rows * tr.true_parameters();
-    for (int j = 0; j < n_; ++j) {
-      if (std::abs(tau[j]) > worst[j]) {
-        worst[j] = std::abs(tau[j]);
-        sign[j] = tau[j] >= 0.0 ? 1.0 : -1.0;
-        at[static_cast<size_t>(j)] = k;
+    for (int i = 0; i < m; ++i) {
+      const double v = torque_limits_[static_cast<size_t>(i)].weights.dot(tau);
+      if (std::abs(v) > worst[i]) {
+        worst[i] = std::abs(v);
+        sign[i] = v >= 0.0 ? 1.0 : -1.0;
+        at[static_cast<size_t>(i)] = k;
       }
     }
   }
-  int m = 0;
-  for (int j = 0; j < n_; ++j) {
-    const double tau_max = limits_[static_cast<size_t>(j)].tau_max;
-    if (!std::isfinite(tau_max)) continue;
-    result[m] = worst[j] / tau_max - (1.0 - margin_);
+  for (int i = 0; i < m; ++i) {
+    const TorqueLimit& limit = torque_limits_[static_cast<size_t>(i)];
+    result[i] = worst[i] / limit.limit - (1.0 - margin_);
     if (grad) {
-      // ∂|τ_j|/∂x at the worst sample: ⟨G, Rows⟩ with G = sign e_j βᵀ / τ_max.
-      const size_t k = at[static_cast<size_t>(j)];
-      Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n_, tr.n_parameters());
-      G.row(j) = sign[j] / tau_max * tr.true_parameters().transpose();
+      // ∂|w·τ|/∂x at the worst sample: ⟨G, Rows⟩ with G = sign w βᵀ / τ_max.
+      const size_t k = at[static_cast<size_t>(i)];
+      const Eigen::MatrixXd G = sign[i] / limit.limit * limit.weights * tr.true_parameters().transpose();
       tr.StateGradient(ws->x[k], G, &ws->regressor, ws->gx);
-      double* g = grad + static_cast<size_t>(m) * static_cast<size_t>(n_unknowns());
+      double* g = grad + static_cast<size_t>(i) * static_cast<size_t>(n_unknowns());
       std::fill(g, g + n_unknowns(), 0.0);
       ChainToUnknowns(bases_[k], ws->gx, g);
     }
-    ++m;
   }
 }
 
@@ -226,11 +242,7 @@ std::string DesignProblem::NonlinearConstraintName(int i) const {
     return "clearance '" + pair.Name(regressor_.model()) + "' >= " + buf +
            (pair.minimum < clearance_->min_clearance() ? " (its distance at q = 0)" : "");
   }
-  int m = -1, j = 0;
-  for (; j < n_; ++j) {
-    if (std::isfinite(limits_[static_cast<size_t>(j)].tau_max) && ++m == i) break;
-  }
-  return "torque limit of joint '" + regressor_.model().link(j).joint_name + "'";
+  return torque_limits_[static_cast<size_t>(i)].name;
 }
 
 std::string DesignProblem::DescribeViolation(int i, double c) const {
@@ -338,6 +350,7 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws, std::vec
   // s_j (c·coef) + c₀ q0 ≤ rhs; every joint goes to 90 % of its tightest row.
   std::vector<double> scale(static_cast<size_t>(n_), kInf);
   for (const LinearRow& row : rows_) {
+    if (row.span(block_) != 1) continue;
     const Eigen::VectorXd block = theta.segment(row.joint * block_, block_);
     const double offset = row.coefficients[0] * block[0];
     const double slope = row.coefficients.tail(2 * H_).dot(block.tail(2 * H_));
@@ -346,6 +359,15 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws, std::vec
   }
   for (int j = 0; j < n_; ++j) {
     theta.segment(j * block_ + 1, 2 * H_) *= 0.9 * std::max(0.0, scale[static_cast<size_t>(j)]);
+  }
+  // A motor's rows (no offset: velocities) span the joints it drives; where
+  // one goes past 90 % of its limit, those joints slow down together.
+  for (const LinearRow& row : rows_) {
+    if (row.span(block_) == 1) continue;
+    const double value = LinearValue(row, theta.data()) + row.rhs;
+    if (value <= 0.9 * row.rhs) continue;
+    const double factor = 0.9 * row.rhs / value;
+    for (int j = row.joint; j < row.joint + row.span(block_); ++j) theta.segment(j * block_ + 1, 2 * H_) *= factor;
   }
   if (n_nonlinear_constraints() == 0) return theta;
   // The motion scaled by s about the home pose: 0.8 of the largest s in
@@ -446,6 +468,31 @@ void DesignProblem::BuildLinearRows() {
       add(1, -1.0, 0.0, w.qd, (1 - m) * l.qd_max, l.qd_max);
       add(2, 1.0, 0.0, w.qdd, (1 - m) * l.qdd_max, l.qdd_max);
       add(2, -1.0, 0.0, w.qdd, (1 - m) * l.qdd_max, l.qdd_max);
+    }
+  }
+  // Each motor's velocity θ̇m_k = Σ_j A(k, j)·q̇_j over the joints it drives
+  // (the span of its row's non-zeros), as the joints' velocity rows.
+  for (int k = 0; k < static_cast<int>(actuators_.motors.size()); ++k) {
+    const double qd_max = actuators_.motors[static_cast<size_t>(k)].qd_max;
+    if (!std::isfinite(qd_max)) continue;
+    const Eigen::VectorXd a = actuators_.transmission.actuator_from_joint.row(k).transpose();
+    int first = 0, last = n_ - 1;
+    while (first < last && a[first] == 0.0) ++first;
+    while (last > first && a[last] == 0.0) --last;
+    has_motor_rows_ = true;
+    for (double t : row_times_) {
+      const FourierBasis w = FourierSeriesTrajectory::BasisAt(t, f0_, H_, duration_, rest_to_rest_);
+      for (double sign : {1.0, -1.0}) {
+        LinearRow row;
+        row.joint = first;
+        row.group = 4 * n_ + k;
+        row.coefficients = Eigen::VectorXd::Zero((last - first + 1) * block_);
+        for (int j = first; j <= last; ++j) {
+          row.coefficients.segment((j - first) * block_ + 1, 2 * H_) = sign * a[j] / qd_max * w.qd;
+        }
+        row.rhs = 1.0 - m;
+        rows_.push_back(std::move(row));
+      }
     }
   }
 }

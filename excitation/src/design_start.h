@@ -196,7 +196,7 @@ struct StartRun {
       const LinearRow& row = p.rows()[static_cast<size_t>(self->rows[i])];
       result[i] = p.LinearValue(row, x);
       if (grad) {
-        std::copy(row.coefficients.data(), row.coefficients.data() + p.block(),
+        std::copy(row.coefficients.data(), row.coefficients.data() + row.coefficients.size(),
                   grad + static_cast<size_t>(i) * n + static_cast<size_t>(row.joint * p.block()));
       }
     }
@@ -217,7 +217,7 @@ struct StartRun {
     std::fill(grad, grad + static_cast<size_t>(m) * n, 0.0);
     for (unsigned i = 0; i < m; ++i) {
       if (const LinearRow* row = worst[i]) {
-        std::copy(row->coefficients.data(), row->coefficients.data() + p.block(),
+        std::copy(row->coefficients.data(), row->coefficients.data() + row->coefficients.size(),
                   grad + static_cast<size_t>(i) * n + static_cast<size_t>(row->joint * p.block()));
       } else {
         result[i] = -1.0;  // a joint without position limits

@@ -190,6 +190,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                                        "(MountRobot)", want.x(), want.y(), want.z()));
   }
   CheckDesignLimits(regressor.model(), limits);
+  options.actuators.Check(regressor.model().n_dof());
   CheckDesignFitsInMemory(regressor, options);
   const auto t_begin = std::chrono::steady_clock::now();
   DesignProblem problem(regressor, limits, options);
@@ -232,7 +233,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     r.ramp_seconds = options.ramp_seconds;
     r.home = problem.home();
     r.check = CheckTrajectoryLimits(regressor.model(), limits, r.RobotTrajectory(), options.check_rate_hz,
-                                    problem.clearance());
+                                    problem.clearance(), options.actuators);
     return r;
   };
   int best = ranked.front();

@@ -35,8 +35,12 @@ std::string ExplainMargin(const ConstraintMargin& m, bool at_pose) {
   }
   const char* unit = m.quantity == "qd" ? "rad/s" : m.quantity == "qdd" ? "rad/s²" : m.quantity == "tau" ? "N m" : "rad";
   const bool lower = m.quantity == "q_min";
-  return "joint " + std::to_string(m.joint + 1) + " " + m.quantity + ": " +
-         (m.quantity == "q_min" || m.quantity == "q_max" ? "q" : "|" + m.quantity + "|") + Format(" = %.6g", m.value) +
+  const std::string who = m.motor >= 0 ? "motor " + std::to_string(m.motor + 1) + " (joints " + m.driven + ")"
+                                       : "joint " + std::to_string(m.joint + 1);
+  const std::string what = m.motor >= 0                                     ? (m.quantity == "qd" ? "|θ̇m|" : "|τm|")
+                           : m.quantity == "q_min" || m.quantity == "q_max" ? "q"
+                                                                            : "|" + m.quantity + "|";
+  return who + " " + m.quantity + ": " + what + Format(" = %.6g", m.value) +
          " " + unit + when + " " + (lower ? "is below" : "exceeds") + Format(" the limit %.6g ", m.limit) + unit +
          Format(" by %.3g ", -m.margin) + unit + "\n";
 }
@@ -87,7 +91,8 @@ std::string FeasibilityCheck::ClosestObstacleLine() const {
 }
 
 FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
-                                       const Trajectory& trajectory, double rate_hz, const ClearanceModel* clearance) {
+                                       const Trajectory& trajectory, double rate_hz, const ClearanceModel* clearance,
+                                       const ActuatorLimits& actuators) {
   const int n = model.n_dof();
   FeasibilityCheck check;
   check.rate_hz = rate_hz;
@@ -123,6 +128,23 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.margin = kInf;
     worst.push_back(m);
   }
+  // Per motor its velocity and torque (after the joints' and the pairs').
+  const size_t first_motor = worst.size();
+  const int n_motors = static_cast<int>(actuators.motors.size());
+  for (int k = 0; k < n_motors; ++k) {
+    for (int i = 0; i < 2; ++i) {
+      ConstraintMargin m;
+      m.quantity = i == 0 ? "qd" : "tau";
+      m.motor = m.joint = k;
+      m.driven = actuators.DrivenJoints(model, k);
+      const ActuatorLimit& l = actuators.motors[static_cast<size_t>(k)];
+      m.limit = i == 0 ? l.qd_max : l.tau_max;
+      m.margin = kInf;
+      worst.push_back(m);
+    }
+  }
+  const Eigen::MatrixXd motor_torque_from_joint =
+      n_motors > 0 ? actuators.MotorTorqueFromJoint() : Eigen::MatrixXd();
   // Per pair, the last instant GJK measured (its joint angles and distance,
   // or the capsules' lower bound when pruned): a later instant is skipped
   // while that distance, less how far the joints have moved the two sides
@@ -146,6 +168,18 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
         ConstraintMargin& w = worst[static_cast<size_t>(5 * j + i)];
         const double margin = i == 0 ? values[i] - w.limit : w.limit - values[i];
         if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
+      }
+    }
+    if (n_motors > 0) {
+      const Eigen::VectorXd thetad_m = actuators.transmission.actuator_from_joint * x.qd;
+      const Eigen::VectorXd tau_m = motor_torque_from_joint * tau;
+      for (int k = 0; k < n_motors; ++k) {
+        const double values[2] = {std::abs(thetad_m[k]), std::abs(tau_m[k])};
+        for (int i = 0; i < 2; ++i) {
+          ConstraintMargin& w = worst[first_motor + static_cast<size_t>(2 * k + i)];
+          const double margin = w.limit - values[i];
+          if (margin < w.margin) w.margin = margin, w.time = t, w.value = values[i];
+        }
       }
     }
     for (size_t i = 0; i < n_pairs; ++i) {
@@ -206,6 +240,7 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
   for (const ConstraintMargin& m : check.margins) {
     if (m.margin >= 0.0) continue;
     const std::string joint = "joint " + std::to_string(m.joint + 1);
+    const std::string motor = "actuators[" + std::to_string(m.motor) + "]";
     if (!before_search && ramp > 0.0 && (m.time < ramp || m.time > motion_end)) {
       add(Format("ramp_seconds (now %g s): longer ramps from and to the home pose (violated during t < %g s", ramp, ramp) +
           Format(" or t > %g s)", motion_end));
@@ -225,6 +260,12 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
       limit[m.obstacle] = m.limit;
     } else if (m.quantity == "clearance") {
       add(Format("`clearance` (now %g m), or a `home` pose with the links further apart", options.clearance));
+    } else if (m.motor >= 0 && m.quantity == "tau") {
+      add("motor " + std::to_string(m.motor + 1) + "'s torque limit " + motor +
+          ".tau_max in the `limits` file, or a `home` where gravity loads it less");
+    } else if (m.motor >= 0) {
+      add("motor " + std::to_string(m.motor + 1) + "'s velocity limit " + motor +
+          ".qd_max in the `limits` file, or fewer `harmonics`, a lower `f0` or a longer `duration`");
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
       add(joint + "'s range q_min..q_max in the `limits` file" + (before_search ? ", or a `home` inside it" : ""));
     } else if (m.quantity == "tau") {

@@ -45,7 +45,7 @@ struct CentreRun {
       if (r <= 0.0) continue;
       f += r * r;
       if (grad) {
-        Eigen::Map<Eigen::VectorXd>(grad + row.joint * p.block(), p.block()) += 2.0 * r * row.coefficients;
+        Eigen::Map<Eigen::VectorXd>(grad + row.joint * p.block(), row.coefficients.size()) += 2.0 * r * row.coefficients;
       }
     }
     const bool feasible = worst <= kFeasibilityTolerance;

@@ -31,7 +31,8 @@ constexpr FieldFlag kDesignSpellings[] = {
     {"home", "--home"},               {"limits", "--limits"},
     {"model", "--model"},             {"criterion", "--criterion"},
     {"algorithm", "--algorithm"},     {"csv_rate_hz", "--rate"},
-    {"csv_columns", "--csv-columns"}};
+    {"csv_columns", "--csv-columns"},
+    {"transmission", "--transmission"}};
 
 struct DesignFlags {
   DesignCommandOptions options;
@@ -41,15 +42,18 @@ struct DesignFlags {
 // The search, under Ctrl-C. A design that ran and failed (not
 // InfeasibleDesign::settings_admit_no_motion)
 // writes design.json with the diagnostics before it is thrown on.
-DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options) {
+DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options,
+                                 const std::optional<Transmission>& from_urdf) {
   const std::filesystem::path dir(options.out_dir);
   const CtrlCStop ctrl_c;  // Ctrl-C: stop and keep the best feasible design so far
   try {
-    return RunDesign(model, options, ctrl_c.flag());
+    return RunDesign(model, options, ctrl_c.flag(), from_urdf);
   } catch (const InfeasibleDesign& e) {  // the search ran, or the cell has no room: design.json explains it
     if (!e.settings_admit_no_motion()) {
+      DesignCommandOptions used = options;  // design.json records the actuator limits
+      used.design.actuators = DesignActuatorLimits(model, options, from_urdf);
       EnsureOutputDirectory(dir);
-      WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, options, e));
+      WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, used, e));
     }
     throw;
   }
@@ -59,11 +63,12 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
                   const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  std::optional<Transmission> from_urdf;
+  const RobotModel model = LoadRobotOrThrow(options.robot, load, &from_urdf);
   if (!options.IsValidFor(model, &why)) return context.UsageError(why);
   std::optional<DesignCommandReport> searched;
   try {
-    searched.emplace(SearchDesign(model, options));
+    searched.emplace(SearchDesign(model, options, from_urdf));
   } catch (const InfeasibleDesign& e) {
     if (e.settings_admit_no_motion()) throw;  // settings that admit no motion: exit 2 (main)
     std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
@@ -139,7 +144,11 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
       ->capture_default_str();
   AddSearchFlags(command, &design.design);
   command->add_option("--limits", design.limits,
-                      "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}]}");
+                      "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}], "
+                      "\"actuators\": [{qd_max, tau_max}] (optional, motor side, with --transmission)}");
+  command->add_option("--transmission", design.transmission,
+                      "Transmission of the --limits file's actuators: urdf (the robot URDF's) or a JSON/YAML file "
+                      "({\"reduction\": [...]}, {\"actuator_from_joint\": [[...]]} or a log description)");
   AddSceneFlag(command, &design.scene);
   AddBasePoseFlag(command, &design.design.base_pose);
   command->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();

@@ -51,7 +51,7 @@ int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load,
   if (description == path) return context.UsageError("--out: a motor-side log's CSV cannot end in .json (its description does)");
   WriteFileAtomically(path, FormatMotorSideLogCsv(log));
   WriteFileAtomically(description, FormatMotorSideLogDescription(log, path.filename().string()));
-  const int n_samples = static_cast<int>(log.t.size());
+  const int n_samples = log.motor.n_samples();
   std::printf("simulated %s along '%s' for %g s: %d samples at %g Hz on the motor side; wrote %s and its "
               "description %s (read it as --data %s)\n",
               model.name().c_str(), options.trajectory.c_str(), n_samples / options.sensors.rate_hz, n_samples,

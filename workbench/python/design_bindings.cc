@@ -69,7 +69,7 @@ DesignOutput ToDesignOutput(const RobotModel& model, const DesignCommandOptions&
   return out;
 }
 
-DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, const py::object& progress) {
+DesignOutput Design(const Robot& robot, DesignCommandOptions options, const py::object& progress) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const RobotModel& model = *robot.model;
@@ -97,6 +97,7 @@ DesignOutput Design(const Robot& robot, const DesignCommandOptions& options, con
   }
   g_design_stop = false;
   const std::vector<JointLimits> limits = DesignLimits(model, options);
+  options.design.actuators = DesignActuatorLimits(model, options, robot.transmission);
   std::optional<DesignCommandReport> report;
   {
     py::gil_scoped_release release;
@@ -141,7 +142,8 @@ void BindDesign(py::module_& m) {
          const std::string& criterion, const std::string& algorithm, int harmonics, double f0, double duration,
          bool rest_to_rest, int samples, int starts, unsigned seed, int threads, int max_evaluations,
          double max_time, double margin, double clearance, const std::string& limits, double rate,
-         const std::string& csv_columns, double ramp, const std::vector<double>& home, const py::object& progress) {
+         const std::string& csv_columns, double ramp, const std::vector<double>& home, const std::string& transmission,
+         const py::object& progress) {
         DesignCommandOptions options;
         options.robot = robot.source;
         options.model = model;
@@ -161,6 +163,7 @@ void BindDesign(py::module_& m) {
         options.design.margin = margin;
         options.design.clearance = clearance;
         options.limits = limits;
+        options.transmission = transmission;
         options.csv_rate_hz = rate;
         options.csv_columns = csv_columns;
         options.design.ramp_seconds = ramp;
@@ -181,8 +184,9 @@ void BindDesign(py::module_& m) {
       py::arg("clearance") = design_defaults.design.clearance, py::arg("limits") = design_defaults.limits,
       py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = design_defaults.csv_columns,
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
-      py::arg("progress") = py::none(),
-      "Designs an excitation trajectory (as `idbench design`). progress(start, evaluations, best_value, feasible) "
+      py::arg("transmission") = design_defaults.transmission, py::arg("progress") = py::none(),
+      "Designs an excitation trajectory (as `idbench design`). transmission: \"urdf\" or a file, through which "
+      "the limits file's \"actuators\" (motor-side qd_max, tau_max) are kept. progress(start, evaluations, best_value, feasible) "
       "is called as the starts run (TypeError before any work if it cannot be called so; an exception it raises "
       "stops the design and is raised again); Ctrl-C stops and returns the best design so far (stopped = True).");
 }

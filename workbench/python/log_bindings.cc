@@ -1,5 +1,6 @@
 // Joint logs between Python and the library: arrays or a CSV path in
 // (PrepareLogArgument), numpy arrays out; idbench.simulate.
+#include <optional>
 #include <stdexcept>
 
 #include "bindings.h"
@@ -51,7 +52,9 @@ void BindLog(py::module_& m) {
       "simulate",
       [](const Robot& robot, const std::string& trajectory, double duration, double paper_accel, double dt,
          double rate, const std::vector<double>& tau_noise, double q_noise, double q_resolution, bool derivatives,
-         unsigned seed, const py::object& base_pose) {
+         unsigned seed, const py::object& base_pose, const std::string& transmission,
+         const std::vector<double>& motor_viscous, const std::vector<double>& motor_coulomb,
+         const std::vector<double>& motor_rotor_inertia) {
         SimulateOptions options;
         options.base_pose = BasePoseArgument(base_pose);
         options.robot = robot.source;
@@ -65,15 +68,34 @@ void BindLog(py::module_& m) {
         options.sensors.q_resolution = q_resolution;
         options.sensors.record_derivatives = derivatives;
         options.sensors.seed = seed;
+        options.transmission = transmission;
+        options.motor_viscous = motor_viscous;
+        options.motor_coulomb = motor_coulomb;
+        options.motor_rotor_inertia = motor_rotor_inertia;
         std::string why;
         if (!options.IsValid(&why)) throw std::invalid_argument(why);
         if (!options.sensors.IsValid(robot.model->n_dof(), options.dt, &why)) throw std::invalid_argument(why);
-        JointLog log;
+        const std::optional<Transmission> through =
+            SimulateTransmission(options, robot.model->n_dof(), robot.transmission);
+        if (!through) {
+          JointLog log;
+          {
+            py::gil_scoped_release release;
+            log = SimulateJointLog(*robot.model, options);
+          }
+          return JointLogToDict(std::move(log));
+        }
+        // On the motor side: the joint-side arrays (noise-free, τ = Aᵀ·τm) and the motors' qm, qdm, taum.
+        std::optional<MotorSideLog> log;
         {
           py::gil_scoped_release release;
-          log = SimulateJointLog(*robot.model, options);
+          log = SimulateMotorSideLog(*robot.model, *through, options);
         }
-        return JointLogToDict(std::move(log));
+        py::dict out = JointLogToDict(std::move(log->joint));
+        out["qm"] = std::move(log->motor.q);
+        if (log->motor.qd.size() > 0) out["qdm"] = std::move(log->motor.qd);
+        out["taum"] = std::move(log->motor.tau);
+        return out;
       },
       py::arg("robot"), py::arg("trajectory") = sim_defaults.trajectory, py::kw_only(),
       py::arg("duration") = sim_defaults.duration, py::arg("paper_accel") = sim_defaults.paper_accel_deg_s2,
@@ -81,10 +103,15 @@ void BindLog(py::module_& m) {
       py::arg("tau_noise") = std::vector<double>{}, py::arg("q_noise") = sim_defaults.sensors.q_noise,
       py::arg("q_resolution") = sim_defaults.sensors.q_resolution,
       py::arg("derivatives") = sim_defaults.sensors.record_derivatives, py::arg("seed") = sim_defaults.sensors.seed,
-      py::arg("base_pose") = py::none(),
+      py::arg("base_pose") = py::none(), py::arg("transmission") = sim_defaults.transmission,
+      py::arg("motor_viscous") = std::vector<double>{}, py::arg("motor_coulomb") = std::vector<double>{},
+      py::arg("motor_rotor_inertia") = std::vector<double>{},
       "Simulates the robot along a built-in motion or a trajectory file in Bullet (as `idbench simulate`), its base "
       "at base_pose=(x, y, z, roll, pitch, yaw) [m, rad] when given; "
-      "returns {t, q, [qd, qdd], tau} as numpy arrays");
+      "returns {t, q, [qd, qdd], tau} as numpy arrays. With transmission (\"urdf\" or a file, as `idbench "
+      "simulate --transmission`) and the motors' own motor_viscous, motor_coulomb, motor_rotor_inertia (one value "
+      "or one per motor), also the motor side, qm = A·(q − q0), [qdm = A·qd], taum = A⁻ᵀ·tau, where the sensors' "
+      "noise applies; the joint-side arrays are then noise-free (tau = Aᵀ·taum)");
 }
 
 }  // namespace idbench::python

@@ -150,6 +150,33 @@ TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.json"));
 }
 
+// Motor-side limits through --transmission (a TX40-like wrist: motor 6 turns
+// with joint 5); without a transmission they are refused, naming the flag.
+TEST_F(DesignCliTest, ActuatorLimitsNeedATransmissionAndAreKept) {
+  std::ofstream(dir_ / "motors.json") << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
+      {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 3, "qdd_max": 8}, {"qd_max": 3, "qdd_max": 8},
+      {"qd_max": 3, "qdd_max": 8}], "actuators": [{}, {}, {}, {}, {}, {"qd_max": 40}]})";
+  std::ofstream(dir_ / "tx40.json") << R"({"actuator_from_joint": [[32,0,0,0,0,0], [0,32,0,0,0,0], [0,0,45,0,0,0],
+      [0,0,0,-48,0,0], [0,0,0,0,45,0], [0,0,0,0,32,32]]})";
+  const std::string common = "design --robot puma560 --limits " + (dir_ / "motors.json").string() + " " + kQuick;
+  Result r = Run(common + " --out " + (dir_ / "a").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--transmission: the limits file's \"actuators\""), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "a"));
+  r = Run(common + " --transmission " + (dir_ / "tx40.json").string() + " --out " + (dir_ / "b").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const json design = json::parse(Slurp(dir_ / "b" / "design.json"));
+  EXPECT_EQ(design["actuators"][5]["qd_max"], 40.0);
+  bool checked = false;
+  for (const json& m : design["check"]["margins"]) {
+    if (m.contains("motor") && m["motor"] == 6 && m["quantity"] == "qd") {
+      checked = true;
+      EXPECT_LE(m["value"].get<double>(), 40.0);
+    }
+  }
+  EXPECT_TRUE(checked) << design["check"].dump();
+}
+
 TEST_F(DesignCliTest, BadSettingsAreNamedAndNothingIsWritten) {
   const std::string out = " --out " + (dir_ / "d").string();
   Result r = Run("design --robot paper6r" + out);  // the robot file has no velocity limits

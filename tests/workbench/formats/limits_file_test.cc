@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "engine/test_util.h"
@@ -26,6 +27,28 @@ TEST(LimitsFileTest, GivenValuesReplaceTheRobotsAndTheRestStay) {
   EXPECT_EQ(limits[5].q_min, -1.0);
   EXPECT_EQ(limits[5].q_max, 2.0);
   EXPECT_EQ(limits[5].tau_max, 9.0);
+}
+
+// The motors' limits beside the joints': an omitted value is no limit; the
+// joint limits read the same file unchanged; bad entries are named by field.
+TEST(LimitsFileTest, ActuatorLimitsAreReadBesideTheJoints) {
+  const RobotModel puma = MakePuma560();
+  const std::string text =
+      R"({"joints": [{}, {}, {}, {}, {}, {}], "actuators": [{"qd_max": 200}, {}, {"tau_max": 1.5}]})";
+  EXPECT_EQ(ParseLimitsJson(text, puma, "l.json").size(), 6u);
+  const std::vector<ActuatorLimit> motors = ParseActuatorLimitsJson(text, "l.json");
+  ASSERT_EQ(motors.size(), 3u);  // the count is checked against the transmission (ActuatorLimits::Check)
+  EXPECT_EQ(motors[0].qd_max, 200.0);
+  EXPECT_FALSE(std::isfinite(motors[0].tau_max));
+  EXPECT_FALSE(std::isfinite(motors[1].qd_max));
+  EXPECT_EQ(motors[2].tau_max, 1.5);
+  EXPECT_TRUE(ParseActuatorLimitsJson(R"({"joints": []})", "l.json").empty());
+  EXPECT_EQ(ExpectInvalid([&] { ParseActuatorLimitsJson(R"({"joints": [], "actuators": [{"qd_max": 0}]})", "l.json"); }),
+            "l.json: actuators[0].qd_max: must be > 0, got 0");
+  EXPECT_EQ(ExpectInvalid([&] { ParseActuatorLimitsJson(R"({"joints": [], "actuators": [{"speed": 1}]})", "l.json"); }),
+            "l.json: actuators[0].speed: unknown key (qd_max, tau_max)");
+  EXPECT_EQ(ExpectInvalid([&] { ParseActuatorLimitsJson(R"({"joints": [], "actuators": {}})", "l.json"); }),
+            "l.json: actuators: expected an array (one entry per motor)");
 }
 
 // Every broken file is one std::invalid_argument naming the file: a number

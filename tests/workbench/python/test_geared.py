@@ -75,3 +75,47 @@ def test_base_pose_mounts_the_robot_as_simulate_did():
     assert idbench.identify(robot, log).fit_relative_error > 1e-4
     with pytest.raises(ValueError, match="base_pose"):
         idbench.identify(robot, log, base_pose=(0.0, 0.0, 0.0))
+
+
+def test_simulate_through_a_transmission_returns_the_motor_side(tmp_path):
+    """The motor-side arrays against the joint-side ones: taum by virtual work
+    (Aᵀ·taum = tau), qm = A·(q − q0), qdm = A·qd, with the TX40's offsets."""
+    q0 = [0.0, -np.pi / 2, np.pi / 2, 0.0, 0.0, 0.0]
+    (tmp_path / "wrist.json").write_text(json.dumps({"actuator_from_joint": A, "joint_offset": q0}))
+    log = idbench.simulate(idbench.Robot("paper6r"), "general", duration=2.0,
+                           transmission=str(tmp_path / "wrist.json"), motor_viscous=FV, motor_coulomb=FC,
+                           motor_rotor_inertia=IA)
+    a = np.array(A, dtype=float)
+    n = log["t"].shape[0]
+    assert n == 2000  # 2 s at 1 kHz
+    for key in ("q", "qd", "qdd", "tau", "qm", "qdm", "taum"):
+        assert log[key].shape == (n, 6), key
+    np.testing.assert_allclose(log["taum"] @ a, log["tau"], rtol=1e-12, atol=1e-12 * np.abs(log["tau"]).max())
+    np.testing.assert_allclose(log["qm"], (log["q"] - np.array(q0)) @ a.T, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(log["qdm"], log["qd"] @ a.T, rtol=1e-12, atol=1e-12)
+    # The motors' own terms are in tau: the plain joint-side simulation differs by Aᵀ·(their torque).
+    plain = idbench.simulate(idbench.Robot("paper6r"), "general", duration=2.0)
+    thd, thdd = log["qd"] @ a.T, log["qdd"] @ a.T
+    own = np.array(IA) * thdd + np.array(FV) * thd + np.array(FC) * np.sign(thd)
+    np.testing.assert_allclose(log["tau"], plain["tau"] + own @ a, rtol=1e-9, atol=1e-9)
+    with pytest.raises(ValueError, match="motor_viscous"):
+        idbench.simulate(idbench.Robot("paper6r"), "general", duration=1.0, motor_viscous=[1.0])
+
+
+def test_design_keeps_a_motor_limit_through_its_transmission(tmp_path):
+    """design(transmission=...) keeps the limits file's "actuators"; without one they are refused by field."""
+    (tmp_path / "wrist.json").write_text(json.dumps({"actuator_from_joint": A}))
+    joints = [{"q_min": -3, "q_max": 3, "qd_max": 1, "qdd_max": 3}] * 6
+    (tmp_path / "limits.json").write_text(json.dumps({"joints": joints, "actuators": [{}] * 5 + [{"qd_max": 20}]}))
+    robot = idbench.Robot("paper6r")
+    quick = dict(harmonics=2, f0=0.5, samples=40, starts=1, max_evaluations=25, clearance=-1,
+                 limits=str(tmp_path / "limits.json"))
+    with pytest.raises(ValueError, match="^transmission: "):
+        idbench.design(robot, **quick)
+    result = idbench.design(robot, transmission=str(tmp_path / "wrist.json"), **quick)
+    assert result.feasible
+    design = json.loads(result.design_json)
+    assert design["actuators"][5]["qd_max"] == 20
+    rows = np.loadtxt(result.trajectory_csv.splitlines()[1:], delimiter=",")
+    qd = rows[:, 7:13]
+    assert np.abs(qd @ np.array(A, dtype=float).T)[:, 5].max() <= 20

@@ -12,6 +12,7 @@
 #include "idbench/workbench/formats/limits_file.h"
 #include "idbench/workbench/formats/scene_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/workbench/formats/transmission_file.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -97,11 +98,28 @@ std::vector<JointLimits> DesignLimits(const RobotModel& model, const DesignComma
   return options.limits.empty() ? RobotLimits(model) : ReadLimitsFile(options.limits, model);
 }
 
+ActuatorLimits DesignActuatorLimits(const RobotModel& model, const DesignCommandOptions& options,
+                                    const std::optional<Transmission>& from_urdf) {
+  ActuatorLimits actuators;
+  if (!options.limits.empty()) actuators.motors = ReadActuatorLimitsFile(options.limits);
+  if (actuators.empty()) return actuators;
+  if (options.transmission.empty()) {
+    throw std::invalid_argument("transmission: the limits file's \"actuators\" are motor-side limits and need the "
+                                "transmission they act through (\"urdf\" or a transmission file)");
+  }
+  actuators.transmission = *ReadTransmissionArg(options.transmission, options.robot, model.n_dof(), from_urdf);
+  actuators.Check(model.n_dof());
+  return actuators;
+}
+
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
-                              const std::atomic<bool>* stop) {
+                              const std::atomic<bool>* stop, const std::optional<Transmission>& from_urdf) {
   DesignControl control;
   control.stop = stop;
-  return RunDesign(model, options, DesignLimits(model, options), control);
+  const std::vector<JointLimits> limits = DesignLimits(model, options);
+  DesignCommandOptions with_actuators = options;
+  with_actuators.design.actuators = DesignActuatorLimits(model, options, from_urdf);
+  return RunDesign(model, with_actuators, limits, control);
 }
 
 DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptions& options,
@@ -164,8 +182,8 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
                    CriterionText(design.criterion, p.best_value).c_str(), p.feasible ? "" : " (current point infeasible)");
     };
   }
-  DesignCommandReport report{limits, DesignExcitation(regressor, limits, design, control), regressor.parameter_names(),
-                             excluded, held};
+  DesignCommandReport report{limits,   DesignExcitation(regressor, limits, design, control),
+                             regressor.parameter_names(), excluded, held, design.actuators};
   if (!options.quiet) {
     for (size_t s = 0; s < report.result.starts.size(); ++s) {
       const DesignStartSummary& st = report.result.starts[s];
@@ -231,7 +249,8 @@ namespace {
 
 // What design.json says of the settings, whatever the outcome.
 nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions& options,
-                            const std::vector<JointLimits>& used, const std::vector<std::string>& parameter_names) {
+                            const std::vector<JointLimits>& used, const ActuatorLimits& actuators,
+                            const std::vector<std::string>& parameter_names) {
   using nlohmann::json;
   const DesignOptions design = options.Resolved();
   auto limit = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
@@ -239,6 +258,15 @@ nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions&
   for (const JointLimits& l : used) {
     limits.push_back({{"q_min", limit(l.q_min)}, {"q_max", limit(l.q_max)}, {"qd_max", limit(l.qd_max)},
                       {"qdd_max", limit(l.qdd_max)}, {"tau_max", limit(l.tau_max)}});
+  }
+  // The motors' limits with the transmission they act through (θ̇m = A·q̇, τm = A⁻ᵀ·τ).
+  json motors = json::array();
+  for (int k = 0; k < static_cast<int>(actuators.motors.size()); ++k) {
+    const ActuatorLimit& l = actuators.motors[static_cast<size_t>(k)];
+    const Eigen::VectorXd a = actuators.transmission.actuator_from_joint.row(k).transpose();
+    motors.push_back({{"qd_max", limit(l.qd_max)}, {"tau_max", limit(l.tau_max)},
+                      {"joints", actuators.DrivenJoints(model, k)},
+                      {"actuator_from_joint", std::vector<double>(a.data(), a.data() + a.size())}});
   }
   return {
       {"command", options.command_line},
@@ -260,6 +288,8 @@ nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions&
                   {"max_evaluations", design.max_evaluations}, {"margin", design.margin},
                   {"clearance", design.clearance >= 0.0 ? json(design.clearance) : json(nullptr)}}},
       {"limits", limits},
+      {"actuators", actuators.empty() ? json(nullptr) : json(motors)},
+      {"transmission", options.transmission.empty() ? json(nullptr) : json(options.transmission)},
       {"scene", options.scene.empty() ? json(nullptr) : json(options.scene)},
       {"base_pose", design.base_pose.xyz_rpy},
   };
@@ -273,6 +303,11 @@ nlohmann::json CheckJson(const FeasibilityCheck& check) {
                        {"limit", m.limit}, {"margin", m.margin}});
     if (!m.pair.empty()) margins.back()["pair"] = m.pair;
     if (!m.obstacle.empty()) margins.back()["obstacle"] = m.obstacle;
+    if (m.motor >= 0) {  // an actuator limit: the motor in place of the joint
+      margins.back().erase("joint");
+      margins.back()["motor"] = m.motor + 1;
+      margins.back()["joints"] = m.driven;
+    }
   }
   nlohmann::json out = {{"rate_hz", check.rate_hz}, {"feasible", check.feasible()}, {"margins", margins}};
   if (const ConstraintMargin* c = check.ClosestObstacle()) {
@@ -300,7 +335,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
                       {"initial_violation", s.initial_violation},
                       {"final_violation", s.final_violation}});
   }
-  json result = SettingsJson(model, options, report.limits, report.parameter_names);
+  json result = SettingsJson(model, options, report.limits, report.actuators, report.parameter_names);
   result.update({
       {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
@@ -320,7 +355,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
 
 std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                                        const InfeasibleDesign& infeasible) {
-  nlohmann::json result = SettingsJson(model, options, DesignLimits(model, options),
+  nlohmann::json result = SettingsJson(model, options, DesignLimits(model, options), options.design.actuators,
                                        options.MakeRegressor(model).parameter_names());
   result["check"] = CheckJson(infeasible.check());
   result["infeasible"] = {{"before_search", infeasible.before_search()},

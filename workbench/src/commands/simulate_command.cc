@@ -7,11 +7,10 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "idbench/engine/input_file.h"
 #include "idbench/logs/joint_log_csv_writer.h"
-#include "idbench/logs/joint_log_description.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/workbench/formats/transmission_file.h"
 
 namespace idbench {
 
@@ -84,48 +83,7 @@ std::optional<Transmission> SimulateTransmission(const SimulateOptions& options,
     }
     return std::nullopt;
   }
-  std::optional<Transmission> out;
-  if (options.transmission == "urdf") {
-    if (!from_urdf) {
-      throw std::invalid_argument("transmission \"urdf\": the robot '" + options.robot +
-                                  "' has no <transmission> elements naming its joints");
-    }
-    out = from_urdf;
-  } else {
-    // A log description with a "transmission", or the transmission alone
-    // (read as one, so that one parser checks it and names its keys).
-    const std::string& path = options.transmission;
-    if (!IsJointLogDescriptionPath(path)) {
-      throw std::invalid_argument("transmission: expected \"urdf\" or a .json/.yaml file, got '" + path + "'");
-    }
-    const std::string text = ReadInputFile(path);
-    const bool yaml = !path.ends_with(".json");
-    bool described = false;
-    if (!yaml) {
-      const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
-      described = document.is_object() && document.contains("files");
-    } else {
-      described = text.starts_with("files:") || text.find("\nfiles:") != std::string::npos;
-    }
-    std::string wrapped;
-    if (described) {
-      wrapped = text;
-    } else if (!yaml) {
-      wrapped = "{\"files\": [{\"path\": \"-\"}], \"transmission\": " + text + "}";
-    } else {
-      wrapped = "files: [{path: \"-\"}]\ntransmission:\n";
-      for (size_t at = 0; at < text.size();) {
-        const size_t end = std::min(text.find('\n', at), text.size());
-        wrapped += "  " + text.substr(at, end - at) + "\n";
-        at = end + 1;
-      }
-    }
-    out = ParseJointLogDescription(wrapped, path, yaml).transmission;
-    if (!out) throw std::invalid_argument(path + ": no \"transmission\"");
-  }
-  std::string why;
-  if (!out->IsValid(n_dof, &why)) throw std::invalid_argument(out->source + ": " + why);
-  return out;
+  return ReadTransmissionArg(options.transmission, options.robot, n_dof, from_urdf);
 }
 
 MotorSideLog SimulateMotorSideLog(const RobotModel& model, const Transmission& transmission,
@@ -157,28 +115,18 @@ MotorSideLog SimulateMotorSideLog(const RobotModel& model, const Transmission& t
     motor.qdd = step.qdd;  // joint side: a log has no motor accelerations
     motor.tau = At.solve(step.tau);
   }
-  const JointLog measured = Measure(steps, options.sensors);
+  MotorSideLog out;
+  out.motor = Measure(steps, options.sensors);
+  out.transmission = transmission;
   SensorOptions exact;
   exact.rate_hz = options.sensors.rate_hz;
-  MotorSideLog out;
-  out.t = measured.t;
-  out.theta_m = measured.q;
-  out.thetad_m = measured.qd;
-  out.qdd = measured.qdd;
-  out.tau_m = measured.tau;
-  out.transmission = transmission;
   out.joint = Measure(joint_steps, exact);
   return out;
 }
 
 std::string FormatMotorSideLogCsv(const MotorSideLog& log) {
   // The joint-log writer's numbers under motor-side column names.
-  JointLog rows;
-  rows.t = log.t;
-  rows.q = log.theta_m;
-  rows.qd = log.thetad_m;
-  rows.qdd = log.qdd;
-  rows.tau = log.tau_m;
+  const JointLog& rows = log.motor;
   std::string csv = FormatJointLogCsv(rows);
   std::string header = "t";
   for (const char* prefix : {"qm", "qdm", "qdd", "taum"}) {

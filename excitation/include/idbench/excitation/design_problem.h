@@ -14,6 +14,7 @@
 
 #include "idbench/engine/link_clearance.h"
 #include "idbench/engine/robot_model.h"
+#include "idbench/excitation/actuator_limits.h"
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/fourier_series.h"
@@ -22,13 +23,25 @@ namespace idbench {
 
 struct DesignOptions;
 
-// One linear constraint on one joint's block: coefficients · block ≤ rhs,
-// normalised so that 1 is the whole limit (velocity limit, joint range, …).
+// One linear constraint on the blocks of consecutive joints from `joint` on:
+// coefficients · [block_joint, block_joint+1, …] ≤ rhs, normalised so that 1
+// is the whole limit (velocity limit, joint range, …). A joint's limit spans
+// its own block; a motor's velocity limit (θ̇m = A·q̇) the joints it drives.
 struct LinearRow {
-  int joint = 0;
-  Eigen::VectorXd coefficients;  // 2H + 1
+  int joint = 0;                 // the first joint of the span
+  Eigen::VectorXd coefficients;  // (2H + 1) per joint of the span
   double rhs = 0.0;
-  int group = 0;                 // 4 joint + (0 q_max, 1 qd, 2 qdd, 3 q_min): rows of one limit
+  int group = 0;                 // 4 joint + (0 q_max, 1 qd, 2 qdd, 3 q_min), or 4 n_dof + motor for a
+                                 // motor's velocity: rows of one limit
+  int span(int block) const { return static_cast<int>(coefficients.size()) / block; }
+};
+
+// One torque limit, |weights · τ| ≤ limit over the grid, τ the joint torque:
+// a joint's (weights = e_j) or a motor's (weights = row k of A⁻ᵀ, τm = A⁻ᵀ·τ).
+struct TorqueLimit {
+  Eigen::VectorXd weights;  // (n_dof)
+  double limit = 0.0;       // [N m]
+  std::string name;         // "torque limit of joint 'x'", "torque limit of motor 6 (joints a, b)"
 };
 
 class DesignProblem {
@@ -57,13 +70,14 @@ class DesignProblem {
   int harmonics() const { return H_; }
   int block() const { return block_; }  // unknowns per joint, 2H + 1
   int n_unknowns() const { return n_ * block_; }
-  int n_groups() const { return 4 * n_; }
+  int n_groups() const { return 4 * n_ + (has_motor_rows_ ? n_ : 0); }
   int n_torque_constraints() const;
   // Torque limits, then one clearance constraint per pair of the clearance model.
   int n_nonlinear_constraints() const;
   const ClearanceModel* clearance() const { return clearance_ ? &*clearance_ : nullptr; }
   const std::vector<double>& times() const { return times_; }
-  // The instants of the linear limit rows (rows(): per joint, per instant, 6 rows).
+  // The instants of the linear limit rows (rows(): per joint, per instant, 6
+  // rows; then per motor with a velocity limit, per instant, 2).
   const std::vector<double>& row_times() const { return row_times_; }
   const std::vector<LinearRow>& rows() const { return rows_; }
   const DesignRegressor& regressor() const { return regressor_; }
@@ -81,7 +95,8 @@ class DesignProblem {
 
   // The nonlinear constraints, ≤ 0 when met; if grad (n_nonlinear_constraints
   // × n_unknowns, row-major), their gradients at the worst sample:
-  //  - per joint with a torque limit, max over the grid of |τ_j|/τ_max − (1 − margin);
+  //  - per joint, then per motor, with a torque limit (TorqueLimit), max over
+  //    the grid of |w·τ|/τ_max − (1 − margin);
   //  - per clearance pair, max over the grid (every ⌈samples/100⌉-th sample,
   //    and the instants added) of (minimum + slack − distance)/0.1 m, the
   //    slack 1 mm, or less when the pair is closer at the home pose.
@@ -126,6 +141,9 @@ class DesignProblem {
 
   const DesignRegressor& regressor_;
   std::vector<JointLimits> limits_;
+  ActuatorLimits actuators_;
+  std::vector<TorqueLimit> torque_limits_;
+  bool has_motor_rows_ = false;
   Eigen::VectorXd home_;
   DesignCriterion criterion_;
   double f0_, duration_, margin_;

@@ -26,6 +26,7 @@
 #include "idbench/engine/link_clearance.h"
 #include "idbench/engine/cell.h"
 #include "idbench/engine/robot_model.h"
+#include "idbench/excitation/actuator_limits.h"
 #include "idbench/excitation/design_criterion.h"
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/fourier_series.h"
@@ -63,6 +64,8 @@ struct DesignOptions {
   double ramp_seconds = 0.0;       // [s] in [0, kMaxRampSeconds]: rest-to-rest ramps from the home
                                    // to the motion and back (ramped_trajectory.h), in the re-check
   static constexpr double kMaxRampSeconds = 600.0;
+  ActuatorLimits actuators;        // motor-side velocity and torque limits through a transmission
+                                   // (actuator_limits.h), kept as the joints' are; empty: none
 
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
   // Checks ranges; names the bad option in *why.
@@ -85,6 +88,8 @@ struct ConstraintMargin {
                               // the clearance asked (link_clearance.h)
   std::string obstacle;       // clearance to the cell: "ground" or the obstacle's name; "" between links
   std::string link;           // clearance: the robot's link of the pair
+  int motor = -1;             // an actuator limit's motor (0-based; quantity "qd" or "tau" of θ̇m, τm); −1: a joint's
+  std::string driven;         // motor: the joints it drives, "joint_5, joint_6"
 };
 
 struct FeasibilityCheck {
@@ -92,7 +97,9 @@ struct FeasibilityCheck {
   std::vector<ConstraintMargin> margins;  // every joint × quantity with a finite limit
   bool feasible() const;
   // One line per violated constraint: "joint 2 qd: |qd| = 1.62 rad/s at t = 3.41 s
-  // exceeds the limit 1.5 rad/s by 0.12 rad/s"; "" if feasible.
+  // exceeds the limit 1.5 rad/s by 0.12 rad/s", "motor 6 (joints joint_5,
+  // joint_6) qd: |θ̇m| = 210 rad/s at t = 3.41 s exceeds the limit 200 rad/s
+  // by 10 rad/s"; "" if feasible.
   std::string Explain() const;
   // The clearance margin to the cell (floor or obstacle) whose distance came
   // lowest; nullptr when none was checked.
@@ -102,11 +109,13 @@ struct FeasibilityCheck {
 };
 
 // Checks a trajectory's q, qd, qdd and joint torque (inverse dynamics plus
-// the model's joint dynamics) against the limits at rate_hz, and, when
-// clearance is given, the distance of every pair against its minimum.
+// the model's joint dynamics) against the limits at rate_hz; when clearance
+// is given, the distance of every pair against its minimum; and the motors'
+// θ̇m = A·q̇ and τm = A⁻ᵀ·τ against the actuator limits (none when empty).
 FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vector<JointLimits>& limits,
                                        const Trajectory& trajectory, double rate_hz,
-                                       const ClearanceModel* clearance = nullptr);
+                                       const ClearanceModel* clearance = nullptr,
+                                       const ActuatorLimits& actuators = {});
 
 // The limits of every joint must bound the motion: a finite velocity and
 // acceleration limit > 0, q_min < q_max. Throws std::invalid_argument naming

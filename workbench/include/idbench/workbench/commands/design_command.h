@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ struct DesignCommandOptions {
   std::string algorithm = "slsqp";
   std::string limits;                                // limits JSON (optional)
   std::string scene;                                 // scene JSON (scene_file.h; optional): design.scene
+  // The transmission the limits file's "actuators" are given through
+  // (transmission_file.h): "urdf" (the robot URDF's) or a file; "": none.
+  std::string transmission;
   DesignOptions design;                              // design.base_pose: where the robot stands; RunDesign
                                                      // mounts the model it is given (MountRobot)
   double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate; the re-check runs at
@@ -58,6 +62,7 @@ struct DesignCommandReport {
   // Clearance (link_clearance.h): the pairs not checked, with the reason, and
   // the pairs held at their distance at q = 0 ("a–b ≥ 0.104 m").
   std::vector<std::string> clearance_excluded, clearance_held;
+  ActuatorLimits actuators;          // as used (DesignOptions::actuators)
 };
 
 // The smallest trajectory.csv rate that samples the motion: ten samples per
@@ -68,15 +73,25 @@ double MinimumCsvRate(const DesignOptions& design);
 // Throws std::invalid_argument naming a bad file.
 std::vector<JointLimits> DesignLimits(const RobotModel& model, const DesignCommandOptions& options);
 
+// The limits file's "actuators" through options.transmission (from_urdf: the
+// robot URDF's transmission, for "urdf"); empty when the file has none.
+// Throws std::invalid_argument naming `transmission` when actuator limits come
+// without one, or a bad file, count or value (ActuatorLimits::Check).
+ActuatorLimits DesignActuatorLimits(const RobotModel& model, const DesignCommandOptions& options,
+                                    const std::optional<Transmission>& from_urdf);
+
 // Runs the design of the model mounted at options.design.base_pose, in the
-// cell options.scene names (read here; design.scene when empty); progress lines on stderr unless quiet; `stop` ends it
+// cell options.scene names (read here; design.scene when empty), within the
+// limits file's joint and actuator limits (DesignLimits, DesignActuatorLimits;
+// from_urdf: the robot URDF's transmission); progress lines on stderr unless quiet; `stop` ends it
 // early with the best feasible design so far. Throws std::invalid_argument for
 // bad limits or files, std::runtime_error when nothing feasible was found.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
-                              const std::atomic<bool>* stop);
+                              const std::atomic<bool>* stop,
+                              const std::optional<Transmission>& from_urdf = std::nullopt);
 
-// The same with the limits given (a GUI's limit table; options.limits is not
-// read) and a control whose progress observer, if any, is called from the
+// The same with the joint limits given (a GUI's limit table; options.limits is not
+// read; the actuator limits are options.design.actuators) and a control whose progress observer, if any, is called from the
 // worker threads besides the stderr lines.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::vector<JointLimits>& limits, const DesignControl& control);

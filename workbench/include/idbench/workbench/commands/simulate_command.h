@@ -48,13 +48,12 @@ struct SimulateOptions {
 // file (naming it) and std::runtime_error if the simulation diverges.
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
 
-// A motor-side log: rows are samples, columns motors (qdd: joints).
+// A motor-side log and the same experiment on the joint side.
 struct MotorSideLog {
-  Eigen::VectorXd t;         // sample times [s] (n_samples)
-  Eigen::MatrixXd theta_m;   // motor positions θm = A·(q − q0) [rad] (n_samples × n_dof)
-  Eigen::MatrixXd thetad_m;  // motor velocities θ̇m = A·q̇ [rad/s]; empty when not recorded
-  Eigen::MatrixXd qdd;       // joint accelerations [rad/s²] (a log has no motor-side ones); empty when not recorded
-  Eigen::MatrixXd tau_m;     // motor torques τm = A⁻ᵀ·τ [N m]
+  // Rows are samples, columns motors, in a joint log's fields: q = θm = A·(q − q0) [rad], qd = θ̇m = A·q̇
+  // [rad/s] and qdd the joint accelerations [rad/s²] (a log has no motor-side ones; both empty when not
+  // recorded), tau = τm = A⁻ᵀ·τ [N m].
+  JointLog motor;
   Transmission transmission;
   JointLog joint;            // the same experiment on the joint side, noise-free (τ = Aᵀ·τm)
 };

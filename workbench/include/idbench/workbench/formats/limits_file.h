@@ -2,12 +2,16 @@
 //   {"joints": [{"q_min": rad, "q_max": rad, "qd_max": rad/s,
 //                "qdd_max": rad/s², "tau_max": N m}, …]}
 // one entry per joint in order; an omitted value comes from the robot file.
+// Optionally, limits on the motor side of a transmission (actuator_limits.h):
+//   "actuators": [{"qd_max": rad/s of the motor, "tau_max": N m}, …]
+// one entry per motor; an omitted value is no limit.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "idbench/engine/robot_model.h"
+#include "idbench/excitation/actuator_limits.h"
 
 namespace idbench {
 
@@ -22,5 +26,11 @@ std::vector<JointLimits> ParseLimitsJson(const std::string& text, const RobotMod
 
 // Reads and parses a limits file; an unreadable file throws naming the path.
 std::vector<JointLimits> ReadLimitsFile(const std::string& path, const RobotModel& model);
+
+// The limits JSON's "actuators" (empty when it has none). Throws
+// std::invalid_argument "source: actuators[k].key: what" as ParseLimitsJson
+// does; the count is checked against the transmission (ActuatorLimits::Check).
+std::vector<ActuatorLimit> ParseActuatorLimitsJson(const std::string& text, const std::string& source);
+std::vector<ActuatorLimit> ReadActuatorLimitsFile(const std::string& path);
 
 }  // namespace idbench
