@@ -1,6 +1,7 @@
-// The Log tab: a robot's URDF and a recorded joint log (fields, or files
-// dropped onto the window), a preview of the log's first rows with the column
-// mapping, the friction terms and the estimator, a held-out log; Identify runs
+// The Log tab: a robot's URDF and a recorded joint log (fields with their
+// recent files, or files dropped onto the window), a preview of the log's first rows with the column
+// mapping, the friction terms and the estimator, a held-out log, a plot of
+// the log on which a drag chooses the time window; Identify runs
 // `idbench identify`'s library call on session.identify (the same options
 // struct, so the same numbers) on a worker thread, with a progress bar and
 // Cancel (log.cancel), then shows measured against predicted torque
@@ -19,6 +20,7 @@
 
 #include "gui_app_impl.h"
 #include "gui_helpers.h"
+#include "idbench/gui/recent_files_settings.h"
 
 namespace idbench::gui {
 namespace {
@@ -83,12 +85,6 @@ bool ParseNumbers(const std::string& text, size_t count, std::vector<double>* va
   }
   *values = parsed;
   return true;
-}
-
-std::string JoinNumbers(const std::vector<double>& values) {
-  std::string text;
-  for (double v : values) text += (text.empty() ? "" : ",") + Number(v, "%.17g");
-  return text;
 }
 
 // The first lines of a text log, split at commas; a bag or an unreadable file gives none.
@@ -167,16 +163,26 @@ void GuiApp::Impl::DrawLogTab() {
   }
   ImGui::BeginDisabled(busy);
   ImGui::PushItemWidth(-110);
-  // The robot: a URDF loaded on Enter, on Load, or when set by a script.
+  // The robot: a URDF loaded on Enter, on Load, when picked from the recent
+  // files, or when set by a script.
+  RecentFilesCombo("log.robot", [this](const std::string& path) { log_robot_path = path, pending_robot = path; });
+  ImGui::SameLine(0, 2);
   if (ImGui::InputText("robot URDF##log.robot", &log_robot_path, ImGuiInputTextFlags_EnterReturnsTrue))
     pending_robot = log_robot_path;
+  NoteRecentFile("log.robot", log_robot_path, ImGui::IsItemActive());
   widgets.Record("log.robot", [this](const std::string& text, std::string*) {
     log_robot_path = text;
     pending_robot = text;
     return true;
   });
+  RecentFilesCombo("log.data", [&id](const std::string& path) { id.data = path; });
+  ImGui::SameLine(0, 2);
   widgets.InputText("log.data", "log", &id.data);
+  NoteRecentFile("log.data", id.data, ImGui::IsItemActive());
+  RecentFilesCombo("log.validate", [&id](const std::string& path) { id.validate = path; });
+  ImGui::SameLine(0, 2);
   widgets.InputText("log.validate", "held-out log", &id.validate);
+  NoteRecentFile("log.validate", id.validate, ImGui::IsItemActive());
   // Option lists: parsed when the field is left, or by a script's set.
   auto list_field = [&](const char* name, const char* label, std::string* text, auto parse) {
     ImGui::InputText((std::string(label) + "##" + name).c_str(), text);
@@ -227,7 +233,49 @@ void GuiApp::Impl::DrawLogTab() {
   }
   if (!text_error.empty()) ImGui::TextColored(kErrorColor, "%s", text_error.c_str());
   DrawLogPreview();
+  ImGui::BeginDisabled(busy);
+  DrawLogOverview();
+  ImGui::EndDisabled();
   DrawLogResults();
+}
+
+// A path the user has settled on (not being typed) joins the field's recent
+// files when it exists, as an absolute path.
+void GuiApp::Impl::NoteRecentFile(const std::string& field, const std::string& path, bool editing) {
+  std::string& noted = recent_noted[field];
+  if (editing || path == noted) return;
+  noted = path;
+  std::error_code error;
+  if (path.empty() || !std::filesystem::exists(path, error)) return;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  recent_files.Add(field, error ? path : absolute.lexically_normal().string());
+  MarkRecentFilesChanged();
+}
+
+// An arrow before a path field listing its recent files, newest first; a
+// script picks one by its place (`set log.data.recent 1` for the newest).
+void GuiApp::Impl::RecentFilesCombo(const std::string& field, const std::function<void(const std::string&)>& pick) {
+  const std::vector<std::string>& paths = recent_files.Get(field);
+  ImGui::BeginDisabled(paths.empty());
+  if (ImGui::BeginCombo(("##" + field + ".recent").c_str(), nullptr, ImGuiComboFlags_NoPreview)) {
+    for (const std::string& path : paths)
+      if (ImGui::Selectable(path.c_str())) pick(path);
+    ImGui::EndCombo();
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(paths.empty() ? "no recent files yet" : "recent files");
+  widgets.Record(field + ".recent", [this, field, pick](const std::string& text, std::string* why) {
+    const std::vector<std::string>& list = recent_files.Get(field);
+    long long k = 0;
+    if (list.empty()) {
+      *why = "no recent files yet";
+      return false;
+    }
+    if (!internal::ParseInt(text, 1, static_cast<long long>(list.size()), &k, why)) return false;
+    pick(list[static_cast<size_t>(k - 1)]);
+    return true;
+  });
 }
 
 // The first rows of the log under its header, with the names the columns are read as.
