@@ -408,7 +408,7 @@ TEST(HeadlessGuiTest, DragOnTheLogPlotChoosesTheTimeWindow) {
   ASSERT_EQ(typed_beta.size(), dragged.size());
   EXPECT_LE((typed_beta - dragged).norm(), 1e-12 * dragged.norm());
   // A click without a drag: the whole log again.
-  RunScript(gui, "drag log.overview 0.5 0.5\n");
+  RunScript(gui, "click tab.log.data\ndrag log.overview 0.5 0.5\n");
   EXPECT_TRUE(session.identify.time_window.empty());
   if (!HasFailure()) fs::remove_all(out);
 }

@@ -106,6 +106,11 @@ void GuiApp::Frame(double dt_seconds) {
   }
   ImGui::End();
   m.DrawMessages();
+  // The path fields' recent files, once no field is being typed into.
+  const bool typing = ImGui::IsAnyItemActive();
+  m.NoteRecentFile("log.robot", m.log_robot_path, typing);
+  m.NoteRecentFile("log.data", m.session.identify.data, typing);
+  m.NoteRecentFile("log.validate", m.session.identify.validate, typing);
   m.registry.EndFrame();
   if (m.pending_robot) {
     if (m.session.LoadRobot(*m.pending_robot)) m.t = 0.0, m.playing = false;

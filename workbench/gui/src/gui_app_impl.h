@@ -71,6 +71,7 @@ struct GuiApp::Impl {
   std::vector<std::vector<std::string>> preview_rows;
   bool plot_held_out = false;   // the torque plots show the held-out log
   bool plot_residuals = false;  // the torque plots show measured − predicted
+  bool was_identifying = false; // identify ran last frame (its end selects the Torques tab)
   // The log's overview plot (log_overview.cc): joint positions against time,
   // decimated; a drag on it chooses the time window.
   std::string overview_key;        // the log, robot and columns it was read for
@@ -114,6 +115,7 @@ struct GuiApp::Impl {
   void DrawLogTab();
   void DrawLogPreview();
   void DrawLogOverview();
+  void DrawLogDataTab();
   void NoteRecentFile(const std::string& field, const std::string& path, bool editing);
   void RecentFilesCombo(const std::string& field, const std::function<void(const std::string&)>& pick);
   void DrawTorquePlots();

@@ -169,7 +169,6 @@ void GuiApp::Impl::DrawLogTab() {
   ImGui::SameLine(0, 2);
   if (ImGui::InputText("robot URDF##log.robot", &log_robot_path, ImGuiInputTextFlags_EnterReturnsTrue))
     pending_robot = log_robot_path;
-  NoteRecentFile("log.robot", log_robot_path, ImGui::IsItemActive());
   widgets.Record("log.robot", [this](const std::string& text, std::string*) {
     log_robot_path = text;
     pending_robot = text;
@@ -178,11 +177,9 @@ void GuiApp::Impl::DrawLogTab() {
   RecentFilesCombo("log.data", [&id](const std::string& path) { id.data = path; });
   ImGui::SameLine(0, 2);
   widgets.InputText("log.data", "log", &id.data);
-  NoteRecentFile("log.data", id.data, ImGui::IsItemActive());
   RecentFilesCombo("log.validate", [&id](const std::string& path) { id.validate = path; });
   ImGui::SameLine(0, 2);
   widgets.InputText("log.validate", "held-out log", &id.validate);
-  NoteRecentFile("log.validate", id.validate, ImGui::IsItemActive());
   // Option lists: parsed when the field is left, or by a script's set.
   auto list_field = [&](const char* name, const char* label, std::string* text, auto parse) {
     ImGui::InputText((std::string(label) + "##" + name).c_str(), text);
@@ -232,15 +229,25 @@ void GuiApp::Impl::DrawLogTab() {
     widgets.Record("log.progress");
   }
   if (!text_error.empty()) ImGui::TextColored(kErrorColor, "%s", text_error.c_str());
-  DrawLogPreview();
-  ImGui::BeginDisabled(busy);
-  DrawLogOverview();
-  ImGui::EndDisabled();
   DrawLogResults();
 }
 
-// A path the user has settled on (not being typed) joins the field's recent
-// files when it exists, as an absolute path.
+// The log itself, the first tab under the results: its first rows and its
+// plot (where the time window is dragged).
+void GuiApp::Impl::DrawLogDataTab() {
+  const bool open = ImGui::BeginTabItem("Log");
+  widgets.Record("tab.log.data");
+  if (!open) return;
+  DrawLogPreview();
+  ImGui::BeginDisabled(session.any_running());
+  DrawLogOverview();
+  ImGui::EndDisabled();
+  ImGui::EndTabItem();
+}
+
+// A path the user has settled on (typed, picked, dropped, set by a script or
+// the command line) joins the field's recent files when it exists, as an
+// absolute path. Called every frame (GuiApp::Frame), whichever tab is open.
 void GuiApp::Impl::NoteRecentFile(const std::string& field, const std::string& path, bool editing) {
   std::string& noted = recent_noted[field];
   if (editing || path == noted) return;
@@ -325,8 +332,16 @@ void GuiApp::Impl::DrawLogPreview() {
 // parameter table or the bounds the pc estimate sits on.
 void GuiApp::Impl::DrawLogResults() {
   const auto& report = session.identify_report();
+  // An identification that has just finished shows its torques.
+  const bool identifying = session.running(JobKind::kIdentify);
+  const bool show_torques = was_identifying && !identifying && report;
+  was_identifying = identifying;
   if (!report) {
     ImGui::TextColored(kDimColor, "Nothing identified yet.");
+    if (ImGui::BeginTabBar("log_results")) {
+      DrawLogDataTab();
+      ImGui::EndTabBar();
+    }
     return;
   }
   const JointTorqueIdentification& ident = report->identification;
@@ -348,7 +363,9 @@ void GuiApp::Impl::DrawLogResults() {
     ImGui::TextWrapped("%s", verdict.cause.c_str());
   const std::vector<ActiveBound>& bounds = ident.consistent.bounds_at_optimum;
   if (ImGui::BeginTabBar("log_results")) {
-    const bool torques = ImGui::BeginTabItem("Torques");
+    DrawLogDataTab();
+    const bool torques =
+        ImGui::BeginTabItem("Torques", nullptr, show_torques ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None);
     widgets.Record("tab.log.torques");
     if (torques) {
       DrawTorquePlots();
