@@ -165,7 +165,10 @@ void GuiApp::Impl::DrawLogTab() {
   ImGui::PushItemWidth(-110);
   // The robot: a URDF loaded on Enter, on Load, when picked from the recent
   // files, or when set by a script.
-  RecentFilesCombo("log.robot", [this](const std::string& path) { log_robot_path = path, pending_robot = path; });
+  RecentFilesCombo("log.robot", [this](const std::string& path) {
+    log_robot_path = path;
+    pending_robot = path;
+  });
   ImGui::SameLine(0, 2);
   if (ImGui::InputText("robot URDF##log.robot", &log_robot_path, ImGuiInputTextFlags_EnterReturnsTrue))
     pending_robot = log_robot_path;
