@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -161,10 +162,17 @@ TEST(GuiCliTest, OpensTheWindowUnderXvfb) {
   const fs::path dir = fs::temp_directory_path() / ("idbench_gui_window_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path shot = dir / "window.png";
-  const std::string command = "xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(idbench) +
-                              " gui --robot paper6r --frames 5 --screenshot " + shot.string() + " --out " +
-                              (dir / "out").string();
+  // The window keeps its recent files in $XDG_CONFIG_HOME/idbench/imgui.ini:
+  // the log given on the command line is the first.
+  const fs::path log = dir / "run.csv";
+  std::ofstream(log) << "t,q1,q2,q3,q4,q5,q6\n";
+  const std::string command = "XDG_CONFIG_HOME=" + (dir / "config").string() + " xvfb-run -a -s '-screen 0 1280x720x24' " +
+                              std::string(idbench) + " gui --robot paper6r --frames 5 --screenshot " + shot.string() +
+                              " --out " + (dir / "out").string() + " --data " + log.string();
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream ini(dir / "config" / "idbench" / "imgui.ini");
+  const std::string ini_text((std::istreambuf_iterator<char>(ini)), std::istreambuf_iterator<char>());
+  EXPECT_NE(ini_text.find("[idbench][RecentFiles]\nlog.data=" + log.string() + "\n"), std::string::npos) << ini_text;
   const idbench::Image image = ReadPng(shot);
   EXPECT_EQ(image.width, 1280);
   EXPECT_EQ(image.height, 720);

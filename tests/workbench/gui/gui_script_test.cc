@@ -42,12 +42,31 @@ TEST(GuiScriptTest, RejectsBadStepsNamingTheLine) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("frames 1\njump x\n"), "s.txt:2: unknown step 'jump' (click, set, wait, frames, screenshot)");
+  EXPECT_EQ(message("frames 1\njump x\n"), "s.txt:2: unknown step 'jump' (click, set, wait, frames, screenshot, drop, shift-drop, drag)");
   EXPECT_EQ(message("set design.f0\n"), "s.txt:1: expected 'set WIDGET VALUE'");
   EXPECT_EQ(message("click\n"), "s.txt:1: expected 'click WIDGET'");
   EXPECT_NE(message("wait dinner\n").find("s.txt:1: expected 'wait JOB [SECONDS]'"), std::string::npos);
   EXPECT_EQ(message("wait design -1\n"), "s.txt:1: wait: timeout: expected seconds > 0, got '-1'");
   EXPECT_EQ(message("frames many\n"), "s.txt:1: frames: expected an integer in [1, 100000], got 'many'");
+  EXPECT_EQ(message("drop\n"), "s.txt:1: expected 'drop PATH'");
+  for (const char* bad : {"drag log.overview 0.2\n", "drag log.overview 1 0.5\n", "drag log.overview 0.2 1.5\n",
+                          "drag log.overview a b\n", "drag log.overview 0.1 0.2 0.3\n"})
+    EXPECT_NE(message(bad).find("expected 'drag WIDGET X0 X1'"), std::string::npos) << bad;
+}
+
+TEST(GuiScriptTest, ParsesDropAndDrag) {
+  const std::vector<ScriptStep> steps =
+      ParseGuiScript("drop /data/run 1.csv\nshift-drop /data/b.csv  # held out\ndrag log.overview 0.25 1\n", "s");
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[0].kind, ScriptStep::Kind::kDrop);
+  EXPECT_EQ(steps[0].target, "/data/run 1.csv");
+  EXPECT_FALSE(steps[0].held_out);
+  EXPECT_EQ(steps[1].kind, ScriptStep::Kind::kDrop);
+  EXPECT_EQ(steps[1].target, "/data/b.csv");
+  EXPECT_TRUE(steps[1].held_out);
+  EXPECT_EQ(steps[2].kind, ScriptStep::Kind::kDrag);
+  EXPECT_EQ(steps[2].target, "log.overview");
+  EXPECT_EQ(steps[2].value, "0.25 1");
 }
 
 TEST(BackgroundJobTest, HandsResultsBackOnCollect) {

@@ -284,6 +284,135 @@ frames 2
   if (!HasFailure()) fs::remove_all(out);
 }
 
+// A synthetic log of the session's robot: `seconds` at 100 Hz from t = 0.
+std::string WriteSyntheticLog(const Session& session, const fs::path& path, double seconds) {
+  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", session.model().n_dof(), {.duration = seconds});
+  const Eigen::Index n = static_cast<Eigen::Index>(std::lround(100 * seconds)) + 1;
+  std::ofstream(path) << FormatJointLogCsv(
+      idbench::testing::SyntheticJointLog(session.model(), *motion, Eigen::VectorXd::LinSpaced(n, 0.0, seconds)));
+  return path.string();
+}
+
+// Files dropped onto the window (script verbs drop / shift-drop): the URDF
+// loads as the robot and fills both robot fields, a log fills log.data and
+// its preview and plot, Shift sends the next to the held-out log, anything
+// else is a message naming it; the recent files of log.data list them, newest
+// first, and nothing is written to an imgui.ini.
+TEST(HeadlessGuiTest, DroppedFilesFillTheLogTab) {
+  const fs::path out = TempDir("drop");
+  const bool ini_before = fs::exists("imgui.ini");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const std::string urdf = std::string(IDBENCH_SOURCE_DIR) + "/engine/robots/paper6r.urdf";
+  RunScript(gui, "click tab.log\ndrop " + urdf + "\n");
+  EXPECT_EQ(session.robot_source(), urdf);
+  ASSERT_EQ(session.model().n_dof(), 6);
+  const std::string first = WriteSyntheticLog(session, out / "first run.csv", 3.0);  // a space in the name
+  const std::string second = WriteSyntheticLog(session, out / "second.csv", 2.0);
+  const std::string third = WriteSyntheticLog(session, out / "third.csv", 2.0);
+  std::ofstream(out / "picture.png") << "not a log";
+  RunScript(gui, "drop " + first + "\nshift-drop " + second + "\ndrop " + (out / "picture.png").string() + "\n");
+  EXPECT_EQ(session.identify.data, first);
+  EXPECT_EQ(session.identify.validate, second);
+  EXPECT_NE(session.last_error().find("'picture.png'"), std::string::npos) << session.last_error();
+  EXPECT_NE(session.last_error().find(".urdf"), std::string::npos) << session.last_error();
+  // The preview of its first rows and the plot of the log are drawn.
+  EXPECT_NE(gui.widgets().Find("log.preview"), nullptr);
+  EXPECT_NE(gui.widgets().Find("log.overview"), nullptr);
+  // Without Shift a log replaces the log; the recent files give the first back.
+  gui.Drop({third});
+  EXPECT_EQ(session.identify.data, third);
+  RunScript(gui, "set log.data.recent 2\nframes 1\n");
+  EXPECT_EQ(session.identify.data, first);
+  std::string why;
+  EXPECT_FALSE(gui.Set("log.data.recent", "3", &why));  // two files so far
+  EXPECT_FALSE(gui.Set("log.validate.recent", "2", &why));
+  RunScript(gui, "set log.validate.recent 1\nset log.robot.recent 1\nframes 2\n");
+  EXPECT_EQ(session.identify.validate, second);
+  EXPECT_EQ(session.robot_source(), urdf);
+  EXPECT_EQ(fs::exists("imgui.ini"), ini_before);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
+// The KUKA LWR4+ URDF and a recorded log (../shared/data/kuka_lwr4, skipped
+// when absent) dropped together: the robot loads, the log fills log.data, its
+// preview and its plot; the second log dropped with Shift is the held-out one.
+TEST(HeadlessGuiTest, DroppedKukaUrdfAndLogFillTheLogTab) {
+  const fs::path data = fs::path(IDBENCH_SOURCE_DIR) / ".." / "shared" / "data" / "kuka_lwr4";
+  if (!fs::exists(data / "logs" / "measurements_1.csv"))
+    GTEST_SKIP() << "real-robot data not found at " << data.string()
+                 << " (../shared/data/kuka_lwr4 beside the checkout; not part of the project)";
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = TempDir("kuka").string()}});
+  Session& session = gui.session();
+  const std::string urdf = (data / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string();
+  const std::string fit = (data / "logs" / "measurements_1.csv").string();
+  const std::string held_out = (data / "logs" / "measurements_3.csv").string();
+  RunScript(gui, "click tab.log\n");
+  gui.Drop({urdf, fit});
+  RunScript(gui, "shift-drop " + held_out + "\nframes 2\n");
+  EXPECT_EQ(session.robot_source(), urdf);
+  EXPECT_EQ(session.model().n_dof(), 7);
+  EXPECT_EQ(session.identify.data, fit);
+  EXPECT_EQ(session.identify.validate, held_out);
+  EXPECT_TRUE(session.last_error().empty()) << session.last_error();
+  EXPECT_NE(gui.widgets().Find("log.preview"), nullptr);
+  EXPECT_NE(gui.widgets().Find("log.overview"), nullptr);
+}
+
+// A drag across the log's plot (drag log.overview 0.2 0.7) chooses the time
+// window at 20 % and 70 % of the log's span, draws it shaded, and identifies
+// as the same window typed into log.time_window.
+TEST(HeadlessGuiTest, DragOnTheLogPlotChoosesTheTimeWindow) {
+  const fs::path out = TempDir("drag");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const std::string log = WriteSyntheticLog(session, out / "run.csv", 4.0);  // t from 0 to 4 s
+  RunScript(gui, "click tab.log\nset log.data " + log + "\nset log.friction viscous\nframes 2\n"
+                 "drag log.overview 0.2 0.7\n");
+  const std::vector<double> window = session.identify.time_window;
+  ASSERT_EQ(window.size(), 2u);
+  // The mouse sits on whole pixels (ImGui floors its position): the times at
+  // those pixels, the plot's width spanning the log's 4 s.
+  const WidgetEntry* plot = gui.widgets().Find("log.overview");
+  ASSERT_NE(plot, nullptr);
+  const double x0 = plot->rect.x0, width = plot->rect.width();
+  EXPECT_NEAR(window[0], (std::floor(x0 + 0.2 * width) - x0) / width * 4.0, 1e-6);
+  EXPECT_NEAR(window[1], (std::floor(x0 + 0.7 * width) - x0) / width * 4.0, 1e-6);
+  EXPECT_NEAR(window[0], 0.8, 4.0 / width);  // within a pixel of 20 % and 70 %
+  EXPECT_NEAR(window[1], 2.8, 4.0 / width);
+  // Shaded between the two, not outside (bottom row of the plot, under the lines).
+  const Image image = gui.Screenshot();
+  auto blue = [&](double fraction) {
+    const std::uint8_t* p = image.at(static_cast<int>(plot->rect.x0 + fraction * plot->rect.width()),
+                                     static_cast<int>(plot->rect.y1) - 2);
+    return p[2] > p[0] + 20;
+  };
+  EXPECT_TRUE(blue(0.3));
+  EXPECT_TRUE(blue(0.6));
+  EXPECT_FALSE(blue(0.1));
+  EXPECT_FALSE(blue(0.9));
+
+  RunScript(gui, "click log.identify\nwait identify 300\n");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  const Eigen::VectorXd dragged = session.identify_report()->identification.beta;
+  const long long dragged_samples = session.identify_report()->n_samples;
+  EXPECT_LE(dragged_samples, 201);  // at most 0.8 to 2.8 s of the 401 samples at 100 Hz
+  EXPECT_GE(dragged_samples, 150);
+  char typed[80];
+  std::snprintf(typed, sizeof typed, "%.17g,%.17g", window[0], window[1]);
+  RunScript(gui, std::string("set log.time_window ") + typed + "\nclick log.identify\nwait identify 300\n");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  EXPECT_EQ(session.identified_with().time_window, window);
+  EXPECT_EQ(session.identify_report()->n_samples, dragged_samples);
+  const Eigen::VectorXd typed_beta = session.identify_report()->identification.beta;
+  ASSERT_EQ(typed_beta.size(), dragged.size());
+  EXPECT_LE((typed_beta - dragged).norm(), 1e-12 * dragged.norm());
+  // A click without a drag: the whole log again.
+  RunScript(gui, "click tab.log.data\ndrag log.overview 0.5 0.5\n");
+  EXPECT_TRUE(session.identify.time_window.empty());
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // Identify on a long log shows its progress while frames keep coming, and
 // Cancel (log.cancel) ends it: a message says so and nothing is identified.
 TEST(HeadlessGuiTest, LogTabIdentifyShowsProgressAndCancels) {

@@ -3,15 +3,17 @@
 #include "idbench/gui/gui_app.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "gui_app_impl.h"
 #include "gui_helpers.h"
 #include "idbench/engine/robot_library.h"
+#include "idbench/gui/dropped_files.h"
+#include "idbench/gui/recent_files_settings.h"
 
 namespace idbench::gui {
 
@@ -21,24 +23,43 @@ GuiApp::GuiApp(const SessionOptions& options, GlProcLoader loader) : impl_(std::
   const std::string& source = impl_->session.robot_source();
   impl_->robot_choice = std::find(names.begin(), names.end(), source) != names.end() ? source : names.front();
   if (std::find(names.begin(), names.end(), source) == names.end()) impl_->log_robot_path = source;
+  RegisterRecentFilesSettings(&impl_->recent_files);  // read from imgui.ini at the first frame
 }
 
-void GuiApp::DropFiles(const std::vector<std::string>& paths) {
+void GuiApp::DropFiles(const std::vector<std::string>& paths, bool held_out) {
   Impl& m = *impl_;
-  int logs = 0;
-  for (const std::string& path : paths) {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    if (ext == ".urdf" || ext == ".URDF" || ext == ".xacro") {
-      m.log_robot_path = path;
-      m.pending_robot = path;
-    } else {
-      // A log; of two dropped together, the second is the held-out one.
-      (logs++ == 0 ? m.session.identify.data : m.session.identify.validate) = path;
+  if (m.session.any_running()) {  // the fields are disabled while a job runs
+    m.session.Error("dropped files ignored while a job runs; drop them again when it has finished");
+    return;
+  }
+  for (const DroppedFileRoute& route : RouteDroppedFiles(paths, !m.session.identify.data.empty(), held_out)) {
+    switch (route.target) {
+      case DroppedFileRoute::Target::kRobot:
+        m.log_robot_path = m.urdf_path = route.path;  // the Log tab's and the robot panel's fields
+        m.pending_robot = route.path;
+        break;
+      case DroppedFileRoute::Target::kData:
+        m.session.identify.data = route.path;
+        break;
+      case DroppedFileRoute::Target::kValidate:
+        m.session.identify.validate = route.path;
+        break;
+      case DroppedFileRoute::Target::kNone:
+        m.session.Error(route.message);
+        continue;
     }
+    m.session.Info(route.message);
   }
 }
 
-GuiApp::~GuiApp() = default;
+GuiApp::~GuiApp() {
+  // The recent files are written with the layout now, while the handler's
+  // data exists (ImGui would otherwise save at DestroyContext, after it).
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.IniFilename && ImGui::GetCurrentContext()->SettingsLoaded) ImGui::SaveIniSettingsToDisk(io.IniFilename);
+  io.IniFilename = nullptr;
+  UnregisterRecentFilesSettings();
+}
 
 void GuiApp::Frame(double dt_seconds) {
   Impl& m = *impl_;
@@ -85,6 +106,11 @@ void GuiApp::Frame(double dt_seconds) {
   }
   ImGui::End();
   m.DrawMessages();
+  // The path fields' recent files, once no field is being typed into.
+  const bool typing = ImGui::IsAnyItemActive();
+  m.NoteRecentFile("log.robot", m.log_robot_path, typing);
+  m.NoteRecentFile("log.data", m.session.identify.data, typing);
+  m.NoteRecentFile("log.validate", m.session.identify.validate, typing);
   m.registry.EndFrame();
   if (m.pending_robot) {
     if (m.session.LoadRobot(*m.pending_robot)) m.t = 0.0, m.playing = false;

@@ -6,12 +6,15 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <map>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "idbench/gui/gui_app.h"
+#include "idbench/gui/recent_files.h"
 #include "idbench/gui/session.h"
 #include "idbench/gui/widget_registry.h"
 #include "idbench/render/camera.h"
@@ -68,6 +71,17 @@ struct GuiApp::Impl {
   std::vector<std::vector<std::string>> preview_rows;
   bool plot_held_out = false;   // the torque plots show the held-out log
   bool plot_residuals = false;  // the torque plots show measured − predicted
+  bool was_identifying = false; // identify ran last frame (its end selects the Torques tab)
+  // The log's overview plot (log_overview.cc): joint positions against time,
+  // decimated; a drag on it chooses the time window.
+  std::string overview_key;        // the log, robot and columns it was read for
+  Eigen::VectorXd overview_t;      // [s] (n_points)
+  Eigen::MatrixXd overview_q;      // [rad] (n_points × n_dof)
+  double overview_t_first = 0.0, overview_t_last = 0.0;  // [s] the whole log's first and last sample
+  std::string overview_error;      // why the log cannot be read ("" = it can)
+  // Recent files of the path fields (log.robot, log.data, log.validate), in imgui.ini.
+  RecentFiles recent_files;
+  std::map<std::string, std::string> recent_noted;  // field → the value last looked at
 
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one
@@ -100,6 +114,10 @@ struct GuiApp::Impl {
   void DrawExportTab();
   void DrawLogTab();
   void DrawLogPreview();
+  void DrawLogOverview();
+  void DrawLogDataTab();
+  void NoteRecentFile(const std::string& field, const std::string& path, bool editing);
+  void RecentFilesCombo(const std::string& field, const std::function<void(const std::string&)>& pick);
   void DrawTorquePlots();
   void DrawLogResults();
   void DrawMessages();

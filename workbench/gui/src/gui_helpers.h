@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace idbench::gui {
 
@@ -22,6 +23,13 @@ inline std::string Number(double v, const char* format = "%.4g") {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
+}
+
+// "0.5,3.5": numbers at full precision, comma-separated (list fields).
+inline std::string JoinNumbers(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ",") + Number(v, "%.17g");
+  return text;
 }
 
 inline void TextCell(const std::string& text, const ImVec4* color = nullptr) {

@@ -58,8 +58,25 @@ std::vector<ScriptStep> ParseGuiScript(const std::string& text, const std::strin
     } else if (verb == "screenshot") {
       step.kind = ScriptStep::Kind::kScreenshot;
       if (target.empty() || !rest.empty()) fail("expected 'screenshot FILE'");
+    } else if (verb == "drop" || verb == "shift-drop") {
+      // The rest of the line is one path (it may hold spaces).
+      step.kind = ScriptStep::Kind::kDrop;
+      step.held_out = verb == "shift-drop";
+      step.target = Trim(content.substr(verb.size()));
+      if (step.target.empty()) fail("expected '" + verb + " PATH'");
+    } else if (verb == "drag") {
+      step.kind = ScriptStep::Kind::kDrag;
+      std::istringstream fractions(rest);
+      std::string from, to, extra;
+      fractions >> from >> to >> extra;
+      double a = 0.0, b = 0.0;
+      std::string why;
+      if (target.empty() || to.empty() || !extra.empty() || !internal::ParseDouble(from, &a, &why) ||
+          !internal::ParseDouble(to, &b, &why) || !(a >= 0.0 && a < 1.0) || !(b >= 0.0 && b <= 1.0))
+        fail("expected 'drag WIDGET X0 X1' with fractions of its width, 0 <= X0 < 1 and 0 <= X1 <= 1");
+      step.value = from + " " + to;
     } else {
-      fail("unknown step '" + verb + "' (click, set, wait, frames, screenshot)");
+      fail("unknown step '" + verb + "' (click, set, wait, frames, screenshot, drop, shift-drop, drag)");
     }
     steps.push_back(step);
   }
@@ -84,6 +101,16 @@ bool RunGuiScript(HeadlessGui& gui, const std::vector<ScriptStep>& steps, const 
       case ScriptStep::Kind::kFrames:
         for (int k = std::stoi(step.value); k > 0; --k) gui.RenderFrame();
         break;
+      case ScriptStep::Kind::kDrop:
+        gui.Drop({step.target}, step.held_out);
+        break;
+      case ScriptStep::Kind::kDrag: {
+        std::istringstream fractions(step.value);
+        double from = 0.0, to = 0.0;
+        fractions >> from >> to;
+        ok = gui.Drag(step.target, from, to, &problem);
+        break;
+      }
       case ScriptStep::Kind::kScreenshot:
         try {
           gui.WriteScreenshot(step.target);

@@ -22,10 +22,13 @@ namespace {
 void* GetProcAddress(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
 
 // The window's app, for GLFW's drop callback (a plain function; one window).
+// Shift held while dropping sends a log to the held-out log.
 GuiApp* g_drop_target = nullptr;
-void OnDrop(GLFWwindow*, int count, const char** paths) {
+void OnDrop(GLFWwindow* window, int count, const char** paths) {
   if (!g_drop_target) return;
-  g_drop_target->DropFiles(std::vector<std::string>(paths, paths + count));
+  const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                     glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+  g_drop_target->DropFiles(std::vector<std::string>(paths, paths + count), shift);
 }
 
 void OnGlfwError(int code, const char* description) { std::fprintf(stderr, "GLFW error %d: %s\n", code, description); }
@@ -53,6 +56,9 @@ int RunGuiWindow(const GuiCommandOptions& options) {
   ImGuiContext* imgui = ImGui::CreateContext();
   try {
     internal::ConfigureImGui();
+    // The recent files persist in imgui.ini (the headless GUI keeps none).
+    static const std::string ini_path = internal::ImGuiIniPath();
+    if (!ini_path.empty()) ImGui::GetIO().IniFilename = ini_path.c_str();
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     internal::InitImGuiRenderer(&GetProcAddress);
     {

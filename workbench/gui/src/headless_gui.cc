@@ -84,16 +84,27 @@ void HeadlessGui::WriteScreenshot(const std::string& path) {
   internal::WriteFramebufferPng(path, impl_->options.width, impl_->options.height);
 }
 
-bool HeadlessGui::Click(const std::string& widget, std::string* why) {
-  const WidgetEntry* entry = widgets().Find(widget);
+namespace {
+
+// The widget of the last frame the mouse can reach, or null with *why.
+const WidgetEntry* Reachable(const WidgetRegistry& widgets, const std::string& widget, std::string* why) {
+  const WidgetEntry* entry = widgets.Find(widget);
   if (!entry) {
     *why = "no widget '" + widget + "' on screen (a tab may need clicking first)";
-    return false;
+    return nullptr;
   }
   if (!entry->visible) {
     *why = "widget '" + widget + "' is scrolled out of view";
-    return false;
+    return nullptr;
   }
+  return entry;
+}
+
+}  // namespace
+
+bool HeadlessGui::Click(const std::string& widget, std::string* why) {
+  const WidgetEntry* entry = Reachable(widgets(), widget, why);
+  if (!entry) return false;
   ImGui::SetCurrentContext(impl_->imgui);
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = ImVec2(entry->rect.center_x(), entry->rect.center_y());
@@ -103,6 +114,39 @@ bool HeadlessGui::Click(const std::string& widget, std::string* why) {
   io.MouseDown[0] = false;
   RenderFrame();  // release: the click
   RenderFrame();  // what the click changed (e.g. a robot loaded at the end of the last frame) is drawn
+  return true;
+}
+
+void HeadlessGui::Drop(const std::vector<std::string>& paths, bool held_out) {
+  ImGui::SetCurrentContext(impl_->imgui);
+  app().DropFiles(paths, held_out);
+  RenderFrame();  // a dropped robot loads at the end of this frame
+  RenderFrame();
+}
+
+bool HeadlessGui::Drag(const std::string& widget, double from, double to, std::string* why) {
+  if (!(from >= 0.0 && from < 1.0) || !(to >= 0.0 && to <= 1.0)) {
+    *why = "drag " + widget + ": expected fractions 0 <= from < 1 and 0 <= to <= 1, got " + std::to_string(from) +
+           " and " + std::to_string(to);
+    return false;
+  }
+  const WidgetEntry* entry = Reachable(widgets(), widget, why);
+  if (!entry) return false;
+  const WidgetRect rect = entry->rect;  // the registry changes with the frames below
+  ImGui::SetCurrentContext(impl_->imgui);
+  ImGuiIO& io = ImGui::GetIO();
+  auto at = [&](double fraction) {
+    return ImVec2(static_cast<float>(rect.x0 + fraction * rect.width()), rect.center_y());
+  };
+  io.MousePos = at(from);
+  RenderFrame();  // hover
+  io.MouseDown[0] = true;
+  RenderFrame();  // press
+  io.MousePos = at(to);
+  RenderFrame();  // move
+  io.MouseDown[0] = false;
+  RenderFrame();  // release
+  RenderFrame();  // what the drag changed is drawn
   return true;
 }
 

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 namespace idbench::gui::internal {
@@ -28,6 +29,18 @@ void ConfigureImGui() {
     static const ImWchar ranges[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x1D40, 0x1D40, 0x2070, 0x209F, 0};
     io.Fonts->AddFontFromFileTTF(font, 15.0f, nullptr, ranges);
   }
+}
+
+std::string ImGuiIniPath() {
+  std::filesystem::path dir;
+  if (const char* config = std::getenv("XDG_CONFIG_HOME"); config && *config) dir = config;
+  else if (const char* home = std::getenv("HOME"); home && *home) dir = std::filesystem::path(home) / ".config";
+  else return "";
+  dir /= "idbench";
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) return "";
+  return (dir / "imgui.ini").string();
 }
 
 }  // namespace idbench::gui::internal

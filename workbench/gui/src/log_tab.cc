@@ -1,6 +1,7 @@
-// The Log tab: a robot's URDF and a recorded joint log (fields, or files
-// dropped onto the window), a preview of the log's first rows with the column
-// mapping, the friction terms and the estimator, a held-out log; Identify runs
+// The Log tab: a robot's URDF and a recorded joint log (fields with their
+// recent files, or files dropped onto the window), a preview of the log's first rows with the column
+// mapping, the friction terms and the estimator, a held-out log, a plot of
+// the log on which a drag chooses the time window; Identify runs
 // `idbench identify`'s library call on session.identify (the same options
 // struct, so the same numbers) on a worker thread, with a progress bar and
 // Cancel (log.cancel), then shows measured against predicted torque
@@ -19,6 +20,7 @@
 
 #include "gui_app_impl.h"
 #include "gui_helpers.h"
+#include "idbench/gui/recent_files_settings.h"
 
 namespace idbench::gui {
 namespace {
@@ -83,12 +85,6 @@ bool ParseNumbers(const std::string& text, size_t count, std::vector<double>* va
   }
   *values = parsed;
   return true;
-}
-
-std::string JoinNumbers(const std::vector<double>& values) {
-  std::string text;
-  for (double v : values) text += (text.empty() ? "" : ",") + Number(v, "%.17g");
-  return text;
 }
 
 // The first lines of a text log, split at commas; a bag or an unreadable file gives none.
@@ -167,7 +163,13 @@ void GuiApp::Impl::DrawLogTab() {
   }
   ImGui::BeginDisabled(busy);
   ImGui::PushItemWidth(-110);
-  // The robot: a URDF loaded on Enter, on Load, or when set by a script.
+  // The robot: a URDF loaded on Enter, on Load, when picked from the recent
+  // files, or when set by a script.
+  RecentFilesCombo("log.robot", [this](const std::string& path) {
+    log_robot_path = path;
+    pending_robot = path;
+  });
+  ImGui::SameLine(0, 2);
   if (ImGui::InputText("robot URDF##log.robot", &log_robot_path, ImGuiInputTextFlags_EnterReturnsTrue))
     pending_robot = log_robot_path;
   widgets.Record("log.robot", [this](const std::string& text, std::string*) {
@@ -175,7 +177,11 @@ void GuiApp::Impl::DrawLogTab() {
     pending_robot = text;
     return true;
   });
+  RecentFilesCombo("log.data", [&id](const std::string& path) { id.data = path; });
+  ImGui::SameLine(0, 2);
   widgets.InputText("log.data", "log", &id.data);
+  RecentFilesCombo("log.validate", [&id](const std::string& path) { id.validate = path; });
+  ImGui::SameLine(0, 2);
   widgets.InputText("log.validate", "held-out log", &id.validate);
   // Option lists: parsed when the field is left, or by a script's set.
   auto list_field = [&](const char* name, const char* label, std::string* text, auto parse) {
@@ -226,8 +232,60 @@ void GuiApp::Impl::DrawLogTab() {
     widgets.Record("log.progress");
   }
   if (!text_error.empty()) ImGui::TextColored(kErrorColor, "%s", text_error.c_str());
-  DrawLogPreview();
   DrawLogResults();
+}
+
+// The log itself, the first tab under the results: its first rows and its
+// plot (where the time window is dragged).
+void GuiApp::Impl::DrawLogDataTab() {
+  const bool open = ImGui::BeginTabItem("Log");
+  widgets.Record("tab.log.data");
+  if (!open) return;
+  DrawLogPreview();
+  ImGui::BeginDisabled(session.any_running());
+  DrawLogOverview();
+  ImGui::EndDisabled();
+  ImGui::EndTabItem();
+}
+
+// A path the user has settled on (typed, picked, dropped, set by a script or
+// the command line) joins the field's recent files when it exists, as an
+// absolute path. Called every frame (GuiApp::Frame), whichever tab is open.
+void GuiApp::Impl::NoteRecentFile(const std::string& field, const std::string& path, bool editing) {
+  std::string& noted = recent_noted[field];
+  if (editing || path == noted) return;
+  noted = path;
+  std::error_code error;
+  if (path.empty() || !std::filesystem::exists(path, error)) return;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  recent_files.Add(field, error ? path : absolute.lexically_normal().string());
+  MarkRecentFilesChanged();
+}
+
+// An arrow before a path field listing its recent files, newest first; a
+// script picks one by its place (`set log.data.recent 1` for the newest).
+void GuiApp::Impl::RecentFilesCombo(const std::string& field, const std::function<void(const std::string&)>& pick) {
+  const std::vector<std::string>& paths = recent_files.Get(field);
+  ImGui::BeginDisabled(paths.empty());
+  if (ImGui::BeginCombo(("##" + field + ".recent").c_str(), nullptr, ImGuiComboFlags_NoPreview)) {
+    for (const std::string& path : paths)
+      if (ImGui::Selectable(path.c_str())) pick(path);
+    ImGui::EndCombo();
+  }
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(paths.empty() ? "no recent files yet" : "recent files");
+  widgets.Record(field + ".recent", [this, field, pick](const std::string& text, std::string* why) {
+    const std::vector<std::string>& list = recent_files.Get(field);
+    long long k = 0;
+    if (list.empty()) {
+      *why = "no recent files yet";
+      return false;
+    }
+    if (!internal::ParseInt(text, 1, static_cast<long long>(list.size()), &k, why)) return false;
+    pick(list[static_cast<size_t>(k - 1)]);
+    return true;
+  });
 }
 
 // The first rows of the log under its header, with the names the columns are read as.
@@ -277,8 +335,16 @@ void GuiApp::Impl::DrawLogPreview() {
 // parameter table or the bounds the pc estimate sits on.
 void GuiApp::Impl::DrawLogResults() {
   const auto& report = session.identify_report();
+  // An identification that has just finished shows its torques.
+  const bool identifying = session.running(JobKind::kIdentify);
+  const bool show_torques = was_identifying && !identifying && report;
+  was_identifying = identifying;
   if (!report) {
     ImGui::TextColored(kDimColor, "Nothing identified yet.");
+    if (ImGui::BeginTabBar("log_results")) {
+      DrawLogDataTab();
+      ImGui::EndTabBar();
+    }
     return;
   }
   const JointTorqueIdentification& ident = report->identification;
@@ -300,7 +366,9 @@ void GuiApp::Impl::DrawLogResults() {
     ImGui::TextWrapped("%s", verdict.cause.c_str());
   const std::vector<ActiveBound>& bounds = ident.consistent.bounds_at_optimum;
   if (ImGui::BeginTabBar("log_results")) {
-    const bool torques = ImGui::BeginTabItem("Torques");
+    DrawLogDataTab();
+    const bool torques =
+        ImGui::BeginTabItem("Torques", nullptr, show_torques ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None);
     widgets.Record("tab.log.torques");
     if (torques) {
       DrawTorquePlots();

@@ -48,10 +48,12 @@ class GuiApp {
 
   // A screenshot the Export panel asked for: its path, once.
   std::optional<std::string> TakeScreenshotRequest();
-  // Files dropped onto the window: a .urdf (or .xacro) is loaded as the
-  // robot, a log becomes the Log tab's data; of two logs dropped together the
-  // second is the held-out one.
-  void DropFiles(const std::vector<std::string>& paths);
+  // Files dropped onto the window, routed by RouteDroppedFiles
+  // (dropped_files.h): a .urdf (or .xacro) is loaded as the robot, a log
+  // becomes the Log tab's log (of two dropped together the second is the
+  // held-out one; with `held_out`, Shift held, and a log set, the held-out
+  // one); anything else, or a drop while a job runs, is a message.
+  void DropFiles(const std::vector<std::string>& paths, bool held_out = false);
 
  private:
   struct Impl;

@@ -7,6 +7,12 @@
 //                            finished; default 600 s
 //   frames N                 render N frames (the timeline advances when playing)
 //   screenshot FILE          write the window as a PNG
+//   drop PATH                drop a file onto the window (the rest of the
+//                            line is the path): a URDF, a log, or a message
+//   shift-drop PATH          the same with Shift held: a log goes to the
+//                            held-out log when a log is set
+//   drag WIDGET X0 X1        press at X0, move to X1, release: fractions of
+//                            the widget's width (log.overview: the time window)
 //
 // Widget names are dotted: tab.design, design.harmonics, design.run,
 // limits.2.qd_max, experiment.simulate, ... (docs/commands/gui.md lists them).
@@ -20,10 +26,11 @@
 namespace idbench::gui {
 
 struct ScriptStep {
-  enum class Kind { kClick, kSet, kWait, kFrames, kScreenshot };
+  enum class Kind { kClick, kSet, kWait, kFrames, kScreenshot, kDrop, kDrag };
   Kind kind = Kind::kFrames;
   std::string target;   // widget, job or file
-  std::string value;    // set: the value; wait: timeout [s]; frames: count
+  std::string value;    // set: the value; wait: timeout [s]; frames: count; drag: "X0 X1"
+  bool held_out = false;  // drop: Shift held (shift-drop)
   int line = 0;         // 1-based, for messages
 };
 

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "idbench/gui/gui_app.h"
 #include "idbench/gui/session.h"
@@ -47,6 +48,14 @@ class HeadlessGui {
   // Sets the value a widget edits (then one frame). False with *why when the
   // widget is unknown, has no value, or the text is not a valid value.
   bool Set(const std::string& widget, const std::string& value, std::string* why);
+  // Drops files onto the window (GuiApp::DropFiles, `held_out` for Shift
+  // held), then draws the result (two frames: a robot loads at the end of one).
+  void Drop(const std::vector<std::string>& paths, bool held_out = false);
+  // Drags across a widget of the last frame along its middle: presses at
+  // fraction `from` of its width (0 <= from < 1), moves to `to` (0 <= to <= 1),
+  // releases, and draws the result. False with *why when the widget is
+  // unknown, not visible, or a fraction is outside those ranges.
+  bool Drag(const std::string& widget, double from, double to, std::string* why);
   // Renders frames (about 20 per second of wall time, leaving the cores to
   // the job) until the job is no longer running; false on timeout.
   bool WaitForJob(JobKind kind, double timeout_seconds, std::string* why);
