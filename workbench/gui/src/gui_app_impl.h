@@ -69,6 +69,13 @@ struct GuiApp::Impl {
   bool plot_held_out = false;   // the torque plots show the held-out log
   bool plot_residuals = false;  // the torque plots show measured − predicted
 
+  // Payload tab
+  std::string payload_friction_text;  // PayloadOptions::friction, comma-separated
+  std::string payload_text_error;     // why payload_friction_text does not parse ("" = it does)
+  bool payload_fields_initialised = false;
+  std::string payload_links_robot;    // the robot payload_links were read from
+  std::vector<std::string> payload_links;  // its link names (none when unreadable)
+
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one
 
@@ -103,6 +110,8 @@ struct GuiApp::Impl {
   void DrawTorquePlots();
   void DrawLogResults();
   void DrawMessages();
+  void DrawPayloadTab();
+  void DrawPayloadResults();
 };
 
 }  // namespace idbench::gui
