@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -55,6 +56,13 @@ struct GuiApp::Impl {
   int drawn_w = 0, drawn_h = 0;
   int drawn_overlays = 0;
   bool drawn_once = false;
+  // The cell (design.scene, read when edited) and the mounting (design.base_pose) drawn.
+  Cell cell;
+  bool scene_dirty = false;
+  std::array<double, 6> drawn_base_pose{};
+  std::string base_pose_text;      // DesignOptions::base_pose as "x,y,z,roll,pitch,yaw"
+  std::string design_text_error;   // why base_pose_text does not parse ("" = it does)
+  bool design_fields_initialised = false;
 
   // Log tab: the text fields behind the option lists (parsed into session.identify).
   std::string log_robot_path;   // URDF to load
@@ -96,11 +104,13 @@ struct GuiApp::Impl {
   }
 
   void SyncMotion();
+  void SyncScene();
   void FitView();
   void AddOverlays(const RobotModel& model, const RobotData& data, Scene* scene) const;
   void DrawViewport();
   void DrawRobotPanel();
   void DrawDesignTab();
+  void DrawDesignCell();
   void DrawExperimentTab();
   void DrawPerBodyExperiment(bool busy);
   void DrawCompareTab();

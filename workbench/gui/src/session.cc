@@ -402,6 +402,8 @@ void Session::StartCompare() {
     return Error(std::string("compare: ") + e.what());
   }
   for (const std::string& name : compare_builtins) options.trajectories.push_back(name);
+  options.scene = design.scene;  // the cell and the mounting of the Design tab
+  options.base_pose = design.design.base_pose;
   options.out_dir = out_dir;
   std::string why;
   if (!options.IsValid(&why)) return Error("compare: " + why);
