@@ -74,7 +74,6 @@ void GuiApp::Impl::DrawDesignTab() {
   ImGui::SameLine(260);
   widgets.InputDouble("design.clearance", "clearance [m]", &d.design.clearance);
   ImGui::PopItemWidth();
-  DrawDesignCell();
   ImGui::EndDisabled();
 
   if (!design_text_error.empty()) ImGui::TextColored(kErrorColor, "%s", design_text_error.c_str());
@@ -86,6 +85,10 @@ void GuiApp::Impl::DrawDesignTab() {
     ImGui::SameLine();
     ImGui::Text("running: %zu progress reports%s", curve.size(), curve.empty() ? ", nothing feasible yet" : "");
   }
+  // Under the buttons, which stay in view in a small window.
+  ImGui::BeginDisabled(running);
+  DrawDesignCell();
+  ImGui::EndDisabled();
 
   // Live curve of the best criterion over all starts.
   std::vector<float> values(curve.begin(), curve.end());
