@@ -99,19 +99,11 @@ InertialParameters ProjectOntoConsistent(const InertialParameters& phi_ls, const
   return solution.u;
 }
 
-// The scale a quantity's σ is judged against: the mass; for the centre of
-// mass max(|c|, radius of gyration √(tr I/2m)); for the inertia tr(I)/2.
-double QuantityScale(const PayloadBody& body, int k) {
-  const double half_trace = 0.5 * (body.I_Pcm_B[0] + body.I_Pcm_B[3] + body.I_Pcm_B[5]);
-  if (k == 0) return body.mass;
-  if (k < 4) return std::max(body.p_BoPcm_B.norm(), std::sqrt(std::max(half_trace, 0.0) / body.mass));
-  return half_trace;
-}
 // The quantity whose σ is largest against its scale.
 int WorstRelativeSigma(const PayloadBody& body, const Eigen::Matrix<double, 10, 1>& sigma) {
   int worst = 0;
   for (int k = 1; k < 10; ++k) {
-    if (sigma[k] / QuantityScale(body, k) > sigma[worst] / QuantityScale(body, worst)) worst = k;
+    if (sigma[k] / PayloadQuantityScale(body, k) > sigma[worst] / PayloadQuantityScale(body, worst)) worst = k;
   }
   return worst;
 }
@@ -124,6 +116,13 @@ std::string JoinNames(const std::vector<std::string>& names) {
 }
 
 }  // namespace
+
+double PayloadQuantityScale(const PayloadBody& body, int k) {
+  const double half_trace = 0.5 * (body.I_Pcm_B[0] + body.I_Pcm_B[3] + body.I_Pcm_B[5]);
+  if (k == 0) return body.mass;
+  if (k < 4) return std::max(body.p_BoPcm_B.norm(), std::sqrt(std::max(half_trace, 0.0) / body.mass));
+  return half_trace;
+}
 
 const char* PayloadStatusName(PayloadStatus status) {
   switch (status) {
@@ -346,13 +345,13 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
     out.status = PayloadStatus::kNotPhysical;
     out.message = text;
   } else if (const int worst = WorstRelativeSigma(out.body, out.sigma);
-             !(out.body.mass > 0.0) || !(out.sigma[worst] <= options.max_relative_sigma * QuantityScale(out.body, worst))) {
+             !(out.body.mass > 0.0) || !(out.sigma[worst] <= options.max_relative_sigma * PayloadQuantityScale(out.body, worst))) {
     std::snprintf(text, sizeof(text),
                   "the payload's %s on link '%s' is %.4g with sigma %.3g (at most %g of %.3g expected): the payload's "
                   "torques are too small against the noise (signal/noise %.3g) or the motion hardly turns it; record "
                   "a longer or richer motion",
                   PayloadQuantityNames()[worst].c_str(), link_name.c_str(), PayloadQuantities(out.body)[worst],
-                  out.sigma[worst], options.max_relative_sigma, QuantityScale(out.body, worst),
+                  out.sigma[worst], options.max_relative_sigma, PayloadQuantityScale(out.body, worst),
                   out.payload_signal_to_noise);
     out.status = PayloadStatus::kPoorlyDetermined;
     out.message = text;

@@ -125,12 +125,9 @@ Image RenderPoseFigure(SceneRenderer& renderer, const RobotModel& model, const T
   Scene cell;
   AddCellObstacles(options.scene, &cell);
   if (!cell.primitives.empty() && !points.empty()) {
-    // The obstacles near the robot in view: their corners clipped to the
-    // robot's box widened by half its size.
-    Eigen::Vector3d lo = points.front(), hi = lo;
-    for (const Eigen::Vector3d& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    const Eigen::Vector3d widen = 0.5 * (hi - lo);
-    for (const Eigen::Vector3d& p : cell.BoundingPoints()) points.push_back(p.cwiseMax(lo - widen).cwiseMin(hi + widen));
+    // The obstacles near the robot in view.
+    const std::vector<Eigen::Vector3d> near = CellPointsNearRobot(cell, points);
+    points.insert(points.end(), near.begin(), near.end());
     for (Scene& scene : scenes) scene.primitives.insert(scene.primitives.end(), cell.primitives.begin(), cell.primitives.end());
   }
   // One camera and one floor for all panels.

@@ -79,6 +79,16 @@ Eigen::Vector3f LinkColor(int link) {
 
 const Eigen::Vector3f kObstacleColor(0.74f, 0.69f, 0.60f);
 
+std::vector<Eigen::Vector3d> CellPointsNearRobot(const Scene& cell, const std::vector<Eigen::Vector3d>& robot_points) {
+  std::vector<Eigen::Vector3d> points;
+  if (cell.primitives.empty() || robot_points.empty()) return points;
+  Eigen::Vector3d lo = robot_points.front(), hi = lo;
+  for (const Eigen::Vector3d& p : robot_points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Eigen::Vector3d widen = 0.5 * (hi - lo);
+  for (const Eigen::Vector3d& p : cell.BoundingPoints()) points.push_back(p.cwiseMax(lo - widen).cwiseMin(hi + widen));
+  return points;
+}
+
 void AddCellObstacles(const Cell& cell, Scene* scene) {
   for (const Obstacle& o : cell.obstacles) {
     if (o.shape.kind == Shape::Kind::kMesh && o.shape.mesh == nullptr) continue;

@@ -2,6 +2,7 @@
 // curve of the best criterion while it runs, then the initial and designed
 // conditioning and every constraint's margin.
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -12,6 +13,38 @@
 #include "gui_helpers.h"
 
 namespace idbench::gui {
+
+// The cell and the mounting: the scene file (DesignCommandOptions::scene, read
+// again by the viewport when edited; its errors go to the messages) and the
+// base pose (DesignOptions::base_pose), which compare uses too.
+void GuiApp::Impl::DrawDesignCell() {
+  DesignCommandOptions& d = session.design;
+  if (!design_fields_initialised) {
+    for (double v : d.design.base_pose.xyz_rpy) base_pose_text += (base_pose_text.empty() ? "" : ",") + Number(v, "%.17g");
+    design_fields_initialised = true;
+  }
+  ImGui::PushItemWidth(-150);
+  ImGui::InputText("scene (JSON)##design.scene", &d.scene);
+  if (ImGui::IsItemDeactivatedAfterEdit()) scene_dirty = true;
+  widgets.Record("design.scene", [this](const std::string& text, std::string*) {
+    session.design.scene = text;
+    scene_dirty = true;
+    return true;
+  });
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Obstacles in the world frame (boxes, cylinders, spheres, meshes); empty: the floor only");
+  ImGui::InputText("base pose##design.base_pose", &base_pose_text);
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    std::string why;
+    design_text_error = ParseBasePose(base_pose_text, &d.design.base_pose, &why) ? "" : "design.base_pose: " + why;
+  }
+  widgets.Record("design.base_pose", [this](const std::string& text, std::string* why) {
+    if (!ParseBasePose(text, &session.design.design.base_pose, why)) return false;
+    base_pose_text = text;
+    return true;
+  });
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("x,y,z [m], roll,pitch,yaw [rad] of the robot's base in the world (gravity along its -z)");
+  ImGui::PopItemWidth();
+}
 
 void GuiApp::Impl::DrawDesignTab() {
   DesignCommandOptions& d = session.design;
@@ -43,6 +76,7 @@ void GuiApp::Impl::DrawDesignTab() {
   ImGui::PopItemWidth();
   ImGui::EndDisabled();
 
+  if (!design_text_error.empty()) ImGui::TextColored(kErrorColor, "%s", design_text_error.c_str());
   if (widgets.Button("design.run", "Run design", !running)) session.StartDesign();
   ImGui::SameLine();
   if (widgets.Button("design.stop", "Stop", running)) session.StopDesign();
@@ -51,6 +85,10 @@ void GuiApp::Impl::DrawDesignTab() {
     ImGui::SameLine();
     ImGui::Text("running: %zu progress reports%s", curve.size(), curve.empty() ? ", nothing feasible yet" : "");
   }
+  // Under the buttons, which stay in view in a small window.
+  ImGui::BeginDisabled(running);
+  DrawDesignCell();
+  ImGui::EndDisabled();
 
   // Live curve of the best criterion over all starts.
   std::vector<float> values(curve.begin(), curve.end());

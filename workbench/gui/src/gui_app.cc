@@ -94,6 +94,7 @@ void GuiApp::Frame(double dt_seconds) {
                            Tab{"tab.experiment", "Experiment", &Impl::DrawExperimentTab},
                            Tab{"tab.log", "Log", &Impl::DrawLogTab},
                            Tab{"tab.compare", "Compare", &Impl::DrawCompareTab},
+                           Tab{"tab.payload", "Payload", &Impl::DrawPayloadTab},
                            Tab{"tab.export", "Export", &Impl::DrawExportTab}}) {
       const bool open = ImGui::BeginTabItem(tab.label);
       m.widgets.Record(tab.name);

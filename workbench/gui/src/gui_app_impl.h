@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <map>
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -58,6 +59,13 @@ struct GuiApp::Impl {
   int drawn_w = 0, drawn_h = 0;
   int drawn_overlays = 0;
   bool drawn_once = false;
+  // The cell (design.scene, read when edited) and the mounting (design.base_pose) drawn.
+  Cell cell;
+  bool scene_dirty = false;
+  std::array<double, 6> drawn_base_pose{};
+  std::string base_pose_text;      // DesignOptions::base_pose as "x,y,z,roll,pitch,yaw"
+  std::string design_text_error;   // why base_pose_text does not parse ("" = it does)
+  bool design_fields_initialised = false;
 
   // Log tab: the text fields behind the option lists (parsed into session.identify).
   std::string log_robot_path;   // URDF to load
@@ -83,6 +91,13 @@ struct GuiApp::Impl {
   RecentFiles recent_files;
   std::map<std::string, std::string> recent_noted;  // field → the value last looked at
 
+  // Payload tab
+  std::string payload_friction_text;  // PayloadOptions::friction, comma-separated
+  std::string payload_text_error;     // why payload_friction_text does not parse ("" = it does)
+  bool payload_fields_initialised = false;
+  std::string payload_links_robot;    // the robot payload_links were read from
+  std::vector<std::string> payload_links;  // its link names (none when unreadable)
+
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one
 
@@ -103,11 +118,13 @@ struct GuiApp::Impl {
   }
 
   void SyncMotion();
+  void SyncScene();
   void FitView();
   void AddOverlays(const RobotModel& model, const RobotData& data, Scene* scene) const;
   void DrawViewport();
   void DrawRobotPanel();
   void DrawDesignTab();
+  void DrawDesignCell();
   void DrawExperimentTab();
   void DrawPerBodyExperiment(bool busy);
   void DrawCompareTab();
@@ -121,6 +138,8 @@ struct GuiApp::Impl {
   void DrawTorquePlots();
   void DrawLogResults();
   void DrawMessages();
+  void DrawPayloadTab();
+  void DrawPayloadResults();
 };
 
 }  // namespace idbench::gui

@@ -44,7 +44,7 @@ std::vector<ScriptStep> ParseGuiScript(const std::string& text, const std::strin
       step.value = rest;
     } else if (verb == "wait") {
       step.kind = ScriptStep::Kind::kWait;
-      if (!ParseJobName(target)) fail("expected 'wait JOB [SECONDS]' with JOB one of design, simulate, identify, per-body, compare, report, got '" + target + "'");
+      if (!ParseJobName(target)) fail("expected 'wait JOB [SECONDS]' with JOB one of design, simulate, identify, per-body, compare, report, payload, got '" + target + "'");
       step.value = rest.empty() ? "600" : rest;
       double seconds = 0.0;
       std::string why;

@@ -18,7 +18,8 @@
 namespace idbench::gui {
 namespace {
 
-constexpr const char* kJobNames[kJobKinds] = {"design", "simulate", "identify", "per-body", "compare", "report"};
+constexpr const char* kJobNames[kJobKinds] = {"design", "simulate", "identify", "per-body", "compare", "report",
+                                               "payload"};
 
 }  // namespace
 
@@ -44,6 +45,8 @@ Session::Session(const SessionOptions& options) : out_dir(options.out_dir) {
   compare.trials = 5;
   compare.tau_noise = {0.05};
   per_body.figure = false;
+  payload.out_dir = OutPath("payload");
+  payload.command_line = "gui: Payload tab";
   if (!LoadRobot(options.robot)) {
     // The session needs a robot: fall back to the first built-in.
     LoadRobot(BuiltinRobotNames().front());
@@ -399,6 +402,8 @@ void Session::StartCompare() {
     return Error(std::string("compare: ") + e.what());
   }
   for (const std::string& name : compare_builtins) options.trajectories.push_back(name);
+  options.scene = design.scene;  // the cell and the mounting of the Design tab
+  options.base_pose = design.design.base_pose;
   options.out_dir = out_dir;
   std::string why;
   if (!options.IsValid(&why)) return Error("compare: " + why);

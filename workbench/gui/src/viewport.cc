@@ -14,6 +14,7 @@
 #include "idbench/render/camera.h"
 #include "idbench/render/robot_scene.h"
 #include "idbench/render/scene_renderer.h"
+#include "idbench/workbench/formats/scene_file.h"
 
 namespace idbench::gui {
 
@@ -28,11 +29,32 @@ void GuiApp::Impl::SyncMotion() {
   if (const Trajectory* motion = session.current_motion()) t = std::clamp(t, 0.0, motion->duration());
 }
 
+// Reads the cell again when design.scene was edited (an unreadable or
+// invalid file: its error in the messages, no obstacles drawn), and refits
+// the view when the cell or the mounting changed.
+void GuiApp::Impl::SyncScene() {
+  const std::array<double, 6>& base_pose = session.design.design.base_pose.xyz_rpy;
+  if (!scene_dirty && base_pose == drawn_base_pose) return;
+  if (scene_dirty) {
+    cell = Cell();
+    try {
+      if (!session.design.scene.empty()) cell = ReadSceneFile(session.design.scene);
+    } catch (const std::exception& e) {
+      session.Error(std::string("design.scene: ") + e.what());
+    }
+    scene_dirty = false;
+  }
+  drawn_base_pose = base_pose;
+  fitted_motion_version = -1;
+  drawn_once = false;
+}
+
 // The robot's extent over the whole motion, so that the camera does not jump
-// while it plays.
+// while it plays, and the cell's obstacles beside it.
 void GuiApp::Impl::FitView() {
   const RobotModel& model = session.model();
   const Trajectory* motion = session.current_motion();
+  const Eigen::Isometry3d X_WR = session.design.design.base_pose.X_WR();
   RobotData data(model);
   motion_points_W.clear();
   const int n_poses = motion ? 9 : 1;
@@ -41,13 +63,17 @@ void GuiApp::Impl::FitView() {
                                      : Eigen::VectorXd::Zero(model.n_dof());
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
     ComputeKinematics(model, q, zero, zero, &data);
-    const std::vector<Eigen::Vector3d> points = BuildRobotScene(model, data).BoundingPoints();
+    const std::vector<Eigen::Vector3d> points = BuildRobotScene(model, data, X_WR).BoundingPoints();
     motion_points_W.insert(motion_points_W.end(), points.begin(), points.end());
   }
-  floor = FitFloor(motion_points_W);
   Eigen::Vector3d lo = motion_points_W.front(), hi = lo;
   for (const Eigen::Vector3d& p : motion_points_W) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   robot_size = std::max((hi - lo).norm(), 1e-3);
+  Scene obstacles;
+  AddCellObstacles(cell, &obstacles);
+  const std::vector<Eigen::Vector3d> near = CellPointsNearRobot(obstacles, motion_points_W);
+  motion_points_W.insert(motion_points_W.end(), near.begin(), near.end());
+  floor = FitFloor(motion_points_W);
   fitted_motion_version = session.motion_version();
 }
 
@@ -55,6 +81,7 @@ void GuiApp::Impl::FitView() {
 // (solid) links: every link frame's axes from its hinge point (x red, y green,
 // z blue), and a dark cross of three sticks through every centre of mass.
 void GuiApp::Impl::AddOverlays(const RobotModel& model, const RobotData& data, Scene* scene) const {
+  const Eigen::Isometry3d X_WR = session.design.design.base_pose.X_WR();
   auto stick = [&](const Eigen::Vector3d& p_W, const Eigen::Vector3d& e_W, double length, const Eigen::Vector3f& color) {
     ScenePrimitive s;  // a unit cylinder along z of G, centred at p_W
     s.kind = Shape::Kind::kCylinder;
@@ -68,12 +95,13 @@ void GuiApp::Impl::AddOverlays(const RobotModel& model, const RobotData& data, S
   for (int i = 0; i < model.n_links(); ++i) {
     const size_t b = static_cast<size_t>(i);
     for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Vector3d e_W = data.R_WB[b].col(axis);
+      // data's poses are in the base frame R (the model's world), drawn in W.
+      const Eigen::Vector3d e_W = X_WR.linear() * data.R_WB[b].col(axis);
       if (show_frames) {
         const Eigen::Vector3f color(axis == 0 ? 0.9f : 0.1f, axis == 1 ? 0.75f : 0.1f, axis == 2 ? 0.9f : 0.1f);
-        stick(data.p_WBo_W[b] + 0.5 * length * e_W, e_W, length, color);
+        stick(X_WR * data.p_WBo_W[b] + 0.5 * length * e_W, e_W, length, color);
       }
-      if (show_com) stick(data.p_WBcm_W[b], e_W, length, Eigen::Vector3f(0.08f, 0.08f, 0.08f));
+      if (show_com) stick(X_WR * data.p_WBcm_W[b], e_W, length, Eigen::Vector3f(0.08f, 0.08f, 0.08f));
     }
   }
 }
@@ -85,6 +113,7 @@ void GuiApp::Impl::DrawViewport() {
   ImGui::SetNextWindowSize(ImVec2(W * layout.left_fraction, H * layout.viewport_fraction));
   ImGui::Begin("3D view", nullptr, kPanelFlags);
   const Trajectory* motion = session.current_motion();
+  SyncScene();
   if (fitted_motion_version != session.motion_version()) FitView();
 
   // The image fills the window above the timeline row.
@@ -107,7 +136,8 @@ void GuiApp::Impl::DrawViewport() {
     RobotData data(model);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
     ComputeKinematics(model, q, zero, zero, &data);
-    Scene scene = BuildRobotScene(model, data);
+    Scene scene = BuildRobotScene(model, data, session.design.design.base_pose.X_WR());
+    AddCellObstacles(cell, &scene);
     AddOverlays(model, data, &scene);
     renderer.Draw(scene, floor, camera, draw_w, draw_h);
     drawn_q = q, drawn_w = draw_w, drawn_h = draw_h, drawn_overlays = overlays, drawn_once = true;

@@ -89,6 +89,10 @@ PayloadBody PayloadBodyFromParameters(const InertialParameters& phi);
 Eigen::Matrix<double, 10, 1> PayloadQuantities(const PayloadBody& body);
 // ∂(quantities)/∂φ at φ (10 × 10).
 Eigen::Matrix<double, 10, 10> PayloadQuantityJacobian(const InertialParameters& phi);
+// The scale quantity k's σ is judged against (the verdict's
+// max_relative_sigma): the mass; for the centre of mass max(|c|, radius of
+// gyration √(tr I/2m)); for the inertia tr(I)/2.
+double PayloadQuantityScale(const PayloadBody& body, int k);
 // φ of a body (the inverse of PayloadBodyFromParameters).
 InertialParameters PayloadParametersFromBody(const PayloadBody& body);
 

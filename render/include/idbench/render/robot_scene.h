@@ -54,4 +54,11 @@ extern const Eigen::Vector3f kObstacleColor;
 // kObstacleColor, appended to *scene. The floor is the renderer's own.
 void AddCellObstacles(const Cell& cell, Scene* scene);
 
+// What a camera keeps in view of the obstacles `cell` (AddCellObstacles'
+// primitives) beside a robot whose bounding points are robot_points: the
+// corners of their bounding boxes clipped to the robot's box widened by half
+// its size, so that a big table or wall does not shrink the robot in view.
+// None when either is empty.
+std::vector<Eigen::Vector3d> CellPointsNearRobot(const Scene& cell, const std::vector<Eigen::Vector3d>& robot_points);
+
 }  // namespace idbench

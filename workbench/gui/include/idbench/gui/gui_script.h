@@ -3,7 +3,7 @@
 //   click WIDGET             move the mouse onto a named widget and click it
 //   set WIDGET VALUE...      set the value a widget edits (the rest of the line)
 //   wait JOB [SECONDS]       render frames until the job (design, simulate,
-//                            identify, per-body, compare, report) has
+//                            identify, per-body, compare, report, payload) has
 //                            finished; default 600 s
 //   frames N                 render N frames (the timeline advances when playing)
 //   screenshot FILE          write the window as a PNG

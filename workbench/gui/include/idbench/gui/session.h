@@ -20,6 +20,7 @@
 #include "idbench/workbench/commands/compare_command.h"
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/workbench/commands/identify_command.h"
+#include "idbench/workbench/commands/payload_command.h"
 #include "idbench/workbench/commands/run_command.h"
 #include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
@@ -40,9 +41,9 @@ struct SessionMessage {
   std::string text;
 };
 
-enum class JobKind { kDesign, kSimulate, kIdentify, kPerBody, kCompare, kReport };
-inline constexpr int kJobKinds = 6;
-// "design", "simulate", "identify", "per-body", "compare", "report" (script names).
+enum class JobKind { kDesign, kSimulate, kIdentify, kPerBody, kCompare, kReport, kPayload };
+inline constexpr int kJobKinds = 7;
+// "design", "simulate", "identify", "per-body", "compare", "report", "payload" (script names).
 const char* JobName(JobKind kind);
 std::optional<JobKind> ParseJobName(const std::string& name);
 
@@ -54,6 +55,18 @@ struct IdentifiedRow {
   double relative_error = 0.0;     // (identified − model) / |model|; NaN when model is 0
   double sigma_percent = 0.0;      // 100 σ/|β̂| of the linear fit
   ParameterStatus status = ParameterStatus::kDetermined;  // from β̂ and σ (linear_estimator.h)
+};
+
+// One row of the payload table: a quantity of PayloadQuantityNames.
+struct PayloadRow {
+  std::string name;            // "mass", "com_x", ..., "Izz"
+  std::string unit;            // "kg", "m", "kg m2"
+  double value = 0.0;          // the estimate; NaN when not identifiable
+  double sigma = 0.0;          // its σ; NaN when not identifiable
+  std::string value_text;      // as shown: the number, or "not identifiable"
+  std::string sigma_text;      // as shown: the number, or "-"
+  std::string status;          // "determined", "poorly determined" (σ above the verdict's bound), "not identifiable"
+  std::string reason;          // why not identifiable ("" when it is)
 };
 
 class Session {
@@ -84,6 +97,7 @@ class Session {
   IdentifyOptions identify;
   CompareOptions compare;
   RunOptions per_body;  // the per-body experiment (`idbench run`): Bullet's hinge wrenches, no noise
+  PayloadOptions payload;  // the Payload tab (`idbench payload`): its own robot (identified URDF), out_dir its export folder
   std::string out_dir;
   // The motion shown, simulated and exported: "designed" or a built-in motion name.
   std::string motion = "paper";
@@ -104,6 +118,9 @@ class Session {
   void StartPerBody();
   // The identification's report (`identify --report`) into out_dir.
   void StartReport();
+  // RunPayload on `payload` (its robot loaded on the worker); the previous
+  // estimate is kept when it fails.
+  void StartPayload();
   bool running(JobKind kind) const { return jobs_[static_cast<int>(kind)].running(); }
   bool any_running() const;
   // On the UI thread, every frame: applies the results of finished jobs.
@@ -131,6 +148,10 @@ class Session {
   std::vector<std::string> UnexcitedParameters() const;
   const std::optional<CompareReport>& compare_report() const { return compare_report_; }
   const std::optional<PerBodyIdentificationResult>& per_body_result() const { return per_body_result_; }
+  const std::optional<PayloadSummary>& payload_summary() const { return payload_summary_; }
+  const PayloadOptions& payload_estimated_with() const { return payload_estimated_with_; }  // of payload_summary()
+  // The payload's 10 quantities as the Payload tab shows them (none before an estimate).
+  std::vector<PayloadRow> PayloadRows() const;
 
   // The motion selected by `motion` (the designed one once it exists); null
   // when "designed" is selected before any design finished.
@@ -146,6 +167,10 @@ class Session {
   // identified.json always; identified.urdf, identified.xml (MJCF) and
   // joints.yaml when the verdict is fit to load (else an error says why).
   bool ExportIdentifiedModel();
+  // The payload's files as `idbench payload` writes them (PayloadFiles), into
+  // payload.out_dir: payload.json always, payload.urdf.xml when the verdict
+  // allows it (else an error says why).
+  bool ExportPayload();
   std::string OutPath(const std::string& file) const;
 
   // ---- Messages -----------------------------------------------------------
@@ -181,6 +206,9 @@ class Session {
   std::optional<TorqueSeries> fit_torques_, held_out_torques_;
   std::optional<CompareReport> compare_report_;
   std::optional<PerBodyIdentificationResult> per_body_result_;
+  std::optional<PayloadSummary> payload_summary_;
+  PayloadOptions payload_estimated_with_;              // the options of payload_summary_
+  std::shared_ptr<const RobotModel> payload_model_;    // the robot payload_summary_ was estimated on
 
   mutable std::mutex curve_mutex_;
   std::vector<double> curve_;             // best over all starts, per progress report
