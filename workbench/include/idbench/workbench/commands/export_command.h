@@ -1,8 +1,8 @@
 // `idbench export`: an identification's robot model again, in a format, from
 // what `identify` wrote (identified.json: its friction terms, the physically
 // consistent standard parameters and their verdict) and the robot it
-// identified: identified.xml (MJCF, formats/mjcf_writer.h) or identified.urdf,
-// the same bytes `identify` writes for them.
+// identified: identified.xml (MJCF, formats/mjcf_writer.h), identified.urdf
+// or joints.yaml (formats/joints_yaml.h), the same bytes `identify` writes.
 #pragma once
 
 #include <optional>
