@@ -77,14 +77,14 @@ SpectralTerms ComputeSpectralTerms(const Eigen::MatrixXd& W, bool want_sum_log, 
 
 }  // namespace
 
-std::vector<std::string> DesignCriterionNames() { return {"cond", "cond-normalised", "logdet", "hybrid"}; }
+std::vector<std::string> DesignCriterionNames() { return kDesignCriterionNames.Names(); }
 
 std::string DesignCriterionName(DesignCriterion criterion) {
-  return DesignCriterionNames()[static_cast<size_t>(criterion)];
+  return std::string(kDesignCriterionNames.Name(criterion));
 }
 
-std::optional<DesignCriterion> ParseDesignCriterion(const std::string& name) {
-  return EnumFromName<DesignCriterion>(DesignCriterionNames(), name);
+bool ParseDesignCriterion(std::string_view text, DesignCriterion* criterion, std::string* why) {
+  return kDesignCriterionNames.Parse(text, criterion, why);
 }
 
 Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W) {

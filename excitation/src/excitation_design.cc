@@ -27,12 +27,12 @@ using internal::StartRun;
 
 }  // namespace
 
-std::vector<std::string> DesignAlgorithmNames() { return {"slsqp", "mma", "cobyla", "sbplx"}; }
+std::vector<std::string> DesignAlgorithmNames() { return kDesignAlgorithmNames.Names(); }
 std::string DesignAlgorithmName(DesignAlgorithm algorithm) {
-  return DesignAlgorithmNames()[static_cast<size_t>(algorithm)];
+  return std::string(kDesignAlgorithmNames.Name(algorithm));
 }
-std::optional<DesignAlgorithm> ParseDesignAlgorithm(const std::string& name) {
-  return EnumFromName<DesignAlgorithm>(DesignAlgorithmNames(), name);
+bool ParseDesignAlgorithm(std::string_view text, DesignAlgorithm* algorithm, std::string* why) {
+  return kDesignAlgorithmNames.Parse(text, algorithm, why);
 }
 
 bool DesignOptions::IsValid(std::string* why) const {

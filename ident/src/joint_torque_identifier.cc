@@ -131,20 +131,10 @@ TorquePrediction Predict(const StackedFactors& factors, const Eigen::VectorXd& b
 
 }  // namespace
 
-const char* ToString(TorqueEstimator estimator) {
-  switch (estimator) {
-    case TorqueEstimator::kOls: return "ols";
-    case TorqueEstimator::kWls: return "wls";
-    case TorqueEstimator::kPhysicallyConsistent: return "pc";
-  }
-  return "?";
-}
+std::string_view ToString(TorqueEstimator estimator) { return kTorqueEstimatorNames.Name(estimator); }
 
-std::optional<TorqueEstimator> ParseTorqueEstimator(const std::string& name) {
-  for (TorqueEstimator e : {TorqueEstimator::kOls, TorqueEstimator::kWls, TorqueEstimator::kPhysicallyConsistent}) {
-    if (name == ToString(e)) return e;
-  }
-  return std::nullopt;
+bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why) {
+  return kTorqueEstimatorNames.Parse(text, estimator, why);
 }
 
 Eigen::MatrixXd StackBaseRegressor(const RobotModel& model, const FrictionModel& friction,

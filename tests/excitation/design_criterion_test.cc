@@ -67,10 +67,14 @@ TEST(DesignCriterionTest, RankDeficientIsInfiniteAndNamedSo) {
 
 TEST(DesignCriterionTest, NamesRoundTrip) {
   for (const std::string& name : DesignCriterionNames()) {
-    ASSERT_TRUE(ParseDesignCriterion(name).has_value()) << name;
-    EXPECT_EQ(DesignCriterionName(*ParseDesignCriterion(name)), name);
+    DesignCriterion criterion;
+    ASSERT_TRUE(ParseDesignCriterion(name, &criterion)) << name;
+    EXPECT_EQ(DesignCriterionName(criterion), name);
   }
-  EXPECT_FALSE(ParseDesignCriterion("cond2").has_value());
+  DesignCriterion criterion;
+  std::string why;
+  EXPECT_FALSE(ParseDesignCriterion("cond2", &criterion, &why));
+  EXPECT_EQ(why, "criterion: expected cond, cond-normalised, logdet or hybrid, got 'cond2'");
 }
 
 // The analytic gradient (dσ_i = u_iᵀ dW v_i) against central differences.

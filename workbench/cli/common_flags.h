@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/robot_library.h"
 #include "idbench/engine/urdf.h"
 
@@ -56,5 +57,37 @@ CLI::Option* AddSceneFlag(CLI::App* command, std::string* scene);
 
 // --report: also the HTML/PDF report and its plots.
 CLI::Option* AddReportFlag(CLI::App* command, bool* report);
+
+// A flag naming one value of an enum (`names`: enum_names.h), parsed into
+// *value; a bad name is a usage error naming the field and the choices
+// (flag-spelled as every message is). The default shown is *value's name.
+template <typename Enum, std::size_t N>
+CLI::Option* AddEnumFlag(CLI::App* command, const std::string& flag, Enum* value, const EnumNames<Enum, N>& names,
+                         const std::string& help) {
+  return command
+      ->add_option_function<std::string>(
+          flag,
+          [value, &names](const std::string& text) {
+            std::string why;
+            if (!names.Parse(text, value, &why)) throw CLI::ValidationError(why);
+          },
+          help)
+      ->default_str(std::string(names.Name(*value)));
+}
+
+// The same for an optional value (nullopt: the library's default, not shown).
+template <typename Enum, std::size_t N>
+CLI::Option* AddEnumFlag(CLI::App* command, const std::string& flag, std::optional<Enum>* value,
+                         const EnumNames<Enum, N>& names, const std::string& help) {
+  return command->add_option_function<std::string>(
+      flag,
+      [value, &names](const std::string& text) {
+        std::string why;
+        Enum parsed{};
+        if (!names.Parse(text, &parsed, &why)) throw CLI::ValidationError(why);
+        *value = parsed;
+      },
+      help);
+}
 
 }  // namespace idbench::cli

@@ -66,7 +66,7 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
                       "A recorded joint log (CSV, log description, ROS 2 bag) compared beside the motions; repeatable")
       ->type_name("PATH");
   AddRobotFlags(command, &compare.robot, context->robot_load(), "Built-in robot or URDF file");
-  command->add_option("--model", compare.model, "torque or per-body")->capture_default_str();
+  AddEnumFlag(command, "--model", &compare.model, kIdentificationModelNames, "torque or per-body");
   AddFrictionFlag(command, &compare.friction, "Friction terms of the torque model");
   command->add_option("--duration", compare.duration, "Length of built-in motions [s]")->capture_default_str();
   command->add_option("--samples", compare.samples, "Samples per motion")->capture_default_str();

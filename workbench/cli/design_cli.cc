@@ -135,13 +135,13 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
   CLI::App* command = app->add_subcommand(
       "design", "Optimise an excitation trajectory (Fourier series) for identification, within the joint limits");
   AddRobotFlags(command, &design.robot, context->robot_load());
-  command->add_option("--model", design.model, "Identification model: torque (base parameters) or per-body")
-      ->capture_default_str();
+  AddEnumFlag(command, "--model", &design.model, kIdentificationModelNames,
+              "Identification model: torque (base parameters) or per-body");
   AddFrictionFlag(command, &design.friction, "Friction terms of the torque model");
-  command->add_option("--criterion", design.criterion,
-                      "cond, cond-normalised, logdet or hybrid (default: cond; per-body: logdet)");
-  command->add_option("--algorithm", design.algorithm, "slsqp, mma (gradient), cobyla, sbplx (derivative-free)")
-      ->capture_default_str();
+  AddEnumFlag(command, "--criterion", &design.criterion, kDesignCriterionNames,
+              "cond, cond-normalised, logdet or hybrid (default: cond; per-body: logdet)");
+  AddEnumFlag(command, "--algorithm", &design.algorithm, kDesignAlgorithmNames,
+              "slsqp, mma (gradient), cobyla, sbplx (derivative-free)");
   AddSearchFlags(command, &design.design);
   command->add_option("--limits", design.limits,
                       "Limits JSON {\"joints\": [{q_min, q_max, qd_max, qdd_max, tau_max}], "
@@ -152,8 +152,8 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
   AddSceneFlag(command, &design.scene);
   AddBasePoseFlag(command, &design.design.base_pose);
   command->add_option("--rate", design.csv_rate_hz, "Sample rate of trajectory.csv [Hz]")->capture_default_str();
-  command->add_option("--csv-columns", design.csv_columns, "trajectory.csv columns: q or q,qd,qdd")
-      ->capture_default_str();
+  AddEnumFlag(command, "--csv-columns", &design.csv_columns, kTrajectoryCsvColumnsNames,
+              "trajectory.csv columns: q or q,qd,qdd");
   command->add_option("--ramp", design.design.ramp_seconds,
                       "Rest-to-rest ramps from and to the home pose in trajectory.csv and the re-check [s]; 0: none")
       ->capture_default_str();

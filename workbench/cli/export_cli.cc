@@ -47,8 +47,8 @@ CliCommand AddExportCommand(CLI::App* app, CliContext* context) {
   AddRobotFlags(command, &exported.robot, context->robot_load(), "The robot identified: built-in name or URDF path");
   AddBasePoseFlag(command, &exported.base_pose);
   command->add_option("--identified", exported.identified, "identified.json written by idbench identify")->required();
-  command->add_option("--format", exported.format, "mjcf (identified.xml) or urdf (identified.urdf)")
-      ->capture_default_str();
+  AddEnumFlag(command, "--format", &exported.format, kExportFormatNames,
+              "mjcf (identified.xml), urdf (identified.urdf) or yaml (joints.yaml)");
   command->add_flag("--write-unverified", exported.write_unverified,
                     "Write the model even when its verdict says it is not fit to load (exit 0)");
   AddOutFlag(command, &exported.out_dir, "Output directory for the file (created if missing, never wiped)")

@@ -128,15 +128,14 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
       ->add_option("--data", identify.data,
                    "Joint log: CSV (t, q*, [qd*, qdd*], tau*), log description (.json/.yaml) or ROS 2 bag")
       ->required();
-  command->add_option("--model", identify.model, "torque (per-body needs hinge wrenches: idbench run)")
-      ->capture_default_str();
-  command->add_option("--estimator", identify.estimator, "ols, wls or pc (physically consistent)")
-      ->capture_default_str();
+  AddEnumFlag(command, "--model", &identify.model, kIdentificationModelNames,
+              "torque (per-body needs hinge wrenches: idbench run)");
+  AddEnumFlag(command, "--estimator", &identify.estimator, kTorqueEstimatorNames, "ols, wls or pc (physically consistent)");
   AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
                      &identify.max_gap_s);
-  command->add_option("--friction-side", identify.friction_side,
-                      "joint, or actuator: friction and rotor terms per motor, through the transmission "
-                      "(log description or URDF <transmission>)")->capture_default_str();
+  AddEnumFlag(command, "--friction-side", &identify.friction_side, kFrictionSideNames,
+              "joint, or actuator: friction and rotor terms per motor, through the transmission "
+              "(log description or URDF <transmission>)");
   command->add_option("--decimate", identify.filter.decimation, "Keep every k-th sample after filtering")
       ->capture_default_str();
   command->add_option("--validate", identify.validate, "Held-out joint log to validate on");

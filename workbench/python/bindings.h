@@ -12,13 +12,16 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstddef>
 #include <map>
+#include <stdexcept>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/robot_library.h"
 #include "idbench/engine/transmission.h"
 #include "idbench/workbench/commands/log_preparation.h"
@@ -34,6 +37,16 @@ struct Robot {
   std::vector<std::string> warnings;  // from loading the file
   std::optional<Transmission> transmission;  // the URDF's <transmission> elements; nullopt: none
 };
+
+// A keyword argument naming one value of an enum (enum_names.h); throws
+// std::invalid_argument naming the field and the choices otherwise.
+template <typename Enum, std::size_t N>
+Enum EnumArgument(const EnumNames<Enum, N>& names, const std::string& text) {
+  Enum value{};
+  std::string why;
+  if (!names.Parse(text, &value, &why)) throw std::invalid_argument(why);
+  return value;
+}
 
 // A base_pose keyword argument: None (the identity) or (x, y, z, roll, pitch,
 // yaw) [m, rad]. Throws std::invalid_argument naming base_pose.

@@ -146,10 +146,10 @@ void BindDesign(py::module_& m) {
          const py::object& progress) {
         DesignCommandOptions options;
         options.robot = robot.source;
-        options.model = model;
+        options.model = EnumArgument(kIdentificationModelNames, model);
         options.friction = friction;
-        options.criterion = criterion;
-        options.algorithm = algorithm;
+        if (!criterion.empty()) options.criterion = EnumArgument(kDesignCriterionNames, criterion);
+        options.algorithm = EnumArgument(kDesignAlgorithmNames, algorithm);
         options.design.harmonics = harmonics;
         options.design.f0 = f0;
         options.design.duration = duration;
@@ -165,16 +165,16 @@ void BindDesign(py::module_& m) {
         options.limits = limits;
         options.transmission = transmission;
         options.csv_rate_hz = rate;
-        options.csv_columns = csv_columns;
+        options.csv_columns = EnumArgument(kTrajectoryCsvColumnsNames, csv_columns);
         options.design.ramp_seconds = ramp;
         options.home = home;
         options.quiet = true;
         options.command_line = "python: idbench.design";
         return Design(robot, options, progress);
       },
-      py::arg("robot"), py::kw_only(), py::arg("model") = design_defaults.model,
-      py::arg("friction") = design_defaults.friction, py::arg("criterion") = design_defaults.criterion,
-      py::arg("algorithm") = design_defaults.algorithm, py::arg("harmonics") = design_defaults.design.harmonics,
+      py::arg("robot"), py::kw_only(), py::arg("model") = std::string(kIdentificationModelNames.Name(design_defaults.model)),
+      py::arg("friction") = design_defaults.friction, py::arg("criterion") = std::string(),
+      py::arg("algorithm") = DesignAlgorithmName(design_defaults.algorithm), py::arg("harmonics") = design_defaults.design.harmonics,
       py::arg("f0") = design_defaults.design.f0, py::arg("duration") = design_defaults.design.duration,
       py::arg("rest_to_rest") = design_defaults.design.rest_to_rest,
       py::arg("samples") = design_defaults.design.samples, py::arg("starts") = design_defaults.design.starts,
@@ -182,7 +182,7 @@ void BindDesign(py::module_& m) {
       py::arg("max_evaluations") = design_defaults.design.max_evaluations,
       py::arg("max_time") = design_defaults.design.max_seconds, py::arg("margin") = design_defaults.design.margin,
       py::arg("clearance") = design_defaults.design.clearance, py::arg("limits") = design_defaults.limits,
-      py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = design_defaults.csv_columns,
+      py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = std::string(kTrajectoryCsvColumnsNames.Name(design_defaults.csv_columns)),
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
       py::arg("transmission") = design_defaults.transmission, py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). transmission: \"urdf\" or a file, through which "

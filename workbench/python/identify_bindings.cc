@@ -225,7 +225,7 @@ void BindIdentify(py::module_& m) {
          double cost_tolerance, bool write_unverified, const std::string& topic, const std::string& friction_side,
          const py::object& base_pose) {
         IdentifyOptions options;
-        options.friction_side = friction_side;
+        options.friction_side = EnumArgument(kFrictionSideNames, friction_side);
         options.base_pose = BasePoseArgument(base_pose);
         options.format.transmission = robot.transmission;  // a log description's wins (IdentifyOptions::transmission)
         options.robot = robot.source;
@@ -233,7 +233,7 @@ void BindIdentify(py::module_& m) {
         options.validate = validate.is_none()                ? ""
                            : py::isinstance<py::dict>(validate) ? "<validate arrays>"
                                                                 : py::str(validate).cast<std::string>();
-        options.estimator = estimator;
+        options.estimator = EnumArgument(kTorqueEstimatorNames, estimator);
         options.friction = friction;
         options.coulomb_smoothing = coulomb_smoothing;
         options.format.columns = columns;
@@ -261,7 +261,7 @@ void BindIdentify(py::module_& m) {
         options.command_line = "python: idbench.identify";
         return Identify(robot, data, options, validate);
       },
-      py::arg("robot"), py::arg("data"), py::kw_only(), py::arg("estimator") = id_defaults.estimator,
+      py::arg("robot"), py::arg("data"), py::kw_only(), py::arg("estimator") = std::string(ToString(id_defaults.estimator)),
       py::arg("friction") = id_defaults.friction, py::arg("coulomb_smoothing") = id_defaults.coulomb_smoothing,
       py::arg("validate") = py::none(), py::arg("columns") = std::vector<std::string>{},
       py::arg("angle_unit") = id_defaults.format.angle_unit, py::arg("drive_gains") = std::vector<double>{},
@@ -275,7 +275,7 @@ void BindIdentify(py::module_& m) {
       py::arg("total_mass_tolerance") = id_defaults.plausibility.total_mass_tolerance,
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
       py::arg("cost_tolerance") = id_defaults.plausibility.cost_tolerance, py::arg("write_unverified") = false,
-      py::arg("topic") = std::string(), py::arg("friction_side") = id_defaults.friction_side,
+      py::arg("topic") = std::string(), py::arg("friction_side") = std::string(kFrictionSideNames.Name(id_defaults.friction_side)),
       py::arg("base_pose") = py::none(),
       "Identifies the robot from a joint log: a CSV path or a ROS 2 bag (a directory with metadata.yaml, a .db3 or "
       ".mcap file; topic= names its JointState topic when it has several), read as `idbench identify --data`, or a dict of arrays "

@@ -41,6 +41,22 @@ TEST_F(ExportCliTest, GivesTheFilesIdentifyWrote) {
   r = Run(Export("--format urdf"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(Slurp(dir_ / "export" / "identified.urdf"), Slurp(dir_ / "id" / "identified.urdf"));
+  r = Run(Export("--format yaml"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "wrote " + (dir_ / "export" / "joints.yaml").string() + "\n");
+  EXPECT_EQ(Slurp(dir_ / "export" / "joints.yaml"), Slurp(dir_ / "id" / "joints.yaml"));
+}
+
+// With drive gains (read from currents) and offsets, joints.yaml carries every
+// value: export's from identified.json alone is the same bytes.
+TEST_F(ExportCliTest, GivesJointsYamlWithEveryValue) {
+  Identify("--friction viscous,coulomb,offset,rotor --write-unverified");
+  const Result r = Run(Export("--format yaml --write-unverified"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string yaml = Slurp(dir_ / "export" / "joints.yaml");
+  EXPECT_EQ(yaml, Slurp(dir_ / "id" / "joints.yaml"));
+  EXPECT_NE(yaml.find("    offset: "), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("    offset: null"), std::string::npos) << yaml;
 }
 
 // With offsets, this log's physically consistent estimate sits on its mass
@@ -81,7 +97,7 @@ TEST_F(ExportCliTest, RejectsAnotherRobotsFile) {
   EXPECT_NE(r.err.find("physically_consistent"), std::string::npos) << r.err;
   r = Run(Export("--format sdf"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--format"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err, "idbench: error: --format: expected mjcf, urdf or yaml, got 'sdf'\n");
   EXPECT_FALSE(fs::exists(dir_ / "export"));
 }
 

@@ -36,7 +36,7 @@ class IdentifyCommandTest : public ::testing::Test {
     options_.data = options_.validate = (dir_ / "log.csv").string();
     std::ofstream(options_.data) << FormatJointLogCsv(log);
     options_.friction = {"viscous", "coulomb"};
-    options_.estimator = "ols";
+    options_.estimator = TorqueEstimator::kOls;
     options_.out_dir = (dir_ / "out").string();
   }
   void TearDown() override { fs::remove_all(dir_); }

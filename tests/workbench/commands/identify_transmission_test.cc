@@ -139,7 +139,7 @@ class IdentifyTransmissionTest : public ::testing::Test {
     IdentifyOptions options;
     options.data = data;
     options.friction = {"viscous", "coulomb", "rotor"};
-    options.friction_side = "actuator";
+    options.friction_side = FrictionSide::kActuator;
     options.out_dir = (dir_ / "out").string();
     return options;
   }
@@ -228,7 +228,7 @@ TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJoi
   // Friction on the joint side cannot model the coupled motor: the fit is
   // clearly worse on the same log.
   IdentifyOptions joint_friction = motor;
-  joint_friction.friction_side = "joint";
+  joint_friction.friction_side = FrictionSide::kJoint;
   const double joint_side_error = RunIdentify(*model_, joint_friction).identification.fit.relative_error;
   std::printf("motor-side log, friction on the joints: fit relative error %.3g\n", joint_side_error);
   EXPECT_GT(joint_side_error, 1e-4);

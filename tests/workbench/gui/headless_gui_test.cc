@@ -254,7 +254,7 @@ frames 2
   options.data = options.validate = log;
   options.friction = {"viscous", "coulomb"};
   options.time_window = {0.5, 3.5};
-  options.estimator = "wls";
+  options.estimator = TorqueEstimator::kWls;
   const IdentifyReport expected = RunIdentify(session.model(), options);
   const JointTorqueIdentification& id = session.identify_report()->identification;
   EXPECT_EQ(id.beta, expected.identification.beta);

@@ -48,7 +48,7 @@ class IdentifyReportContentTest : public ::testing::Test {
     recorded.lines.resize(401);
     for (int s = 0; s < 401; ++s) recorded.lines[static_cast<size_t>(s)] = s + 2;
     options_.data = "log.csv";
-    options_.estimator = "ols";
+    options_.estimator = TorqueEstimator::kOls;
     report_ = IdentifyPreparedLogs(model_, options_,
                                    PrepareRecordedJointLog(std::move(recorded), "log.csv", options_.preparation(true)),
                                    std::nullopt);

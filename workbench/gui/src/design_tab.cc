@@ -59,12 +59,10 @@ void GuiApp::Impl::DrawDesignTab() {
   ImGui::SameLine(260);
   widgets.InputDouble("design.margin", "margin", &d.design.margin);
   widgets.Checkbox("design.rest_to_rest", "rest to rest", &d.design.rest_to_rest);
-  widgets.Combo("design.model", "model", &d.model, {"torque", "per-body"});
+  widgets.Combo("design.model", "model", &d.model, kIdentificationModelNames);
   ImGui::SameLine(260);
-  std::vector<std::string> criteria{""};
-  for (const std::string& c : DesignCriterionNames()) criteria.push_back(c);
-  widgets.Combo("design.criterion", "criterion", &d.criterion, criteria);
-  widgets.Combo("design.algorithm", "algorithm", &d.algorithm, DesignAlgorithmNames());
+  widgets.Combo("design.criterion", "criterion", &d.criterion, kDesignCriterionNames);
+  widgets.Combo("design.algorithm", "algorithm", &d.algorithm, kDesignAlgorithmNames);
   ImGui::SameLine(260);
   widgets.InputInt("design.starts", "starts", &d.design.starts, 1, 64);
   widgets.InputUnsigned("design.seed", "seed", &d.design.seed);

@@ -37,9 +37,9 @@ void GuiApp::Impl::DrawExperimentTab() {
   ImGui::BeginDisabled(session.motion == "designed");  // a designed motion is one period
   widgets.InputDouble("experiment.duration", "duration [s]", &session.builtin_duration);
   ImGui::EndDisabled();
-  widgets.Combo("identify.model", "identification model", &id.model, {"torque", "per-body"});
+  widgets.Combo("identify.model", "identification model", &id.model, kIdentificationModelNames);
   ImGui::EndDisabled();
-  if (id.model == "per-body") {
+  if (id.model == IdentificationModel::kPerBody) {
     ImGui::PopItemWidth();
     DrawPerBodyExperiment(busy);
     return;
@@ -60,7 +60,7 @@ void GuiApp::Impl::DrawExperimentTab() {
   else ImGui::TextColored(kDimColor, "no log yet");
 
   ImGui::BeginDisabled(busy);
-  widgets.Combo("identify.estimator", "estimator", &id.estimator, {"ols", "wls", "pc"});
+  widgets.Combo("identify.estimator", "estimator", &id.estimator, kTorqueEstimatorNames);
   ImGui::EndDisabled();
   ImGui::PopItemWidth();
   ImGui::SameLine();

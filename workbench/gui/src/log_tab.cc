@@ -215,7 +215,7 @@ void GuiApp::Impl::DrawLogTab() {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("One per joint, tau = K i from the current columns i1..; empty: the log's tau");
   ImGui::PopItemWidth();
   ImGui::SetNextItemWidth(80);
-  widgets.Combo("log.estimator", "estimator", &id.estimator, {"ols", "wls", "pc"});
+  widgets.Combo("log.estimator", "estimator", &id.estimator, kTorqueEstimatorNames);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   widgets.Combo("log.angle_unit", "angle unit", &id.format.angle_unit, {"rad", "deg"});

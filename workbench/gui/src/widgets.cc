@@ -101,23 +101,30 @@ bool Widgets::Checkbox(const std::string& name, const char* label, bool* value) 
 
 bool Widgets::Combo(const std::string& name, const char* label, std::string* value,
                     const std::vector<std::string>& options) {
+  const auto current = std::find(options.begin(), options.end(), *value);
+  return ComboIndex(name, label, current == options.end() ? -1 : static_cast<int>(current - options.begin()), *value,
+                    options, [value, options](int i) { *value = options[static_cast<size_t>(i)]; });
+}
+
+bool Widgets::ComboIndex(const std::string& name, const char* label, int current, const std::string& value,
+                         const std::vector<std::string>& options, const std::function<void(int)>& choose) {
   bool changed = false;
   auto shown = [](const std::string& option) { return option.empty() ? "(default)" : option.c_str(); };
-  if (ImGui::BeginCombo((std::string(label) + "##" + name).c_str(), shown(*value))) {
-    for (const std::string& option : options) {
-      const bool selected = option == *value;
-      if (ImGui::Selectable(shown(option), selected)) {
-        changed = option != *value;
-        *value = option;
+  if (ImGui::BeginCombo((std::string(label) + "##" + name).c_str(), shown(value))) {
+    for (size_t i = 0; i < options.size(); ++i) {
+      const bool selected = static_cast<int>(i) == current;
+      if (ImGui::Selectable(shown(options[i]), selected)) {
+        changed = !selected;
+        choose(static_cast<int>(i));
       }
       if (selected) ImGui::SetItemDefaultFocus();
     }
     ImGui::EndCombo();
   }
-  Record(name, [value, options](const std::string& text, std::string* why) {
-    for (const std::string& option : options) {
-      if (option == text) {
-        *value = text;
+  Record(name, [choose, options](const std::string& text, std::string* why) {
+    for (size_t i = 0; i < options.size(); ++i) {
+      if (options[i] == text) {
+        choose(static_cast<int>(i));
         return true;
       }
     }

@@ -230,7 +230,6 @@ bool CompareOptions::IsValid(std::string* why) const {
     return fail("give at least one motion (built-in name, .json/.csv trajectory file, or a recorded log)");
   }
   if (!logs.empty() && !preparation().IsValid(why)) return false;
-  if (model != "torque" && model != "per-body") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (samples < 4) return fail("samples: must be >= 4, got " + std::to_string(samples));
@@ -255,7 +254,7 @@ bool CompareOptions::IsValid(std::string* why) const {
 CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options) {
   const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   CheckRegressorSamples("samples", options.samples, model.n_dof());
-  const bool per_body = options.model == "per-body";
+  const bool per_body = options.model == IdentificationModel::kPerBody;
   const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
                                              : DesignRegressor::JointTorque(model, *ParseFrictionTerms(options.friction, nullptr));
   CompareReport report;
@@ -358,7 +357,7 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
   std::string out;
   char line[512];
   std::snprintf(line, sizeof line, "compare: %s model, %zu parameters, %d samples per motion, %d noisy trials\n\n",
-                options.model.c_str(), report.parameter_names.size(), options.samples, options.trials);
+                std::string(kIdentificationModelNames.Name(options.model)).c_str(), report.parameter_names.size(), options.samples, options.trials);
   out += line;
   std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %11s %11s  %s\n", "rank", "motion", "cond(W)",
                 "norm cond", "log det", "sigma_min", "realised", "MC error", "limits, clearance");
@@ -392,12 +391,12 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
            "torque noise.";
   }
   out += "\n";
-  out += options.model == "torque"
+  out += options.model == IdentificationModel::kJointTorque
              ? "\nMC error: mean over trials of |beta_hat - beta|/|beta| (WLS, torque noise); realised: cond(W) of the "
                "states Bullet executed.\n"
              : "\nMC error: mean over trials of the mean relative error of every identifiable mass and principal "
                "moment (hinge-wrench noise); realised: cond(W) of the states Bullet executed.\n";
-  if (options.model == "torque") {
+  if (options.model == IdentificationModel::kJointTorque) {
     out += "\npredicted %sigma per base parameter:\n";
     std::snprintf(line, sizeof line, "%4s", "#");
     out += line;
@@ -468,13 +467,13 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
   }
   const json doc = {{"command", options.command_line},
                     {"robot", options.robot},
-                    {"model", options.model},
+                    {"model", std::string(kIdentificationModelNames.Name(options.model))},
                     {"samples", options.samples},
                     {"trials", options.trials},
                     {"seed", options.seed},
                     {"scene", options.scene.empty() ? json(nullptr) : json(options.scene)},
                     {"base_pose", options.base_pose.xyz_rpy},
-                    {"noise", options.model == "torque" ? json{{"tau", options.tau_noise}}
+                    {"noise", options.model == IdentificationModel::kJointTorque ? json{{"tau", options.tau_noise}}
                                                         : json{{"force", options.wrench_noise[0]},
                                                                {"moment", options.wrench_noise[1]}}},
                     {"parameters", report.parameter_names},

@@ -38,15 +38,8 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
-  if (model != "torque" && model != "per-body") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
-  if (!criterion.empty() && !ParseDesignCriterion(criterion)) {
-    return fail("criterion: expected cond, cond-normalised, logdet or hybrid, got '" + criterion + "'");
-  }
-  if (!ParseDesignAlgorithm(algorithm)) {
-    return fail("algorithm: expected slsqp, mma, cobyla or sbplx, got '" + algorithm + "'");
-  }
   if (!design.IsValid(why)) return false;
   if (!(csv_rate_hz > 0.0) || !std::isfinite(csv_rate_hz)) return fail("csv_rate_hz: must be > 0 Hz");
   if (csv_rate_hz < MinimumCsvRate(design)) {
@@ -56,9 +49,6 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
                   "the highest harmonic, 10 x %d harmonics x %g Hz (f0) = %g Hz",
                   csv_rate_hz, design.harmonics, design.f0, MinimumCsvRate(design));
     return fail(buf);
-  }
-  if (csv_columns != "q" && csv_columns != "q,qd,qdd") {
-    return fail("csv_columns: expected 'q' or 'q,qd,qdd', got '" + csv_columns + "'");
   }
   for (double q : home) {
     if (!std::isfinite(q)) return fail("home: expected finite joint angles [rad]");
@@ -82,15 +72,15 @@ DesignOptions DesignCommandOptions::Resolved() const {
   DesignOptions d = design;
   if (!home.empty()) d.home = Eigen::Map<const Eigen::VectorXd>(home.data(), static_cast<Eigen::Index>(home.size()));
   d.check_rate_hz = std::max(d.check_rate_hz, csv_rate_hz);
-  d.criterion = !criterion.empty() ? *ParseDesignCriterion(criterion)
-                : model == "per-body" ? DesignCriterion::kLogDet
-                                      : DesignCriterion::kLogCond;
-  d.algorithm = *ParseDesignAlgorithm(algorithm);
+  d.criterion = criterion                                  ? *criterion
+                : model == IdentificationModel::kPerBody ? DesignCriterion::kLogDet
+                                                         : DesignCriterion::kLogCond;
+  d.algorithm = algorithm;
   return d;
 }
 
 DesignRegressor DesignCommandOptions::MakeRegressor(const RobotModel& robot) const {
-  if (model == "per-body") return DesignRegressor::PerBody(robot);
+  if (model == IdentificationModel::kPerBody) return DesignRegressor::PerBody(robot);
   return DesignRegressor::JointTorque(robot, *ParseFrictionTerms(friction, nullptr));
 }
 
@@ -168,7 +158,7 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
   }
   if (!options.quiet) {
     std::fprintf(stderr, "design: %s, %s model (%d parameters), %s, %d starts on %d threads, seed %u\n",
-                 model.name().c_str(), options.model.c_str(), regressor.n_parameters(),
+                 model.name().c_str(), std::string(kIdentificationModelNames.Name(options.model)).c_str(), regressor.n_parameters(),
                  DesignAlgorithmName(design.algorithm).c_str(), design.starts, std::min(design.threads, design.starts),
                  design.seed);
     control.progress = [&](const DesignProgress& p) {
@@ -209,7 +199,7 @@ std::string FormatDesignTrajectoryCsv(const RobotModel& model, const DesignComma
                                       const DesignCommandReport& report) {
   std::vector<std::string> joint_names;
   for (const Link& link : model.links()) joint_names.push_back(link.joint_name);
-  return FormatTrajectoryCsv(report.result.RobotTrajectory(), options.csv_rate_hz, options.csv_columns != "q",
+  return FormatTrajectoryCsv(report.result.RobotTrajectory(), options.csv_rate_hz, options.csv_columns == TrajectoryCsvColumns::kQQdQdd,
                              joint_names);
 }
 
@@ -271,8 +261,8 @@ nlohmann::json SettingsJson(const RobotModel& model, const DesignCommandOptions&
   return {
       {"command", options.command_line},
       {"robot", model.name()},
-      {"model", options.model},
-      {"friction", options.model == "torque" ? json(options.friction) : json::array()},
+      {"model", std::string(kIdentificationModelNames.Name(options.model))},
+      {"friction", options.model == IdentificationModel::kJointTorque ? json(options.friction) : json::array()},
       {"parameters", parameter_names},
       {"criterion", DesignCriterionName(design.criterion)},
       {"algorithm", DesignAlgorithmName(design.algorithm)},
@@ -340,7 +330,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},
       {"check", CheckJson(r.check)},
-      {"csv", {{"rate_hz", options.csv_rate_hz}, {"columns", options.csv_columns},
+      {"csv", {{"rate_hz", options.csv_rate_hz}, {"columns", std::string(kTrajectoryCsvColumnsNames.Name(options.csv_columns))},
                {"duration", r.RobotTrajectory().duration()}}},
       {"starts", starts},
       {"home", {{"q", std::vector<double>(r.home.data(), r.home.data() + r.home.size())}, {"source", r.home_source}}},

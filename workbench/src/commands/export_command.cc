@@ -8,11 +8,19 @@
 #include "idbench/engine/urdf.h"
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/formats/joints_yaml.h"
 #include "idbench/workbench/formats/mjcf_writer.h"
 
 namespace idbench {
 
-std::string ExportOptions::file_name() const { return format == "urdf" ? "identified.urdf" : "identified.xml"; }
+std::string ExportOptions::file_name() const {
+  switch (format) {
+    case ExportFormat::kMjcf: return "identified.xml";
+    case ExportFormat::kUrdf: return "identified.urdf";
+    case ExportFormat::kYaml: return "joints.yaml";
+  }
+  return "";
+}
 
 bool ExportOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
@@ -20,7 +28,6 @@ bool ExportOptions::IsValid(std::string* why) const {
     return false;
   };
   if (identified.empty()) return fail("identified: the identified.json of an identify run is required");
-  if (format != "mjcf" && format != "urdf") return fail("format: expected mjcf or urdf, got '" + format + "'");
   if (!base_pose.IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
@@ -91,8 +98,12 @@ ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
                                                  : " is not written (write_unverified writes it anyway)");
     }
     if (!report.writes) return report;
+    if (options.format == ExportFormat::kYaml) {
+      report.content = FormatJointsYaml(model.name(), JointDynamicsFromJson(field(json, "joints")), *friction);
+      return report;
+    }
     const RobotModel identified = ModelWithStandardParameters(model, *friction, pi);
-    report.content = options.format == "urdf" ? WriteUrdf(identified) : WriteMjcf(identified);
+    report.content = options.format == ExportFormat::kUrdf ? WriteUrdf(identified) : WriteMjcf(identified);
     return report;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(path + ": " + e.what() + ": expected the identified.json `identify` writes");

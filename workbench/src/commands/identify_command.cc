@@ -20,7 +20,7 @@ namespace idbench {
 FrictionModel IdentifyOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
-  if (friction_side == "actuator") {
+  if (friction_side == FrictionSide::kActuator) {
     const std::optional<Transmission> t = transmission();
     if (!t) {
       throw std::invalid_argument("friction_side \"actuator\": no transmission to act through: give \"transmission\" "
@@ -57,17 +57,12 @@ bool IdentifyOptions::IsValid(std::string* why) const {
     return false;
   };
   if (data.empty()) return fail("data: a joint-log CSV is required");
-  if (model == "per-body") {
+  if (model == IdentificationModel::kPerBody) {
     return fail("model: per-body needs the wrench through every hinge, which a joint log does not carry; "
                 "`idbench run` identifies per body from Bullet's joint feedback");
   }
-  if (model != "torque") return fail("model: expected 'torque' or 'per-body', got '" + model + "'");
-  if (!ParseTorqueEstimator(estimator)) return fail("estimator: expected ols, wls or pc, got '" + estimator + "'");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
-  if (friction_side != "joint" && friction_side != "actuator") {
-    return fail("friction_side: expected joint or actuator, got '" + friction_side + "'");
-  }
   if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
     return fail("coulomb_smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
   std::string filter_why;
@@ -133,7 +128,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   IdentifyReport report;
   JointTorqueOptions id_options;
   id_options.friction = options.friction_model();
-  id_options.estimator = *ParseTorqueEstimator(options.estimator);
+  id_options.estimator = options.estimator;
   id_options.plausibility = options.plausibility;
   report.log = std::move(data.log);
   report.n_samples = data.n_samples;
@@ -149,7 +144,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     const StackedFactors factors = FoldPreparedLog(data, model, id_options.friction, base, {}, nullptr,
                                                    LogPreparationOptions::kMaxHeldSamples,
                                                    stages->Next("identifying from " + options.data));
-    stages->Next("solving (" + options.estimator + ")");
+    stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
     report.identification = IdentifyJointTorque(model, base, factors, id_options);
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();

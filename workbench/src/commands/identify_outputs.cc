@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "idbench/engine/urdf.h"
+#include "idbench/workbench/formats/joints_yaml.h"
 #include "idbench/workbench/formats/mjcf_writer.h"
 #include "number_format.h"
 
@@ -18,15 +19,10 @@ namespace {
 // Per joint, what a controller loads besides the URDF: the physically
 // consistent estimate's friction, offset and rotor inertia (null when not in
 // the model) and the drive gain the log was read with (null without currents).
-// Actuator side (friction_side "actuator"): a joint one motor k drives alone
+// Actuator side (friction_side kActuator): a joint one motor k drives alone
 // with ratio N (Transmission::SingleMotorOf) gets motor k's terms as their
 // joint-side equivalents by virtual work, Fv·N², Fc·|N|, offset·N, Ia·N²; a
 // coupled joint has none (null, never 0) and lists the motors turning with it.
-struct JointDynamicsValues {
-  std::string name;
-  std::optional<double> viscous, coulomb, offset, rotor_inertia, drive_gain;
-  std::vector<int> coupled_motors;  // 0-based motors k with A(k, j) ≠ 0 when the joint is coupled; else empty
-};
 std::vector<JointDynamicsValues> JointDynamicsOf(const RobotModel& model, const IdentifyOptions& options,
                                                  const IdentifyReport& report) {
   const std::vector<std::string>& names = report.identification.standard_names;
@@ -67,49 +63,6 @@ std::vector<JointDynamicsValues> JointDynamicsOf(const RobotModel& model, const 
     v.coulomb = scaled(parameter("Fc", m), std::abs(N));
     v.offset = scaled(parameter("offset", m), N);
     v.rotor_inertia = scaled(parameter("Ia", m), N * N);
-  }
-  return joints;
-}
-
-// "motors 5 and 6" (1-based) for a coupled joint's comment.
-std::string MotorList(const std::vector<int>& motors) {
-  std::string out = motors.size() == 1 ? "motor " : "motors ";
-  for (size_t i = 0; i < motors.size(); ++i) {
-    out += (i == 0 ? "" : i + 1 == motors.size() ? " and " : ", ") + std::to_string(motors[i] + 1);
-  }
-  return out;
-}
-
-// Why a coupled joint carries no friction or rotor inertia, and where the
-// actuator-side values are.
-std::string CouplingNote(const JointDynamicsValues& v, const FrictionModel& friction) {
-  std::string terms;
-  for (int k : v.coupled_motors) {
-    const std::string m = "m" + std::to_string(k + 1);
-    for (const auto& [on, term] : {std::pair{friction.viscous, "Fv"}, {friction.coulomb, "Fc"},
-                                   {friction.offset, "offset"}, {friction.rotor_inertia, "Ia"}}) {
-      if (on) terms += (terms.empty() ? "" : ", ") + std::string(term) + m;
-    }
-  }
-  return "joint '" + v.name + "' is coupled: " + MotorList(v.coupled_motors) +
-         (v.coupled_motors.size() == 1 ? " turns" : " turn") + " with it (transmission actuator_from_joint), so its friction and rotor inertia are per motor, "
-         "not per joint; not 0 but not expressible here: see identified.json's standard_parameters " +
-         (terms.empty() ? std::string("(none in the model)") : terms);
-}
-
-nlohmann::json JointDynamicsJson(const RobotModel& model, const IdentifyOptions& options, const IdentifyReport& report) {
-  auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
-  nlohmann::json joints = nlohmann::json::array();
-  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
-    nlohmann::json joint = {{"name", v.name}, {"viscous", value(v.viscous)}, {"coulomb", value(v.coulomb)},
-                            {"offset", value(v.offset)}, {"rotor_inertia", value(v.rotor_inertia)},
-                            {"drive_gain", value(v.drive_gain)}};
-    if (!v.coupled_motors.empty()) {
-      nlohmann::json motors = nlohmann::json::array();
-      for (int k : v.coupled_motors) motors.push_back(k + 1);
-      joint["coupled_motors"] = motors;
-    }
-    joints.push_back(joint);
   }
   return joints;
 }
@@ -160,21 +113,7 @@ std::string AnnotateCoupledJoints(std::string text, const RobotModel& model, con
 
 std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
                                     const IdentifyReport& report) {
-  auto value = [](const std::optional<double>& v) { return v ? Shortest(*v) : std::string("null"); };
-  std::string out = "# idbench identify: per-joint friction and drive values of the physically consistent estimate\n"
-                    "# (the rigid-body parameters are in identified.urdf). Units: viscous [N m s/rad], coulomb and\n"
-                    "# offset [N m], rotor_inertia [kg m^2], drive_gain [N m/A]; null: not in the model, or a coupled\n"
-                    "# joint's (see its comment), never a measured zero.\n"
-                    "robot: \"" + model.name() + "\"\njoints:\n";
-  const FrictionModel friction = options.friction_model();
-  for (const JointDynamicsValues& v : JointDynamicsOf(model, options, report)) {
-    out += "  - name: \"" + v.name + "\"\n";
-    if (!v.coupled_motors.empty()) out += "    # " + CouplingNote(v, friction) + "\n";
-    out += "    viscous: " + value(v.viscous) + "\n    coulomb: " + value(v.coulomb) +
-           "\n    offset: " + value(v.offset) + "\n    rotor_inertia: " + value(v.rotor_inertia) +
-           "\n    drive_gain: " + value(v.drive_gain) + "\n";
-  }
-  return out;
+  return FormatJointsYaml(model.name(), JointDynamicsOf(model, options, report), options.friction_model());
 }
 
 std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
@@ -259,8 +198,8 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
                                       : "from the log"},
       {"log_preparation", report.notes},
       {"time_window", options.time_window.empty() ? json(nullptr) : json(options.time_window)},
-      {"model", options.model},
-      {"estimator", options.estimator},
+      {"model", std::string(kIdentificationModelNames.Name(options.model))},
+      {"estimator", std::string(ToString(options.estimator))},
       {"friction", options.friction},
       {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
       {"rank", id.linear.rank},
@@ -289,9 +228,9 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
           {"cost_tolerance", options.plausibility.cost_tolerance}}},
         {"standard_parameters", standard},
         {"links", links}}},
-      {"joints", JointDynamicsJson(model, options, report)},
+      {"joints", JointDynamicsJson(JointDynamicsOf(model, options, report))},
   };
-  if (options.friction_side == "actuator") result["joint_side"] = JointSideEquivalentsJson(model, options, report);
+  if (options.friction_side == FrictionSide::kActuator) result["joint_side"] = JointSideEquivalentsJson(model, options, report);
   if (report.validation) {
     result["validation"] = {{"data", options.validate},
                             {"joint_rms", ToStdVector(report.validation->joint_rms)},

@@ -21,7 +21,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   char line[512];
   std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
                 "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), static_cast<int>(report.n_samples),
-                report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), options.estimator.c_str(),
+                report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), std::string(ToString(options.estimator)).c_str(),
                 id.linear.cond);
   out += line;
   std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
@@ -42,7 +42,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   }
   out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero "
          "(%sigma '-': sigma itself is what is known)\n";
-  if (options.estimator == "pc") {
+  if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
     out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "
            "%sigma: relative to the value shown\n";
   }

@@ -52,7 +52,7 @@ ReportContent MakeDesignReportContent(const RobotModel& model, const DesignComma
   const DesignResult& r = report.result;
   const DesignOptions design = options.Resolved();
   ReportContent content;
-  content.title = "idbench design: " + model.name() + ", " + options.model + " model";
+  content.title = "idbench design: " + model.name() + ", " + std::string(kIdentificationModelNames.Name(options.model)) + " model";
   content.command = options.command_line;
   content.experiment = {
       {"criterion", DesignCriterionName(design.criterion) + ": " + Format("%.6g", r.initial_value) + " → " +
@@ -109,7 +109,7 @@ ReportContent MakeDesignReportContent(const RobotModel& model, const DesignComma
 
 ReportContent MakeCompareReportContent(const CompareOptions& options, const CompareReport& report) {
   ReportContent content;
-  content.title = "idbench compare: " + options.robot + ", " + options.model + " model";
+  content.title = "idbench compare: " + options.robot + ", " + std::string(kIdentificationModelNames.Name(options.model)) + " model";
   content.command = options.command_line;
   content.experiment = {{"samples per motion", std::to_string(options.samples)},
                         {"Monte-Carlo trials", std::to_string(options.trials) + " (seed " +
@@ -128,7 +128,7 @@ ReportContent MakeCompareReportContent(const CompareOptions& options, const Comp
     summaries.push_back({m.name, m.designed.cond, m.designed.log_det / std::log(10.0), m.mean_relative_error});
   }
   content.tables.push_back(std::move(table));
-  if (options.model == "torque" && !report.motions.empty()) {
+  if (options.model == IdentificationModel::kJointTorque && !report.motions.empty()) {
     ReportTable sigma{"Predicted %σ per base parameter (WLS covariance)", {"#", "parameter"}, {}};
     for (size_t m = 0; m < report.motions.size(); ++m) sigma.header.push_back(report.motions[m].name);
     for (size_t k = 0; k < report.parameter_names.size(); ++k) {

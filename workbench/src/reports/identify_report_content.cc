@@ -35,14 +35,14 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
   const std::string reference = simulated ? "truth (robot file)" : "robot file";
   const std::vector<std::string> joint_names = JointNames(model);
   ReportContent content;
-  content.title = "idbench identify: " + model.name() + " from " + options.data + ", " + options.estimator;
+  content.title = "idbench identify: " + model.name() + " from " + options.data + ", " + std::string(ToString(options.estimator));
   content.command = options.command_line.empty() ? "idbench identify" : options.command_line;
   std::string friction;
   for (const std::string& f : options.friction) friction += (friction.empty() ? "" : ",") + f;
   content.experiment = {{"robot", model.name()},
                         {simulated ? "simulated log" : "recorded log",
                          options.data + " (" + SamplesText(report) + ")"},
-                        {"estimator", options.estimator},
+                        {"estimator", std::string(ToString(options.estimator))},
                         {"friction", friction},
                         {"cond(W)", id.linear.rank < id.base.n_base()
                                         ? "inf: rank " + std::to_string(id.linear.rank) + " of " +
@@ -111,7 +111,7 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
        SpectrumPlot("Singular-value spectrum of the base regressor", {{"W", NormalizedSingularValues(W)}})}};
   // Measured against predicted torque, τ̂ = W β of the chosen estimator, on
   // the equations the RMS numbers score (parallel-filtered as they are).
-  const std::string how = " (τ̂ = W β, " + options.estimator + "): ";
+  const std::string how = " (τ̂ = W β, " + std::string(ToString(options.estimator)) + "): ";
   const auto filtered = [](const std::optional<ParallelFilter>& filter) {
     return filter ? "both parallel-filtered, the filter's ends dropped, as in the torque RMS." : "as in the torque RMS.";
   };

@@ -18,24 +18,22 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "idbench/engine/enum_names.h"
 
 namespace idbench {
 
 enum class DesignCriterion { kLogCond, kLogCondNormalised, kLogDet, kHybrid };
 
-// The enum value named `name`, with `names` listed in the enum's order.
-template <typename Enum>
-std::optional<Enum> EnumFromName(const std::vector<std::string>& names, const std::string& name) {
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) return static_cast<Enum>(i);
-  }
-  return std::nullopt;
-}
+inline constexpr EnumNames<DesignCriterion, 4> kDesignCriterionNames{
+    "criterion", {"cond", "cond-normalised", "logdet", "hybrid"}};
 
 std::vector<std::string> DesignCriterionNames();  // "cond", "cond-normalised", "logdet", "hybrid"
 std::string DesignCriterionName(DesignCriterion criterion);
-std::optional<DesignCriterion> ParseDesignCriterion(const std::string& name);
+// false with *why = "criterion: expected cond, cond-normalised, logdet or hybrid, got '...'".
+bool ParseDesignCriterion(std::string_view text, DesignCriterion* criterion, std::string* why = nullptr);
 
 struct Identifiability {
   int rows = 0, cols = 0;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "idbench/engine/adjoint.h"
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/kinematics.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
@@ -31,7 +32,11 @@
 
 namespace idbench {
 
+// The identification model: joint torques (base parameters, friction) or
+// per body (every link's inertial parameters, from the wrench through each
+// hinge). Option fields `model` name it "torque" | "per-body".
 enum class IdentificationModel { kJointTorque, kPerBody };
+inline constexpr EnumNames<IdentificationModel, 2> kIdentificationModelNames{"model", {"torque", "per-body"}, true};
 
 class DesignRegressor {
  public:

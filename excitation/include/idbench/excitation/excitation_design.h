@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/link_clearance.h"
 #include "idbench/engine/cell.h"
 #include "idbench/engine/robot_model.h"
@@ -35,9 +36,11 @@
 namespace idbench {
 
 enum class DesignAlgorithm { kSlsqp, kMma, kCobyla, kSbplx };
+inline constexpr EnumNames<DesignAlgorithm, 4> kDesignAlgorithmNames{"algorithm", {"slsqp", "mma", "cobyla", "sbplx"}};
 std::vector<std::string> DesignAlgorithmNames();  // "slsqp", "mma", "cobyla", "sbplx"
 std::string DesignAlgorithmName(DesignAlgorithm algorithm);
-std::optional<DesignAlgorithm> ParseDesignAlgorithm(const std::string& name);
+// false with *why = "algorithm: expected slsqp, mma, cobyla or sbplx, got '...'".
+bool ParseDesignAlgorithm(std::string_view text, DesignAlgorithm* algorithm, std::string* why = nullptr);
 
 struct DesignOptions {
   int harmonics = 5;               // H

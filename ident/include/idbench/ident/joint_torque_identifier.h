@@ -6,8 +6,10 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/measurements.h"
 #include "idbench/ident/base_parameters.h"
 #include "idbench/ident/linear_estimator.h"
@@ -18,10 +20,12 @@
 namespace idbench {
 
 enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent };
+inline constexpr EnumNames<TorqueEstimator, 3> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc"}};
 
 // "ols", "wls", "pc".
-const char* ToString(TorqueEstimator estimator);
-std::optional<TorqueEstimator> ParseTorqueEstimator(const std::string& name);
+std::string_view ToString(TorqueEstimator estimator);
+// false with *why = "estimator: expected ols, wls or pc, got '...'".
+bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why = nullptr);
 
 // Parallel filtering (Gautier 1997): the stacked regressor's columns and the
 // torques pass through the same zero-phase low-pass, per joint; then the end

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "idbench/excitation/design_criterion.h"
+#include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/excitation_design.h"
 #include "idbench/workbench/commands/log_preparation.h"
 
@@ -28,7 +29,7 @@ struct CompareOptions {
   LogFilterOptions filter{.trim_s = -1.0}; // for logs missing qd or qdd
   double max_gap_s = 0.0;                  // [s] longest step resampled; 0: 10 median steps
   std::string robot = "puma560";
-  std::string model = "torque";            // torque | per-body
+  IdentificationModel model = IdentificationModel::kJointTorque;
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   double duration = 10.0;                  // [s] of built-in motions; files bring their own
   int samples = 250;                       // samples per motion (grid and simulated log)

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,16 +17,21 @@
 
 namespace idbench {
 
+// trajectory.csv's columns (DesignCommandOptions::csv_columns): positions, or
+// positions, velocities and accelerations.
+enum class TrajectoryCsvColumns { kQ, kQQdQdd };
+inline constexpr EnumNames<TrajectoryCsvColumns, 2> kTrajectoryCsvColumnsNames{"csv_columns", {"q", "q,qd,qdd"}, true};
+
 struct DesignCommandOptions {
   std::string robot = "puma560";                     // built-in name or URDF path
-  std::string model = "torque";                      // torque | per-body
+  IdentificationModel model = IdentificationModel::kJointTorque;
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // joint-torque model's friction terms (as identify)
-  // "" = cond for the torque model; logdet for per-body, where minimising the
+  // nullopt = cond for the torque model; logdet for per-body, where minimising the
   // normalised cond shrinks the motion (measured on paper6r: Monte-Carlo error
   // 4.0e-3 with cond-normalised, 2.2e-4 with cond, 9.6e-5 with logdet, 8.0e-4
   // for the paper's motion).
-  std::string criterion;
-  std::string algorithm = "slsqp";
+  std::optional<DesignCriterion> criterion;
+  DesignAlgorithm algorithm = DesignAlgorithm::kSlsqp;
   std::string limits;                                // limits JSON (optional)
   std::string scene;                                 // scene JSON (scene_file.h; optional): design.scene
   // The transmission the limits file's "actuators" are given through
@@ -35,7 +41,7 @@ struct DesignCommandOptions {
                                                      // mounts the model it is given (MountRobot)
   double csv_rate_hz = 1000.0;                       // trajectory.csv sample rate; the re-check runs at
                                                      // the larger of it and design.check_rate_hz
-  std::string csv_columns = "q,qd,qdd";              // trajectory.csv: "q" (positions) or "q,qd,qdd"
+  TrajectoryCsvColumns csv_columns = TrajectoryCsvColumns::kQQdQdd;  // trajectory.csv's columns
   std::vector<double> home;                          // [rad] --home (n_dof); empty: found (home_pose.h)
   bool quiet = false;                                // no progress on stderr
   // Write trajectory.json and trajectory.csv even when the design is not

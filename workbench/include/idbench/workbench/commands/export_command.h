@@ -1,30 +1,35 @@
 // `idbench export`: an identification's robot model again, in a format, from
 // what `identify` wrote (identified.json: its friction terms, the physically
 // consistent standard parameters and their verdict) and the robot it
-// identified: identified.xml (MJCF, formats/mjcf_writer.h) or identified.urdf,
-// the same bytes `identify` writes for them.
+// identified: identified.xml (MJCF, formats/mjcf_writer.h), identified.urdf
+// or joints.yaml (formats/joints_yaml.h), the same bytes `identify` writes.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/transmission.h"
 
 namespace idbench {
 
+// What `export` writes (ExportOptions::format): identified.xml, identified.urdf or joints.yaml.
+enum class ExportFormat { kMjcf, kUrdf, kYaml };
+inline constexpr EnumNames<ExportFormat, 3> kExportFormatNames{"format", {"mjcf", "urdf", "yaml"}};
+
 struct ExportOptions {
   std::string robot = "puma560";  // the robot identified: built-in name or URDF path
   BasePose base_pose;             // as identified: the model given to RunExport must be mounted so
   std::string identified;         // identified.json, as `identify` wrote it (required)
-  std::string format = "mjcf";    // mjcf (identified.xml) | urdf (identified.urdf)
+  ExportFormat format = ExportFormat::kMjcf;
   // Write it also when the physically consistent estimate is not fit to load
   // (the verdict in identified.json): the user accepts it.
   bool write_unverified = false;
   std::string out_dir = "out/export";
 
-  // The file written: identified.xml or identified.urdf.
+  // The file written: identified.xml, identified.urdf or joints.yaml.
   std::string file_name() const;
   // Checks the options alone; *why names the bad field.
   bool IsValid(std::string* why) const;

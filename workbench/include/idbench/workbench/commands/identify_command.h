@@ -11,6 +11,7 @@
 
 #include "idbench/engine/base_pose.h"
 #include "idbench/engine/measurements.h"
+#include "idbench/excitation/design_regressor.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/signal_filter.h"
 #include "idbench/logs/joint_log_format.h"
@@ -18,20 +19,24 @@
 
 namespace idbench {
 
+// Where IdentifyOptions' friction and rotor terms act (IdentifyOptions::friction_side).
+enum class FrictionSide { kJoint, kActuator };
+inline constexpr EnumNames<FrictionSide, 2> kFrictionSideNames{"friction_side", {"joint", "actuator"}};
+
 struct IdentifyOptions {
   std::string robot = "puma560";   // built-in name or URDF path
   std::string data;                // joint-log CSV (required)
-  std::string model = "torque";    // "torque"; "per-body" needs hinge wrenches (idbench run)
+  IdentificationModel model = IdentificationModel::kJointTorque;  // kPerBody needs hinge wrenches (idbench run)
   BasePose base_pose;              // the robot's base in the world: the model given to RunIdentify
                                    // must have its gravity (MountRobot; refused otherwise)
-  std::string estimator = "ols";   // ols | wls | pc
+  TorqueEstimator estimator = TorqueEstimator::kOls;
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
-  // Where the friction and rotor terms act: "joint" (per joint, on q̇), or
-  // "actuator" (per motor, on θ̇m = A·q̇, into the joints through Aᵀ; needs
+  // Where the friction and rotor terms act: kJoint (per joint, on q̇), or
+  // kActuator (per motor, on θ̇m = A·q̇, into the joints through Aᵀ; needs
   // the transmission: the data's log description's, else format.transmission,
   // the robot's URDF's).
-  std::string friction_side = "joint";
+  FrictionSide friction_side = FrictionSide::kJoint;
   LogFilterOptions filter{.trim_s = -1.0};  // used when the log has no qd/qdd columns; trims 5/fc
   PlausibilitySettings plausibility;  // bounds of the physically consistent estimate
   std::string validate;            // held-out joint log (optional)
