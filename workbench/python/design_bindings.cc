@@ -143,7 +143,7 @@ void BindDesign(py::module_& m) {
          bool rest_to_rest, int samples, int starts, unsigned seed, int threads, int max_evaluations,
          double max_time, double margin, double clearance, const std::string& limits, double rate,
          const std::string& csv_columns, double ramp, const std::vector<double>& home, const std::string& transmission,
-         const py::object& progress) {
+         const std::string& scene, const py::object& base_pose, const py::object& progress) {
         DesignCommandOptions options;
         options.robot = robot.source;
         options.model = EnumArgument(kIdentificationModelNames, model);
@@ -164,6 +164,8 @@ void BindDesign(py::module_& m) {
         options.design.clearance = clearance;
         options.limits = limits;
         options.transmission = transmission;
+        options.scene = scene;
+        options.design.base_pose = BasePoseArgument(base_pose);
         options.csv_rate_hz = rate;
         options.csv_columns = EnumArgument(kTrajectoryCsvColumnsNames, csv_columns);
         options.design.ramp_seconds = ramp;
@@ -184,9 +186,12 @@ void BindDesign(py::module_& m) {
       py::arg("clearance") = design_defaults.design.clearance, py::arg("limits") = design_defaults.limits,
       py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = std::string(kTrajectoryCsvColumnsNames.Name(design_defaults.csv_columns)),
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
-      py::arg("transmission") = design_defaults.transmission, py::arg("progress") = py::none(),
+      py::arg("transmission") = design_defaults.transmission, py::arg("scene") = design_defaults.scene,
+      py::arg("base_pose") = py::none(), py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). transmission: \"urdf\" or a file, through which "
-      "the limits file's \"actuators\" (motor-side qd_max, tau_max) are kept. progress(start, evaluations, best_value, feasible) "
+      "the limits file's \"actuators\" (motor-side qd_max, tau_max) are kept. scene: the cell's JSON file (obstacles, "
+      "floor), kept clear of; base_pose=(x, y, z, roll, pitch, yaw) mounts the robot (a cell whose obstacles leave no "
+      "room raises RuntimeError, explained per obstacle; settings that admit no motion raise ValueError). progress(start, evaluations, best_value, feasible) "
       "is called as the starts run (TypeError before any work if it cannot be called so; an exception it raises "
       "stops the design and is raised again); Ctrl-C stops and returns the best design so far (stopped = True).");
 }

@@ -299,6 +299,26 @@ print("result", r.stopped, r.feasible, r.value <= r.initial_value, flush=True)
     assert out.strip().splitlines()[-1] == "result True True True"
 
 
+def test_a_cell_without_room_is_a_runtime_error_as_the_command_lines_exit_1(tmp_path):
+    # A pillar around the UR10e-like arm's base (mounting_cli_test): the design ran into the cell, which is
+    # where the robot stands, not a wrong option: exit 1 on the command line, RuntimeError here, the same
+    # explanation per obstacle, its options spelled as keywords.
+    ur = os.path.join(SOURCE_DIR, "tests/data/ur10e_like/")
+    (tmp_path / "scene.json").write_text(json.dumps({"obstacles": [
+        {"type": "cylinder", "name": "pillar", "radius": 0.4, "length": 2, "pose": [0, 0, 1, 0, 0, 0]}]}))
+    quick = ["--harmonics", "3", "--f0", "0.2", "--samples", "60", "--starts", "1"]
+    code, _, err = cli("design", "--robot", ur + "ur10e_like.urdf", "--limits", ur + "lim_acc.json", *quick,
+                       "--scene", "scene.json", "--quiet", "--out", "d", cwd=tmp_path)
+    assert code == 1, err
+    robot = idbench.Robot(ur + "ur10e_like.urdf")
+    with pytest.raises(RuntimeError) as raised:
+        idbench.design(robot, limits=ur + "lim_acc.json", harmonics=3, f0=0.2, samples=60, starts=1,
+                       scene=str(tmp_path / "scene.json"))
+    assert "the scene's obstacle 'pillar' (obstacles[0], a cylinder of radius 0.4 m" in str(raised.value)
+    assert "or a base_pose further from it" in str(raised.value)
+    assert "--base-pose" in err and "--base-pose" not in str(raised.value)
+
+
 def test_an_impossible_design_is_a_value_error_with_the_command_lines_explanation(tmp_path):
     # The UR10e-like arm with a shoulder range that holds the upper arm in the floor (home_pose_test):
     # the settings admit no motion, seen before the search (exit 2 on the command line).
