@@ -1,6 +1,6 @@
 // The Log tab's plot of the log: its joint positions against time (read with
 // the robot and the column mapping the identification uses, decimated to a
-// few thousand points). A drag across it chooses the time window
+// few thousand points, streamed in bounded memory). A drag across it chooses the time window
 // (IdentifyOptions::time_window, the log.time_window field), a click without
 // a drag clears it (the whole log); the window is drawn shaded.
 #include <imgui.h>
@@ -19,7 +19,7 @@
 namespace idbench::gui {
 namespace {
 
-constexpr Eigen::Index kMaxOverviewPoints = 4000;
+constexpr Eigen::Index kMaxOverviewPoints = 2000;  // 2000..4000 points drawn
 constexpr float kOverviewHeight = 96.0f;  // [px]
 
 ImU32 JointColor(int j) {
@@ -45,29 +45,36 @@ void GuiApp::Impl::DrawLogOverview() {
       try {
         const std::unique_ptr<JointLogSource> source =
             OpenJointLog(id.data, session.model(), id.format, TorqueColumns::kOptional);
+        // Streamed, in bounded memory whatever the log's length: every
+        // stride-th sample is kept; when 2 kMaxOverviewPoints are held, every
+        // other one is dropped and the stride doubles. The last sample too.
         std::vector<double> t;
         std::vector<Eigen::VectorXd> q;
+        Eigen::Index stride = 1, index = 0, n_dof = 0;
+        double t_first = 0.0, t_last = 0.0;
+        Eigen::VectorXd q_last;
         JointLogChunk chunk;
         while (source->Next(4096, &chunk))
-          for (Eigen::Index k = 0; k < chunk.samples.t.size(); ++k) {
-            t.push_back(chunk.samples.t[k]);
-            q.push_back(chunk.samples.q.row(k).transpose());
+          for (Eigen::Index k = 0; k < chunk.samples.t.size(); ++k, ++index) {
+            if (index == 0) t_first = chunk.samples.t[k], n_dof = chunk.samples.q.cols();
+            t_last = chunk.samples.t[k];
+            q_last = chunk.samples.q.row(k).transpose();
+            if (index % stride != 0) continue;
+            t.push_back(t_last);
+            q.push_back(q_last);
+            if (static_cast<Eigen::Index>(t.size()) == 2 * kMaxOverviewPoints) {
+              for (size_t r = 0; 2 * r < t.size(); ++r) t[r] = t[2 * r], q[r] = q[2 * r];
+              t.resize(t.size() / 2), q.resize(q.size() / 2);
+              stride *= 2;
+            }
           }
-        if (t.size() < 2) throw std::invalid_argument(id.data + ": fewer than two samples");
-        // Every step-th sample, and the last.
-        const Eigen::Index n = static_cast<Eigen::Index>(t.size());
-        const Eigen::Index step = std::max<Eigen::Index>(1, (n + kMaxOverviewPoints - 1) / kMaxOverviewPoints);
-        std::vector<Eigen::Index> kept;
-        for (Eigen::Index k = 0; k < n; k += step) kept.push_back(k);
-        if (kept.back() != n - 1) kept.push_back(n - 1);
-        overview_t.resize(static_cast<Eigen::Index>(kept.size()));
-        overview_q.resize(static_cast<Eigen::Index>(kept.size()), q.front().size());
-        for (size_t r = 0; r < kept.size(); ++r) {
-          overview_t[static_cast<Eigen::Index>(r)] = t[static_cast<size_t>(kept[r])];
-          overview_q.row(static_cast<Eigen::Index>(r)) = q[static_cast<size_t>(kept[r])].transpose();
-        }
-        overview_t_first = t.front();
-        overview_t_last = t.back();
+        if (index < 2) throw std::invalid_argument(id.data + ": fewer than two samples");
+        if (t.back() != t_last) t.push_back(t_last), q.push_back(q_last);
+        overview_t = Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
+        overview_q.resize(static_cast<Eigen::Index>(t.size()), n_dof);
+        for (size_t r = 0; r < q.size(); ++r) overview_q.row(static_cast<Eigen::Index>(r)) = q[r].transpose();
+        overview_t_first = t_first;
+        overview_t_last = t_last;
       } catch (const std::exception& e) {
         overview_error = e.what();
       }
