@@ -26,6 +26,8 @@ GuiApp::GuiApp(const SessionOptions& options, GlProcLoader loader) : impl_(std::
   RegisterRecentFilesSettings(&impl_->recent_files);  // read from imgui.ini at the first frame
 }
 
+void GuiApp::WaitForLogPlot() { impl_->CollectLogOverview(true); }
+
 void GuiApp::DropFiles(const std::vector<std::string>& paths, bool held_out) {
   Impl& m = *impl_;
   if (m.session.any_running()) {  // the fields are disabled while a job runs

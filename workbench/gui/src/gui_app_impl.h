@@ -6,10 +6,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <map>
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +87,12 @@ struct GuiApp::Impl {
   Eigen::MatrixXd overview_q;      // [rad] (n_points × n_dof)
   double overview_t_first = 0.0, overview_t_last = 0.0;  // [s] the whole log's first and last sample
   std::string overview_error;      // why the log cannot be read ("" = it can)
+  // Reads the log for the plot off the UI thread (an hour at 1 kHz takes
+  // seconds); a change of log, robot or columns stops a read in flight.
+  BackgroundJob overview_job;
+  // Applies a finished read of the plot's log (wait: blocks until the read
+  // in flight, if any, has finished).
+  void CollectLogOverview(bool wait);
   // Recent files of the path fields (log.robot, log.data, log.validate), in imgui.ini.
   RecentFiles recent_files;
   std::map<std::string, std::string> recent_noted;  // field → the value last looked at

@@ -54,6 +54,7 @@ HeadlessGui::~HeadlessGui() = default;
 
 void HeadlessGui::RenderFrame() {
   ImGui::SetCurrentContext(impl_->imgui);
+  impl_->app->WaitForLogPlot();  // scripted frames see the plot once its log is read
   ImGuiIO& io = ImGui::GetIO();
   io.DeltaTime = static_cast<float>(impl_->options.frame_seconds);
   internal::NewImGuiRendererFrame();

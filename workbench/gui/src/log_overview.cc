@@ -6,8 +6,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,14 @@ ImU32 JointColor(int j) {
 
 }  // namespace
 
+void GuiApp::Impl::CollectLogOverview(bool wait) {
+  std::function<void()> apply;
+  std::string error;
+  if (!(wait ? overview_job.Wait(&apply, &error) : overview_job.Collect(&apply, &error))) return;
+  if (apply) apply();
+  overview_error = error;
+}
+
 void GuiApp::Impl::DrawLogOverview() {
   IdentifyOptions& id = session.identify;
   // Read again when the log, the robot or the column mapping change.
@@ -38,13 +48,15 @@ void GuiApp::Impl::DrawLogOverview() {
   for (const std::string& column : id.format.columns) key += "," + column;
   if (key != overview_key) {
     overview_key = key;
+    overview_job.RequestStop();  // a read of the previous log ends at its next chunk
+    CollectLogOverview(true);
     overview_t.resize(0);
     overview_q.resize(0, 0);
     overview_error.clear();
     if (!id.data.empty()) {
-      try {
-        const std::unique_ptr<JointLogSource> source =
-            OpenJointLog(id.data, session.model(), id.format, TorqueColumns::kOptional);
+      overview_job.Start([this, data = id.data, model = session.model(),
+                          format = id.format](const std::atomic<bool>& stop) -> std::function<void()> {
+        const std::unique_ptr<JointLogSource> source = OpenJointLog(data, model, format, TorqueColumns::kOptional);
         // Streamed, in bounded memory whatever the log's length: every
         // stride-th sample is kept; when 2 kMaxOverviewPoints are held, every
         // other one is dropped and the stride doubles. The last sample too.
@@ -54,7 +66,7 @@ void GuiApp::Impl::DrawLogOverview() {
         double t_first = 0.0, t_last = 0.0;
         Eigen::VectorXd q_last;
         JointLogChunk chunk;
-        while (source->Next(4096, &chunk))
+        while (!stop && source->Next(4096, &chunk))
           for (Eigen::Index k = 0; k < chunk.samples.t.size(); ++k, ++index) {
             if (index == 0) t_first = chunk.samples.t[k], n_dof = chunk.samples.q.cols();
             t_last = chunk.samples.t[k];
@@ -68,17 +80,25 @@ void GuiApp::Impl::DrawLogOverview() {
               stride *= 2;
             }
           }
-        if (index < 2) throw std::invalid_argument(id.data + ": fewer than two samples");
+        if (stop) return nullptr;  // superseded: nothing to show
+        if (index < 2) throw std::invalid_argument(data + ": fewer than two samples");
         if (t.back() != t_last) t.push_back(t_last), q.push_back(q_last);
-        overview_t = Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
-        overview_q.resize(static_cast<Eigen::Index>(t.size()), n_dof);
-        for (size_t r = 0; r < q.size(); ++r) overview_q.row(static_cast<Eigen::Index>(r)) = q[r].transpose();
-        overview_t_first = t_first;
-        overview_t_last = t_last;
-      } catch (const std::exception& e) {
-        overview_error = e.what();
-      }
+        Eigen::MatrixXd q_kept(static_cast<Eigen::Index>(t.size()), n_dof);
+        for (size_t r = 0; r < q.size(); ++r) q_kept.row(static_cast<Eigen::Index>(r)) = q[r].transpose();
+        return [this, t_kept = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()))),
+                q_kept = std::move(q_kept), t_first, t_last]() mutable {
+          overview_t = std::move(t_kept);
+          overview_q = std::move(q_kept);
+          overview_t_first = t_first;
+          overview_t_last = t_last;
+        };
+      });
     }
+  }
+  CollectLogOverview(false);
+  if (!id.data.empty() && overview_job.running()) {
+    ImGui::TextColored(kDimColor, "Reading %s for its plot ...", id.data.c_str());
+    return;
   }
   if (id.data.empty()) return;
   if (overview_t.size() < 2) {

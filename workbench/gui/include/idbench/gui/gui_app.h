@@ -54,6 +54,10 @@ class GuiApp {
   // held-out one; with `held_out`, Shift held, and a log set, the held-out
   // one); anything else, or a drop while a job runs, is a message.
   void DropFiles(const std::vector<std::string>& paths, bool held_out = false);
+  // Blocks until the Log tab's plot has read its log, if a read is in flight
+  // (it runs off the UI thread): headless frames start with it, so that a
+  // script sees the plot in the frame after the log was chosen.
+  void WaitForLogPlot();
 
  private:
   struct Impl;
