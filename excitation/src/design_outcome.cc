@@ -29,11 +29,10 @@ void DescribeProgress(DesignStartSummary* s) {
 }
 
 // The least-violating point any start ended at, checked at the check rate:
-// thrown as InfeasibleDesign after the search.
-[[noreturn]] void ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
-                                         const DesignOptions& options, const DesignProblem& problem,
-                                         const std::vector<DesignStartSummary>& summaries,
-                                         std::vector<StartRun>* runs) {
+// the kInfeasible result after the search.
+DesignResult ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                    const DesignOptions& options, const DesignProblem& problem,
+                                    const std::vector<DesignStartSummary>& summaries, std::vector<StartRun>* runs) {
   int least = 0;
   double least_violation = kInf;
   for (size_t s = 0; s < runs->size(); ++s) {
@@ -56,11 +55,15 @@ void DescribeProgress(DesignStartSummary* s) {
   for (size_t s = 0; s < summaries.size(); ++s) {
     starts += "  start " + std::to_string(s + 1) + ": " + summaries[s].outcome + "\n";
   }
-  throw InfeasibleDesign("no feasible design: no start met the limits (tightened by the margin " +
-                             Format("%g", options.margin) + ") and the clearance on the sample grid:\n" + starts +
-                             "where start " + std::to_string(least + 1) + " ended, checked at " +
-                             Format("%g", options.check_rate_hz) + " Hz:",
-                         std::move(check), std::move(advice), false);
+  DesignResult result(problem.Trajectory(run.last_theta), problem.Trajectory(run.start_theta));
+  result.status = DesignStatus::kInfeasible;
+  result.infeasibility = ExplainInfeasibility(
+      "no feasible design: no start met the limits (tightened by the margin " + Format("%g", options.margin) +
+          ") and the clearance on the sample grid:\n" + starts + "where start " + std::to_string(least + 1) +
+          " ended, checked at " + Format("%g", options.check_rate_hz) + " Hz:",
+      std::move(check), std::move(advice), false);
+  result.check = result.infeasibility.check;
+  return result;
 }
 
 }  // namespace internal
@@ -68,6 +71,11 @@ void DescribeProgress(DesignStartSummary* s) {
 using internal::Format;
 
 std::string DesignResult::Rejection() const {
+  if (status != DesignStatus::kFeasible) {  // the explanation's first line, without its closing ':'
+    std::string line = infeasibility.explanation.substr(0, infeasibility.explanation.find('\n'));
+    if (!line.empty() && line.back() == ':') line.pop_back();
+    return line;
+  }
   if (!check.feasible()) return "the design violates the limits or the clearance at " + Format("%g Hz", check.rate_hz);
   const bool improved = value < initial_value - 1e-9 * std::max(1.0, std::abs(initial_value));
   if (!improved) {

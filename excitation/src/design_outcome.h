@@ -2,6 +2,7 @@
 // each start's outcome line, and the explanation when no start was feasible.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "design_start.h"
@@ -13,12 +14,22 @@ namespace idbench::internal {
 // A start's outcome line and whether it got anywhere (DesignStartSummary).
 void DescribeProgress(DesignStartSummary* s);
 
+// No design, explained: summary, then one line per violation of check, then
+// the "to relax:" lines of advice (feasibility_check.cc).
+DesignInfeasibility ExplainInfeasibility(const std::string& summary, FeasibilityCheck check,
+                                         std::vector<std::string> advice, bool before_search);
+
+// The status of no design: kInfeasible after the search; before it,
+// kNoRoom when an obstacle of the cell (not the ground) is violated (the cell
+// is where the robot stands, not a malformed option), else kNoMotionPossible.
+DesignStatus InfeasibilityStatus(const DesignInfeasibility& infeasibility);
+
 // The least-violating point any start ended at, checked at the check rate:
-// thrown as InfeasibleDesign after the search, its summary with one line per
-// start saying what became of it (summaries[s].outcome).
-[[noreturn]] void ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
-                                         const DesignOptions& options, const DesignProblem& problem,
-                                         const std::vector<DesignStartSummary>& summaries,
-                                         std::vector<StartRun>* runs);
+// the kInfeasible result after the search (its trajectories that point and
+// its start), the summary with one line per start saying what became of it
+// (summaries[s].outcome).
+DesignResult ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
+                                    const DesignOptions& options, const DesignProblem& problem,
+                                    const std::vector<DesignStartSummary>& summaries, std::vector<StartRun>* runs);
 
 }  // namespace idbench::internal

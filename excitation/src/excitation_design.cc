@@ -8,8 +8,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "design_outcome.h"
 #include "design_start.h"
@@ -114,10 +117,10 @@ namespace {
 
 // The home pose: options.home when given (it must meet every limit, the
 // ranges tightened by the margin, and the clearance), else FindHomePose.
-// Throws InfeasibleDesign (before the search) when there is none; returns
-// the home's source.
+// Returns the home's source, or (before the search) the explanation when
+// there is none, in *none.
 std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& limits, const DesignOptions& options,
-                       DesignProblem* problem) {
+                       DesignProblem* problem, std::optional<std::pair<Eigen::VectorXd, DesignInfeasibility>>* none) {
   const int n = model.n_dof();
   HomePose home;
   if (options.home.size() > 0) {
@@ -155,10 +158,12 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
                          Format("%g", l.q_max) + " rad) in the limits file: the search for a clear home stopped at it");
       }
     }
-    throw InfeasibleDesign("no motion is possible with these settings: " + what +
-                               " violates the limits (ranges tightened by the margin " + Format("%g", options.margin) +
-                               ") or the clearance held still:",
-                           std::move(check), std::move(advice), true);
+    none->emplace(home.q, internal::ExplainInfeasibility(
+                              "no motion is possible with these settings: " + what +
+                                  " violates the limits (ranges tightened by the margin " +
+                                  Format("%g", options.margin) + ") or the clearance held still:",
+                              std::move(check), std::move(advice), true));
+    return home.source;
   }
   problem->set_home(home.q);
   return home.source;
@@ -196,7 +201,26 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   DesignProblem problem(regressor, limits, options);
   Eigen::VectorXd lower, upper;
   problem.Bounds(&lower, &upper);
-  const std::string home_source = ChooseHome(regressor.model(), limits, options, &problem);
+  std::optional<std::pair<Eigen::VectorXd, DesignInfeasibility>> no_home;
+  const std::string home_source = ChooseHome(regressor.model(), limits, options, &problem, &no_home);
+  auto seconds_since_begin = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  };
+  if (no_home) {  // no motion before the search: the result holds still at the rejected home
+    const int n_dof = regressor.model().n_dof(), block = problem.n_unknowns() / n_dof;  // [q0_j, a_j, b_j]
+    Eigen::VectorXd theta = Eigen::VectorXd::Zero(problem.n_unknowns());
+    for (int j = 0; j < n_dof; ++j) theta[j * block] = no_home->first[j];
+    DesignResult result(problem.Trajectory(theta), problem.Trajectory(theta));
+    result.infeasibility = std::move(no_home->second);
+    result.status = internal::InfeasibilityStatus(result.infeasibility);
+    result.check = result.infeasibility.check;
+    result.home = no_home->first;
+    result.home_source = home_source;
+    result.ramp_seconds = options.ramp_seconds;
+    result.initial_value = result.value = std::numeric_limits<double>::quiet_NaN();
+    result.wall_seconds = seconds_since_begin();
+    return result;
+  }
 
   std::vector<StartRun> runs(static_cast<size_t>(options.starts));
   std::vector<DesignStartSummary> summaries(runs.size());
@@ -219,7 +243,18 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   for (int s = 0; s < options.starts; ++s) {
     if (runs[static_cast<size_t>(s)].best_theta.size() > 0) ranked.push_back(s);
   }
-  if (ranked.empty()) internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, summaries, &runs);
+  if (ranked.empty()) {
+    DesignResult result = internal::ExplainNoFeasibleStart(regressor.model(), limits, options, problem, summaries, &runs);
+    result.starts = summaries;
+    result.home = problem.home();
+    result.home_source = home_source;
+    result.ramp_seconds = options.ramp_seconds;
+    for (const DesignStartSummary& s : summaries) result.evaluations += s.evaluations;
+    result.initial_value = result.value = std::numeric_limits<double>::quiet_NaN();
+    result.stopped = control.stop && control.stop->load();
+    result.wall_seconds = seconds_since_begin();
+    return result;
+  }
   std::stable_sort(ranked.begin(), ranked.end(), [&](int a, int b) {
     return runs[static_cast<size_t>(a)].best_value < runs[static_cast<size_t>(b)].best_value;
   });
@@ -269,7 +304,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
                              "); check the limits of the joints involved:" + unexcited + held);
   }
   result.stopped = control.stop && control.stop->load();
-  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  result.wall_seconds = seconds_since_begin();
   return result;
 }
 

@@ -1,11 +1,12 @@
 // The fine re-check of a design against the limits and the clearance
-// (FeasibilityCheck, CheckTrajectoryLimits), the InfeasibleDesign it makes,
+// (FeasibilityCheck, CheckTrajectoryLimits), the DesignInfeasibility it makes,
 // and the advice on what to relax (excitation_design.h).
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 
+#include "design_outcome.h"
 #include "excitation_design_internal.h"
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/excitation/excitation_design.h"
@@ -205,26 +206,30 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
   return check;
 }
 
-bool InfeasibleDesign::settings_admit_no_motion() const {
-  if (!before_search_) return false;
-  for (const ConstraintMargin& m : check_.margins) {
-    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return false;
-  }
-  return true;
+namespace internal {
+
+DesignInfeasibility ExplainInfeasibility(const std::string& summary, FeasibilityCheck check,
+                                         std::vector<std::string> advice, bool before_search) {
+  DesignInfeasibility out;
+  out.explanation = summary + "\n" + ExplainViolations(check, before_search);
+  if (!advice.empty()) out.explanation += "to relax:\n";
+  for (const std::string& a : advice) out.explanation += "  " + a + "\n";
+  if (!out.explanation.empty() && out.explanation.back() == '\n') out.explanation.pop_back();
+  out.check = std::move(check);
+  out.advice = std::move(advice);
+  out.before_search = before_search;
+  return out;
 }
 
-InfeasibleDesign::InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
-                                   bool before_search)
-    : std::runtime_error([&] {
-        std::string what = summary + "\n" + ExplainViolations(check, before_search);
-        if (!advice.empty()) what += "to relax:\n";
-        for (const std::string& a : advice) what += "  " + a + "\n";
-        if (!what.empty() && what.back() == '\n') what.pop_back();
-        return what;
-      }()),
-      check_(std::move(check)),
-      advice_(std::move(advice)),
-      before_search_(before_search) {}
+DesignStatus InfeasibilityStatus(const DesignInfeasibility& infeasibility) {
+  if (!infeasibility.before_search) return DesignStatus::kInfeasible;
+  for (const ConstraintMargin& m : infeasibility.check.margins) {
+    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return DesignStatus::kNoRoom;
+  }
+  return DesignStatus::kNoMotionPossible;
+}
+
+}  // namespace internal
 
 std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const DesignOptions& options,
                                           bool before_search) {

@@ -143,18 +143,15 @@ TEST(DesignInCellTest, ACellWithoutRoomIsExplainedPerObstacle) {
   pillar.shape.size = Eigen::Vector3d(0.4, 0.4, 2.0);
   pillar.X_WO.translation() = Eigen::Vector3d(0, 0, 1.0);  // around the shoulder
   o.scene.obstacles = {pillar};
-  try {
-    DesignExcitation(DesignRegressor::JointTorque(model, FrictionModel{}), UrLikeLimits(model), o);
-    FAIL() << "a design inside a pillar";
-  } catch (const InfeasibleDesign& e) {
-    EXPECT_TRUE(e.before_search());
-    const std::string what = e.what();
-    EXPECT_NE(what.find("–pillar clearance"), std::string::npos) << what;
-    EXPECT_NE(what.find("the scene's obstacle 'pillar' (obstacles[0], a cylinder of radius 0.4 m, 2 m long at (0, 0, 1) m)"),
-              std::string::npos) << what;
-    EXPECT_NE(what.find("clearance: "), std::string::npos) << what;
-    EXPECT_NE(what.find(" at the home pose is below its minimum"), std::string::npos) << what;
-  }
+  const DesignResult result = DesignExcitation(DesignRegressor::JointTorque(model, FrictionModel{}), UrLikeLimits(model), o);
+  ASSERT_EQ(result.status, DesignStatus::kNoRoom) << "a design inside a pillar";
+  EXPECT_TRUE(result.infeasibility.before_search);
+  const std::string& what = result.infeasibility.explanation;
+  EXPECT_NE(what.find("–pillar clearance"), std::string::npos) << what;
+  EXPECT_NE(what.find("the scene's obstacle 'pillar' (obstacles[0], a cylinder of radius 0.4 m, 2 m long at (0, 0, 1) m)"),
+            std::string::npos) << what;
+  EXPECT_NE(what.find("clearance: "), std::string::npos) << what;
+  EXPECT_NE(what.find(" at the home pose is below its minimum"), std::string::npos) << what;
 }
 
 }  // namespace

@@ -177,17 +177,20 @@ TEST(ExcitationDesignTest, NoFeasibleStartIsExplainedAfterTheSearch) {
   const double tau_gravity = std::abs(InverseDynamics(model, o.home, zero, zero, &data)[1]);
   ASSERT_GT(tau_gravity, 10.0);  // the shoulder holds the arm out
   limits[1].tau_max = tau_gravity / 0.99;
-  try {
-    DesignExcitation(r, limits, o);
-    FAIL() << "expected InfeasibleDesign";
-  } catch (const InfeasibleDesign& e) {
-    EXPECT_FALSE(e.before_search()) << e.what();
-    EXPECT_NE(std::string(e.what()).find("no feasible design"), std::string::npos) << e.what();
-    EXPECT_EQ(e.check().rate_hz, 1000.0);
-    bool margin = false;
-    for (const std::string& a : e.advice()) margin |= a.rfind("`margin` (now 0.02)", 0) == 0;
-    EXPECT_TRUE(margin) << e.what();
-  }
+  const DesignResult result = DesignExcitation(r, limits, o);
+  ASSERT_EQ(result.status, DesignStatus::kInfeasible);
+  const DesignInfeasibility& e = result.infeasibility;
+  EXPECT_FALSE(e.before_search) << e.explanation;
+  EXPECT_NE(e.explanation.find("no feasible design"), std::string::npos) << e.explanation;
+  EXPECT_EQ(e.check.rate_hz, 1000.0);
+  bool margin = false;
+  for (const std::string& a : e.advice) margin |= a.rfind("`margin` (now 0.02)", 0) == 0;
+  EXPECT_TRUE(margin) << e.explanation;
+  EXPECT_FALSE(result.usable());
+  EXPECT_EQ(result.Rejection(),
+            "no feasible design: no start met the limits (tightened by the margin 0.02) and the clearance on the "
+            "sample grid");
+  EXPECT_EQ(result.starts.size(), 2u);
 }
 
 }  // namespace

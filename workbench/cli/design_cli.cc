@@ -39,26 +39,6 @@ struct DesignFlags {
   bool report = false;   // --report
 };
 
-// The search, under Ctrl-C. A design that ran and failed (not
-// InfeasibleDesign::settings_admit_no_motion)
-// writes design.json with the diagnostics before it is thrown on.
-DesignCommandReport SearchDesign(const RobotModel& model, const DesignCommandOptions& options,
-                                 const std::optional<Transmission>& from_urdf) {
-  const std::filesystem::path dir(options.out_dir);
-  const CtrlCStop ctrl_c;  // Ctrl-C: stop and keep the best feasible design so far
-  try {
-    return RunDesign(model, options, ctrl_c.flag(), from_urdf);
-  } catch (const InfeasibleDesign& e) {  // the search ran, or the cell has no room: design.json explains it
-    if (!e.settings_admit_no_motion()) {
-      DesignCommandOptions used = options;  // design.json records the actuator limits
-      used.design.actuators = DesignActuatorLimits(model, options, from_urdf);
-      EnsureOutputDirectory(dir);
-      WriteFileAtomically(dir / "design.json", FormatInfeasibleDesignJson(model, used, e));
-    }
-    throw;
-  }
-}
-
 int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& load, bool with_report,
                   const CliContext& context) {
   std::string why;
@@ -66,17 +46,26 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
   std::optional<Transmission> from_urdf;
   const RobotModel model = LoadRobotOrThrow(options.robot, load, &from_urdf);
   if (!options.IsValidFor(model, &why)) return context.UsageError(why);
+  const std::filesystem::path dir(options.out_dir);
   std::optional<DesignCommandReport> searched;
-  try {
-    searched.emplace(SearchDesign(model, options, from_urdf));
-  } catch (const InfeasibleDesign& e) {
-    if (e.settings_admit_no_motion()) throw;  // settings that admit no motion: exit 2 (main)
-    std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
-    return kExitFailure;
+  {
+    const CtrlCStop ctrl_c;  // Ctrl-C: stop and keep the best feasible design so far
+    searched.emplace(RunDesign(model, options, ctrl_c.flag(), from_urdf));
   }
   const DesignCommandReport& report = *searched;
+  switch (report.status()) {
+    case DesignStatus::kFeasible:
+      break;
+    case DesignStatus::kNoMotionPossible:  // settings that admit no motion are wrong input: nothing written
+      return context.UsageError(report.result.infeasibility.explanation);
+    case DesignStatus::kInfeasible:  // the search ran, or the cell has no room: design.json explains it
+    case DesignStatus::kNoRoom:
+      EnsureOutputDirectory(dir);
+      WriteFileAtomically(dir / "design.json", FormatDesignJson(model, options, report));
+      std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(report.result.infeasibility.explanation).c_str());
+      return kExitFailure;
+  }
   std::fputs(context.FlagSpelling(FormatDesignSummary(options, report)).c_str(), stdout);
-  const std::filesystem::path dir(options.out_dir);
   EnsureOutputDirectory(dir);
   // What a controller would run only from a usable design (or when asked).
   const bool usable = report.result.usable();

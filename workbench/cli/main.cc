@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "cli_command.h"
-#include "idbench/workbench/commands/design_command.h"
 
 int main(int argc, char** argv) {
   using idbench::cli::CliCommand;
@@ -44,12 +43,6 @@ int main(int argc, char** argv) {
     if (parsed) return parsed->run();
   } catch (const std::invalid_argument& e) {  // also UsageException: the input is wrong
     return context.UsageError(e.what());
-  } catch (const idbench::InfeasibleDesign& e) {
-    // Settings that admit no motion are wrong input (nothing ran); a search
-    // that found nothing feasible, or a cell without room, ran and failed.
-    if (e.settings_admit_no_motion()) return context.UsageError(e.what());
-    std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
-    return idbench::cli::kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return idbench::cli::kExitFailure;

@@ -111,6 +111,20 @@ DesignOutput Design(const Robot& robot, DesignCommandOptions options, const py::
     std::signal(SIGINT, previous);
   }
   if (callback_failed) throw *callback_error;  // the GIL is held again here
+  // No design: raised as the command line's exit codes are chosen (the
+  // module's translator spells the fields as keywords). Settings that admit
+  // no motion are wrong input (ValueError, exit 2); a search that found
+  // nothing feasible, or a cell whose obstacles leave no room, failed
+  // (RuntimeError, exit 1).
+  switch (report->status()) {
+    case DesignStatus::kFeasible:
+      break;
+    case DesignStatus::kNoMotionPossible:
+      throw std::invalid_argument(report->result.infeasibility.explanation);
+    case DesignStatus::kInfeasible:
+    case DesignStatus::kNoRoom:
+      throw std::runtime_error(report->result.infeasibility.explanation);
+  }
   return ToDesignOutput(model, options, *report);
 }
 

@@ -48,16 +48,12 @@ PYBIND11_MODULE(idbench, m) {
   m.doc() = "idbench: excitation design and dynamic parameter identification of serial robots";
   m.attr("__version__") = Version();
   m.attr("__git_revision__") = GitRevision();
-  // As the command line's exit codes: settings that admit no motion are wrong
-  // input (ValueError, exit 2); a search that found nothing feasible, or a
-  // cell whose obstacles leave no room, failed
-  // (RuntimeError, exit 1). Other exceptions: pybind11's mapping
-  // (std::invalid_argument → ValueError, std::runtime_error → RuntimeError).
+  // As the command line's exit codes: std::invalid_argument → ValueError
+  // (exit 2), std::runtime_error → RuntimeError (exit 1), their fields
+  // spelled as keywords.
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
-    } catch (const InfeasibleDesign& e) {
-      PyErr_SetString(e.settings_admit_no_motion() ? PyExc_ValueError : PyExc_RuntimeError, python::KeywordSpelling(e.what()).c_str());
     } catch (const py::builtin_exception&) {
       throw;  // pybind11's own (TypeError, ...): its translator
     } catch (const py::error_already_set&) {

@@ -119,5 +119,26 @@ TEST(DesignTabTest, DesignInTheCellEqualsRunDesign) {
   if (!HasFailure()) fs::remove_all(out);
 }
 
+// A pillar around the arm leaves it no room (DesignStatus::kNoRoom): the GUI
+// says "design failed: " and RunDesign's explanation, word for word, and
+// keeps no design.
+TEST(DesignTabTest, ACellWithoutRoomIsExplainedAsRunDesignExplainsIt) {
+  const fs::path out = TempDir("no_room");
+  const fs::path scene = out / "cell.json";
+  std::ofstream(scene) << R"({"obstacles": [{"name": "pillar", "type": "cylinder", "radius": 0.4, "length": 2,
+                              "pose": [0, 0, 1, 0, 0, 0]}]})";
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click tab.design\nclick limits.fill\nset design.scene " + scene.string() +
+                     "\nset design.harmonics 2\nset design.f0 0.5\nset design.samples 40\n"
+                     "click design.run\nwait design 300\n");
+  EXPECT_FALSE(session.design_report().has_value());
+  const DesignCommandReport direct = RunDesign(session.model(), session.design, session.limits, DesignControl{});
+  ASSERT_EQ(direct.status(), DesignStatus::kNoRoom) << direct.BriefReport();
+  EXPECT_NE(direct.result.infeasibility.explanation.find("pillar"), std::string::npos);
+  EXPECT_EQ(session.last_error(), "design failed: " + direct.result.infeasibility.explanation);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 }  // namespace
 }  // namespace idbench::gui

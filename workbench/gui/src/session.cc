@@ -142,6 +142,9 @@ void Session::StartDesign() {
     };
     auto report = std::make_shared<DesignCommandReport>(RunDesign(*model, options, table, control));
     return std::function<void()>([this, report] {
+      if (report->status() != DesignStatus::kFeasible) {  // no design: the last one stays
+        return Error(std::string(JobName(JobKind::kDesign)) + " failed: " + report->result.infeasibility.explanation);
+      }
       design_report_ = std::move(*report);
       const DesignResult& r = design_report_->result;
       {

@@ -173,7 +173,8 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
     };
   }
   DesignCommandReport report{limits,   DesignExcitation(regressor, limits, design, control),
-                             regressor.parameter_names(), excluded, held, design.actuators};
+                             regressor.parameter_names(), excluded, held, design.actuators, design.criterion};
+  if (report.status() != DesignStatus::kFeasible) return report;  // result.infeasibility says why
   if (!options.quiet) {
     for (size_t s = 0; s < report.result.starts.size(); ++s) {
       const DesignStartSummary& st = report.result.starts[s];
@@ -201,6 +202,25 @@ std::string FormatDesignTrajectoryCsv(const RobotModel& model, const DesignComma
   for (const Link& link : model.links()) joint_names.push_back(link.joint_name);
   return FormatTrajectoryCsv(report.result.RobotTrajectory(), options.csv_rate_hz, options.csv_columns == TrajectoryCsvColumns::kQQdQdd,
                              joint_names);
+}
+
+std::string DesignCommandReport::BriefReport() const {
+  const DesignResult& r = result;
+  std::string out = "design " + std::string(kDesignStatusNames.Name(r.status)) + ": ";
+  if (r.status == DesignStatus::kFeasible) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s -> %s, %s at %g Hz, ", CriterionText(criterion, r.initial_value).c_str(),
+                  CriterionText(criterion, r.value).c_str(), r.check.feasible() ? "feasible" : "INFEASIBLE",
+                  r.check.rate_hz);
+    out += buf;
+    out += r.usable() ? "usable" : "not usable: " + r.Rejection();
+  } else {
+    out += r.Rejection();
+  }
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "; %d evaluations in %.2f s%s", r.evaluations, r.wall_seconds,
+                r.stopped ? " (stopped)" : "");
+  return out + buf;
 }
 
 std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report) {
@@ -309,9 +329,26 @@ nlohmann::json CheckJson(const FeasibilityCheck& check) {
 
 }  // namespace
 
+namespace {
+
+// design.json when no feasible design was found.
+std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
+                                       const DesignCommandReport& report) {
+  const DesignInfeasibility& infeasible = report.result.infeasibility;
+  nlohmann::json result = SettingsJson(model, options, report.limits, report.actuators, report.parameter_names);
+  result["check"] = CheckJson(infeasible.check);
+  result["infeasible"] = {{"before_search", infeasible.before_search},
+                          {"explanation", infeasible.explanation},
+                          {"advice", infeasible.advice}};
+  return result.dump(2) + "\n";
+}
+
+}  // namespace
+
 std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                              const DesignCommandReport& report) {
   using nlohmann::json;
+  if (report.status() != DesignStatus::kFeasible) return FormatInfeasibleDesignJson(model, options, report);
   const DesignResult& r = report.result;
   json starts = json::array();
   for (const DesignStartSummary& s : r.starts) {
@@ -340,17 +377,6 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"verdict", {{"usable", r.usable()}, {"reason", r.Rejection()}}},
       {"clearance_pairs", {{"excluded", report.clearance_excluded}, {"held_at_home", report.clearance_held}}},
   });
-  return result.dump(2) + "\n";
-}
-
-std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
-                                       const InfeasibleDesign& infeasible) {
-  nlohmann::json result = SettingsJson(model, options, DesignLimits(model, options), options.design.actuators,
-                                       options.MakeRegressor(model).parameter_names());
-  result["check"] = CheckJson(infeasible.check());
-  result["infeasible"] = {{"before_search", infeasible.before_search()},
-                          {"explanation", infeasible.what()},
-                          {"advice", infeasible.advice()}};
   return result.dump(2) + "\n";
 }
 

@@ -154,24 +154,56 @@ struct DesignStartSummary {
   std::string outcome;
 };
 
+// What a design came to. Only kFeasible carries a design (a start met every
+// limit on the sample grid; DesignResult::usable() says whether it also holds
+// at the check rate and improved); the others explain why there is none
+// (DesignResult::infeasibility).
+enum class DesignStatus {
+  kFeasible,
+  kInfeasible,        // the search ran and no start met the limits (and the clearance) on the grid
+  kNoRoom,            // before the search: the cell's obstacles leave the arm no room at its home
+  kNoMotionPossible,  // before the search: the settings admit no motion whatever the surroundings
+                      // (the home pose violates a limit or the clearance to the ground)
+};
+inline constexpr EnumNames<DesignStatus, 4> kDesignStatusNames{
+    "status", {"feasible", "infeasible", "no_room", "no_motion_possible"}};
+
+// No feasible design, explained: every violated constraint (FeasibilityCheck
+// form) and which settings to relax. before_search: the settings admit no
+// motion at all (the home pose itself violates a limit or the clearance, or no
+// pose with room was found), seen before any search ran; otherwise the search
+// ran and no start met every limit, and check is the 1 kHz check of the
+// least-violating point it reached.
+struct DesignInfeasibility {
+  // The summary, one line per violation and the "to relax:" lines: the
+  // message a front end shows (fields named as in the options, not flags).
+  std::string explanation;
+  FeasibilityCheck check;
+  std::vector<std::string> advice;
+  bool before_search = false;
+};
+
 struct DesignResult {
   DesignResult(FourierSeriesTrajectory t, FourierSeriesTrajectory start)
       : trajectory(std::move(t)), initial_trajectory(std::move(start)) {}
+  DesignStatus status = DesignStatus::kFeasible;
+  DesignInfeasibility infeasibility;  // when status is not kFeasible; empty otherwise
   FourierSeriesTrajectory trajectory;
   FourierSeriesTrajectory initial_trajectory;  // the winning start's first point
-  double initial_value = 0.0;        // criterion of the best start's initial point
-  double value = 0.0;                // criterion of the result
+  double initial_value = 0.0;        // criterion of the best start's initial point (NaN: not kFeasible)
+  double value = 0.0;                // criterion of the result (NaN: not kFeasible)
   Identifiability initial, final;    // of W on the design grid
-  FeasibilityCheck check;            // of RobotTrajectory() at check_rate_hz (times from its start)
+  FeasibilityCheck check;            // of RobotTrajectory() at check_rate_hz (times from its start);
+                                     // not kFeasible: infeasibility.check
   std::vector<DesignStartSummary> starts;
   Eigen::VectorXd home;              // [rad] (n_dof): the pose the starts oscillated about
   std::string home_source;           // "mid-range", "searched", "given"
   int evaluations = 0;               // all starts
   double wall_seconds = 0.0;
   bool stopped = false;              // stopped early by the control flag
-  // Whether this is a design to run: feasible at the check rate and better
-  // than the start point it came from (the search made progress); else
-  // why not, one line ("" when usable).
+  // Whether this is a design to run: a design (kFeasible), feasible at the
+  // check rate and better than the start point it came from (the search made
+  // progress); else why not, one line ("" when usable).
   bool usable() const { return Rejection().empty(); }
   std::string Rejection() const;
   double ramp_seconds = 0.0;         // [s] DesignOptions::ramp_seconds
@@ -183,32 +215,6 @@ struct DesignResult {
 
 // The sample times of the criterion and the constraint grid.
 std::vector<double> DesignSampleTimes(const DesignOptions& options);
-
-// No feasible design, explained: every violated constraint (FeasibilityCheck
-// form) and which settings to relax. before_search: the settings admit no
-// motion at all (the home pose itself violates a limit or the clearance, or no
-// pose with room was found), seen before any search ran; otherwise the search
-// ran and no start met every limit, and check is the 1 kHz check of the
-// least-violating point it reached.
-class InfeasibleDesign : public std::runtime_error {
- public:
-  InfeasibleDesign(const std::string& summary, FeasibilityCheck check, std::vector<std::string> advice,
-                   bool before_search);
-  const FeasibilityCheck& check() const { return check_; }
-  const std::vector<std::string>& advice() const { return advice_; }
-  bool before_search() const { return before_search_; }
-  // The settings are wrong whatever the robot's surroundings (exit 2,
-  // ValueError): seen before the search and no obstacle but the ground
-  // violated. Otherwise it ran and failed (exit 1, RuntimeError): the search
-  // found nothing feasible, or the cell's obstacles leave the arm no room
-  // (the cell is where the robot stands, not a malformed option).
-  bool settings_admit_no_motion() const;
-
- private:
-  FeasibilityCheck check_;
-  std::vector<std::string> advice_;
-  bool before_search_;
-};
 
 // What to relax for each violated constraint of check: the joint's limit in
 // the limits file, --clearance, --margin, --home, --harmonics/--f0/--duration,
@@ -224,9 +230,11 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
 void CheckDesignFitsInMemory(const DesignRegressor& regressor, const DesignOptions& options);
 
 // Runs the design. Throws std::invalid_argument for invalid options or
-// limits (see above), InfeasibleDesign when the settings admit no motion or
-// no start reached a feasible point, std::runtime_error when the feasible
-// design leaves parameters unexcited.
+// limits (see above), std::runtime_error when the feasible design leaves
+// parameters unexcited. When the settings admit no motion or no start reached
+// a feasible point the result says so (status, infeasibility); its
+// trajectories are then the least-violating point the search ended at and
+// its start, or (before the search) the motionless home.
 DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
                               const DesignOptions& options, const DesignControl& control = {});
 

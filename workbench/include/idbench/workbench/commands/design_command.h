@@ -61,6 +61,11 @@ struct DesignCommandOptions {
   DesignOptions Resolved() const;
 };
 
+// What RunDesign came to. A front end switches on status(): kFeasible has a
+// design (result.usable() says whether to run it); otherwise
+// result.infeasibility explains why there is none. The command line writes
+// design.json and exits 1 for kInfeasible and kNoRoom (it ran and failed),
+// and treats kNoMotionPossible as wrong input (exit 2, nothing written).
 struct DesignCommandReport {
   std::vector<JointLimits> limits;   // as used
   DesignResult result;
@@ -69,6 +74,15 @@ struct DesignCommandReport {
   // the pairs held at their distance at q = 0 ("a–b ≥ 0.104 m").
   std::vector<std::string> clearance_excluded, clearance_held;
   ActuatorLimits actuators;          // as used (DesignOptions::actuators)
+  DesignCriterion criterion = DesignCriterion::kLogCond;  // as used
+
+  DesignStatus status() const { return result.status; }
+  // One line: the status, the criterion before and after, the verdict at the
+  // check rate, the evaluations and wall time: "design feasible: cond 231.4 ->
+  // cond 18.52, feasible at 1000 Hz, usable; 1204 evaluations in 2.31 s";
+  // without a design, why not (DesignResult::Rejection): "design infeasible:
+  // no feasible design: no start met the limits ...; 20 evaluations in 0.41 s".
+  std::string BriefReport() const;
 };
 
 // The smallest trajectory.csv rate that samples the motion: ten samples per
@@ -91,7 +105,8 @@ ActuatorLimits DesignActuatorLimits(const RobotModel& model, const DesignCommand
 // limits file's joint and actuator limits (DesignLimits, DesignActuatorLimits;
 // from_urdf: the robot URDF's transmission); progress lines on stderr unless quiet; `stop` ends it
 // early with the best feasible design so far. Throws std::invalid_argument for
-// bad limits or files, std::runtime_error when nothing feasible was found.
+// bad limits or files; when nothing feasible was found the report says so
+// (status(), result.infeasibility) and nothing of the starts is printed.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::atomic<bool>* stop,
                               const std::optional<Transmission>& from_urdf = std::nullopt);
@@ -108,15 +123,13 @@ DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOption
 std::string FormatDesignTrajectoryCsv(const RobotModel& model, const DesignCommandOptions& options,
                                       const DesignCommandReport& report);
 
+// What design prints of a design (status() kFeasible).
 std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report);
+// design.json. When no feasible design was found (status() not kFeasible):
+// the settings as for a design, "check" (the explained point's margins) and
+// "infeasible": {before_search, explanation, advice}.
 std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                              const DesignCommandReport& report);
-
-// design.json when no feasible design was found (InfeasibleDesign): the
-// settings as FormatDesignJson writes them, "check" (the explained point's
-// margins) and "infeasible": {before_search, explanation, advice}.
-std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
-                                       const InfeasibleDesign& infeasible);
 
 // cond, cond_normalised, log_det, sigma_min, sigma_max, rank (shared with compare).
 nlohmann::json IdentifiabilityJson(const Identifiability& id);
