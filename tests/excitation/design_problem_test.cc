@@ -14,6 +14,19 @@
 namespace idbench {
 namespace {
 
+// The PUMA 560, its joint-torque regressor (viscous and Coulomb friction) and
+// the limits the PUMA tests design within (1.5 rad/s, 4 rad/s²). Not copied:
+// the regressor keeps the model.
+struct Puma {
+  Puma() = default;
+  Puma(const Puma&) = delete;
+  Puma& operator=(const Puma&) = delete;
+
+  const RobotModel model = MakePuma560();
+  const DesignRegressor regressor = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+};
+
 DesignOptions SmallOptions(bool rest_to_rest) {
   DesignOptions o;
   o.harmonics = 2;
@@ -42,14 +55,14 @@ void ExpectGradientMatchesFiniteDifferences(const DesignProblem& problem, unsign
 }
 
 TEST(DesignProblemTest, JointTorqueGradientMatchesFiniteDifferences) {
-  const RobotModel model = MakePuma560();
-  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const Puma puma;
+  const DesignRegressor& r = puma.regressor;
   for (DesignCriterion c : {DesignCriterion::kLogCond, DesignCriterion::kLogCondNormalised,
                             DesignCriterion::kLogDet, DesignCriterion::kHybrid}) {
     DesignOptions o = SmallOptions(false);
     o.criterion = c;
     SCOPED_TRACE(DesignCriterionName(c));
-    ExpectGradientMatchesFiniteDifferences(DesignProblem(r, testing::DesignLimits(model, 1.5, 4.0), o), 3);
+    ExpectGradientMatchesFiniteDifferences(DesignProblem(r, puma.limits, o), 3);
   }
 }
 
@@ -64,10 +77,10 @@ TEST(DesignProblemTest, PerBodyRestToRestGradientMatchesFiniteDifferences) {
 // The linear rows are the trajectory's own q, qd, qdd at the grid times (an
 // independent evaluation through FourierSeriesTrajectory), normalised.
 TEST(DesignProblemTest, LinearRowsAreTheMotionAgainstItsLimits) {
-  const RobotModel model = MakePuma560();
-  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const Puma puma;
+  const DesignRegressor& r = puma.regressor;
   DesignOptions o = SmallOptions(true);
-  const std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  const std::vector<JointLimits>& limits = puma.limits;
   const DesignProblem problem(r, limits, o);
   DesignProblem::Workspace ws(problem);
   const Eigen::VectorXd theta = problem.StartPoint(7, &ws);
@@ -102,9 +115,10 @@ TEST(DesignProblemTest, LinearRowsAreTheMotionAgainstItsLimits) {
 // Torque constraints: value against the inverse dynamics at the grid, gradient
 // against central differences.
 TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
-  const RobotModel model = MakePuma560();
-  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
-  std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  const Puma puma;
+  const RobotModel& model = puma.model;
+  const DesignRegressor& r = puma.regressor;
+  std::vector<JointLimits> limits = puma.limits;
   limits[1].tau_max = 80.0;
   limits[2].tau_max = 40.0;
   DesignOptions o = SmallOptions(false);
@@ -140,11 +154,12 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
 // Clearance constraints: one per pair, the worst grid distance against the
 // minimum, with the gradient at that sample against central differences.
 TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
-  const RobotModel model = MakePuma560();
-  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const Puma puma;
+  const RobotModel& model = puma.model;
+  const DesignRegressor& r = puma.regressor;
   DesignOptions o = SmallOptions(false);
   o.clearance = 0.05;
-  const DesignProblem problem(r, testing::DesignLimits(model, 1.5, 4.0), o);
+  const DesignProblem problem(r, puma.limits, o);
   ASSERT_NE(problem.clearance(), nullptr);
   const int m = problem.n_nonlinear_constraints();
   ASSERT_EQ(m, static_cast<int>(problem.clearance()->pairs().size()));
@@ -153,8 +168,8 @@ TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
   std::vector<double> value(static_cast<size_t>(m)), grad(static_cast<size_t>(m * problem.n_unknowns()));
   problem.NonlinearConstraints(theta.data(), value.data(), grad.data(), &ws);
   // Values: the 1 kHz check over the same instants agrees.
-  const FeasibilityCheck check = CheckTrajectoryLimits(model, testing::DesignLimits(model, 1.5, 4.0),
-                                                       problem.Trajectory(theta), 10.0, problem.clearance());
+  const FeasibilityCheck check =
+      CheckTrajectoryLimits(model, puma.limits, problem.Trajectory(theta), 10.0, problem.clearance());
   int compared = 0;
   for (const ConstraintMargin& c : check.margins) {
     if (c.quantity != "clearance") continue;
@@ -181,11 +196,12 @@ TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
 // equals the brute force: every pair at every grid instant by GJK, for
 // starts and for motions grown well beyond them.
 TEST(DesignProblemTest, ClearanceMinimumEqualsTheBruteForceOverTheGrid) {
-  const RobotModel model = MakePuma560();
-  const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const Puma puma;
+  const RobotModel& model = puma.model;
+  const DesignRegressor& r = puma.regressor;
   DesignOptions o = SmallOptions(false);
   o.clearance = 0.05;
-  const DesignProblem problem(r, testing::DesignLimits(model, 1.5, 4.0), o);
+  const DesignProblem problem(r, puma.limits, o);
   const ClearanceModel& clearance = *problem.clearance();
   const size_t m = clearance.pairs().size();
   DesignProblem::Workspace ws(problem);
