@@ -9,9 +9,9 @@
 
 #include "cli_command.h"
 #include "common_flags.h"
+#include "output_files.h"
 #include "log_reading_flags.h"
 #include "idbench/workbench/commands/compare_command.h"
-#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/reports/design_report.h"
 #include "idbench/workbench/reports/report_command.h"
 
@@ -38,17 +38,12 @@ int CompareCommand(const CompareOptions& options, const UrdfLoadOptions& load, b
   const RobotModel model = LoadRobotOrThrow(options.robot, load);
   const CompareReport report = RunCompare(model, options);
   std::fputs(FormatCompareTable(options, report).c_str(), stdout);
-  const std::filesystem::path dir(options.out_dir);
-  EnsureOutputDirectory(dir);
-  std::vector<std::pair<std::filesystem::path, std::string>> files{
-      {dir / "compare.json", FormatCompareJson(options, report)}, {dir / "compare.csv", FormatCompareCsv(report)}};
-  if (with_report) {
-    for (auto& file : FormatReportFiles(MakeCompareReportContent(options, report), dir))
-      files.push_back(std::move(file));
-  }
-  WriteFilesAtomically(files);
-  std::printf("wrote %s and compare.csv%s\n", (dir / "compare.json").c_str(),
-              with_report ? ", report.html and report.pdf" : "");
+  OutputFiles out(options.out_dir);
+  out.Add("compare.json", FormatCompareJson(options, report));
+  out.Add("compare.csv", FormatCompareCsv(report));
+  if (with_report) out.AddReport(MakeCompareReportContent(options, report));
+  out.Write("wrote " + out.Path("compare.json").string() + " and compare.csv" +
+            (with_report ? ", report.html and report.pdf" : ""));
   return 0;
 }
 

@@ -9,10 +9,10 @@
 
 #include "cli_command.h"
 #include "common_flags.h"
+#include "output_files.h"
 #include "idbench/engine/paper6r.h"
 #include "idbench/workbench/commands/render_command.h"
 #include "idbench/workbench/commands/run_command.h"
-#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/logs/simulation_log_csv.h"
 #include "idbench/workbench/reports/report_command.h"
 
@@ -33,21 +33,17 @@ int RunCommand(const RunOptions& options, const CliContext& context) {
   const RobotModel model = MakePaper6r();
   const RunReport report = RunExperiment(model, options);
   std::fputs(FormatRunTables(options, report).c_str(), stdout);
-  const std::filesystem::path dir(options.out_dir);
-  EnsureOutputDirectory(dir);
-  std::vector<std::pair<std::filesystem::path, std::string>> files{
-      {dir / "log.csv", FormatLogCsv(model, report.log)},
-      {dir / "results.json", FormatRunResultsJson(options, report)}};
+  OutputFiles out(options.out_dir);
+  out.Add("log.csv", FormatLogCsv(model, report.log));
+  out.Add("results.json", FormatRunResultsJson(options, report));
   if (options.report) {
-    const ReportContent content = MakeRunReportContent(model, options, report, RenderRunFigurePng(model, options));
-    for (auto& file : FormatReportFiles(content, dir)) files.push_back(std::move(file));
+    out.AddReport(MakeRunReportContent(model, options, report, RenderRunFigurePng(model, options)));
   } else if (options.figure) {
-    files.emplace_back(dir / "figure.png", RenderRunFigurePng(model, options));
+    out.Add("figure.png", RenderRunFigurePng(model, options));
   }
-  WriteFilesAtomically(files);
-  std::printf("wrote %s and %s%s%s\n", (dir / "results.json").c_str(), (dir / "log.csv").c_str(),
-              options.figure || options.report ? (" and " + (dir / "figure.png").string()).c_str() : "",
-              options.report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
+  out.Write("wrote " + out.Path("results.json").string() + " and " + out.Path("log.csv").string() +
+            (options.figure || options.report ? " and " + out.Path("figure.png").string() : "") +
+            (options.report ? " and " + out.Path("report.html").string() + ", report.pdf" : ""));
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -154,6 +155,62 @@ TEST_F(CompareCommandTest, ShortLogIsNotSimulated) {
   for (Eigen::Index k = 0; k < W.cols(); ++k) {
     EXPECT_NEAR(m.predicted_sigma[k] / std::sqrt(covariance(k, k)), 1.0, 1e-6) << report.parameter_names[k];
   }
+}
+
+// The brief report: the settings, the best-ranked motion with the numbers of
+// its row, the motions that fail a check and the status. The paper motion
+// (hinges 1 and 2 accelerating from rest: q = 0.5 qdd t², 25 rad at 10 s)
+// leaves most of the puma560's parameters unexcited and leaves its joint
+// limits; over 2 s (1 rad), with no clearance check, it is only unexcited.
+TEST_F(CompareCommandTest, BriefReportNamesTheBestMotionAndTheFailures) {
+  options_.trajectories = {"general", "paper"};
+  CompareReport report = RunCompare(model_, options_);
+  ASSERT_EQ(report.motions.size(), 2u);
+  const MotionComparison& general = report.motions[0];
+  const MotionComparison& paper = report.motions[1];
+  ASSERT_TRUE(general.limits.feasible()) << general.limits.Explain();
+  ASSERT_TRUE(general.unexcited.empty());
+  EXPECT_FALSE(paper.limits.feasible());
+  EXPECT_FALSE(paper.unexcited.empty());
+  EXPECT_EQ(general.rank, 1);
+  EXPECT_EQ(report.status, CompareStatus::kOutsideLimits);
+  const std::string table = FormatCompareTable(options_, report);
+  const std::string headline = table.substr(0, table.find('\n'));
+  EXPECT_EQ(headline, "compare: torque model, " + std::to_string(report.parameter_names.size()) +
+                          " parameters, 250 samples per motion, 2 noisy trials");
+  std::string brief = report.BriefReport();
+  ASSERT_EQ(brief.rfind(headline + "\nbest: general (cond(W) ", 0), 0u) << brief;
+  double cond = 0.0, error = 0.0;
+  ASSERT_EQ(std::sscanf(brief.c_str() + headline.size(), "\nbest: general (cond(W) %lg, MC error %lg)", &cond, &error), 2)
+      << brief;
+  EXPECT_NEAR(cond, general.designed.cond, 1e-4 * general.designed.cond);
+  EXPECT_NEAR(error, general.mean_relative_error, 1e-3 * general.mean_relative_error);
+  const std::string failed = "outside the limits: paper\nnot exciting every parameter: paper\noutside limits\n";
+  ASSERT_GE(brief.size(), failed.size());
+  EXPECT_EQ(brief.substr(brief.size() - failed.size()), failed) << brief;
+
+  // The general motion alone: compared.
+  options_.trajectories = {"general"};
+  report = RunCompare(model_, options_);
+  EXPECT_EQ(report.status, CompareStatus::kCompared);
+  brief = report.BriefReport();
+  // Three lines: the settings, the best motion, the status.
+  EXPECT_EQ(std::count(brief.begin(), brief.end(), '\n'), 3) << brief;
+  EXPECT_NE(brief.find("\nbest: general (cond(W) "), std::string::npos) << brief;
+  EXPECT_EQ(brief.substr(brief.size() - 11), ")\ncompared\n") << brief;
+
+  // The paper motion over 2 s within the joint limits: not excited, no best.
+  options_.trajectories = {"paper"};
+  options_.duration = 2.0;
+  options_.clearance = -1.0;
+  report = RunCompare(model_, options_);
+  ASSERT_EQ(report.motions.size(), 1u);
+  EXPECT_TRUE(report.motions[0].limits.feasible()) << report.motions[0].limits.Explain();
+  EXPECT_EQ(report.status, CompareStatus::kNotExcited);
+  brief = report.BriefReport();
+  EXPECT_EQ(brief.find("best:"), std::string::npos) << brief;
+  const std::string unexcited = "\nnot exciting every parameter: paper\nnot excited\n";
+  EXPECT_EQ(brief.substr(brief.find('\n')), unexcited) << brief;
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // RunExport as a library call with typed options: from an identification's
 // identified.json alone, each format is the text identify's own writer gives
 // for that identification (FormatIdentifiedMjcf, FormatIdentifiedUrdf,
-// FormatJointDynamicsYaml), and a model not fit to load is refused.
+// FormatJointDynamicsYaml), and a model not fit to load is refused; the
+// brief report says which file, its size and its status.
 #include "idbench/workbench/commands/export_command.h"
 
 #include <gtest/gtest.h>
@@ -71,6 +72,9 @@ TEST_F(ExportCommandTest, EachFormatIsWhatIdentifyWrites) {
     EXPECT_TRUE(exported.writes);
     EXPECT_TRUE(exported.refused.empty()) << exported.refused;
     EXPECT_EQ(exported.content, c.text) << c.file;
+    EXPECT_EQ(exported.status, ExportStatus::kWritten);
+    EXPECT_EQ(exported.BriefReport(), "export of robot 'puma560' from " + export_.identified + ": " + c.file + " (" +
+                                          std::to_string(c.text.size()) + " bytes), written");
   }
 }
 
@@ -85,11 +89,18 @@ TEST_F(ExportCommandTest, RefusesAModelNotFitToLoadUnlessAsked) {
   EXPECT_TRUE(exported.content.empty());
   EXPECT_NE(exported.refused.find("joints.yaml is not written (write_unverified writes it anyway)"), std::string::npos)
       << exported.refused;
+  EXPECT_EQ(exported.status, ExportStatus::kRefused);
+  EXPECT_EQ(exported.BriefReport(),
+            "export of robot 'puma560' from " + export_.identified + ": joints.yaml, refused: " + exported.refused);
   export_.write_unverified = identify_.write_unverified = true;
   exported = RunExport(model_, export_);
   ASSERT_TRUE(exported.writes);
   EXPECT_EQ(exported.content, FormatJointDynamicsYaml(model_, identify_, report));
   EXPECT_EQ(exported.content.find("offset: null"), std::string::npos) << exported.content;
+  EXPECT_EQ(exported.status, ExportStatus::kWrittenUnverified);
+  EXPECT_EQ(exported.BriefReport(), "export of robot 'puma560' from " + export_.identified + ": joints.yaml (" +
+                                        std::to_string(FormatJointDynamicsYaml(model_, identify_, report).size()) +
+                                        " bytes), written unverified: " + exported.refused);
 }
 
 }  // namespace

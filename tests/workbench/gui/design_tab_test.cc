@@ -7,27 +7,17 @@
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
+#include "workbench/gui/gui_test_util.h"
 
 namespace idbench::gui {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("idbench_design_tab_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-void RunScript(HeadlessGui& gui, const std::string& script) {
-  std::string why;
-  ASSERT_TRUE(RunGuiScript(gui, ParseGuiScript(script, "test script"), "test script", &why)) << why;
-}
+fs::path TempDir(const std::string& name) { return gui::TempDir("design_tab_test", name); }
 
 // Pixels of the viewport in the obstacles' sand (0.74, 0.69, 0.60) lit: red
 // above green above blue, not grey, not a link colour (the test of

@@ -10,8 +10,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <unistd.h>
 
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/excitation/design_regressor.h"
@@ -20,6 +18,7 @@
 #include "idbench/logs/joint_log_csv_writer.h"
 #include "ident/synthetic_log.h"
 #include "render/image_test_util.h"
+#include "workbench/gui/gui_test_util.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 
 namespace idbench::gui {
@@ -27,24 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("idbench_gui_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void RunScript(HeadlessGui& gui, const std::string& script) {
-  std::string why;
-  ASSERT_TRUE(RunGuiScript(gui, ParseGuiScript(script, "test script"), "test script", &why)) << why;
-}
+fs::path TempDir(const std::string& name) { return gui::TempDir("gui_test", name); }
 
 // Pixels inside a widget's rectangle whose colour is saturated (robot links,
 // plot lines and bars; the GUI's chrome is grey and white).

@@ -10,13 +10,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <unistd.h>
 
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/builtin_motions.h"
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
+#include "workbench/gui/gui_test_util.h"
 #include "idbench/logs/joint_log_csv_writer.h"
 #include "ident/single_joint_motion.h"
 #include "ident/synthetic_log.h"
@@ -26,24 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("idbench_payload_tab_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void RunScript(HeadlessGui& gui, const std::string& script) {
-  std::string why;
-  ASSERT_TRUE(RunGuiScript(gui, ParseGuiScript(script, "test script"), "test script", &why)) << why;
-}
+fs::path TempDir(const std::string& name) { return gui::TempDir("payload_tab_test", name); }
 
 // The payload the logs are simulated with, on the PUMA's last link.
 constexpr double kMass = 2.5;  // [kg]

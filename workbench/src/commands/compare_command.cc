@@ -211,6 +211,15 @@ std::unique_ptr<RecordedMotion> LoadRecordedMotion(const std::string& path, cons
   return std::make_unique<RecordedMotion>(std::move(kept), duration);
 }
 
+// "compare: torque model, 40 parameters, ..." without its newline.
+std::string Headline(const CompareReport& report) {
+  char line[512];
+  std::snprintf(line, sizeof line, "compare: %s model, %zu parameters, %d samples per motion, %d noisy trials",
+                std::string(kIdentificationModelNames.Name(report.model)).c_str(), report.parameter_names.size(),
+                report.samples, report.trials);
+  return line;
+}
+
 }  // namespace
 
 LogPreparationOptions CompareOptions::preparation() const {
@@ -258,6 +267,9 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
   const DesignRegressor regressor = per_body ? DesignRegressor::PerBody(model)
                                              : DesignRegressor::JointTorque(model, *ParseFrictionTerms(options.friction, nullptr));
   CompareReport report;
+  report.model = options.model;
+  report.samples = options.samples;
+  report.trials = options.trials;
   report.parameter_names = regressor.parameter_names();
   report.true_parameters = regressor.true_parameters();
   const std::vector<JointLimits> limits = RobotLimits(model);
@@ -350,15 +362,36 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
     return report.motions[a].designed.cond < report.motions[b].designed.cond;
   });
   for (size_t i = 0; i < order.size(); ++i) report.motions[order[i]].rank = static_cast<int>(i + 1);
+  // The verdict: limits first (a motion the robot must not run), then excitation.
+  const auto any = [&](auto failed) { return std::any_of(report.motions.begin(), report.motions.end(), failed); };
+  if (any([](const MotionComparison& m) { return !m.limits.feasible(); })) {
+    report.status = CompareStatus::kOutsideLimits;
+  } else if (any([](const MotionComparison& m) { return !m.unexcited.empty(); })) {
+    report.status = CompareStatus::kNotExcited;
+  }
   return report;
+}
+
+std::string CompareReport::BriefReport() const {
+  std::string out = Headline(*this) + "\n";
+  std::string outside, unexcited;  // the motions' names, comma-separated
+  for (const MotionComparison& m : motions) {
+    if (m.rank == 1) {
+      out += "best: " + m.name + " (cond(W) " + Format("%.5g", m.designed.cond) + ", MC error " +
+             Format("%.4g", m.mean_relative_error) + ")\n";
+    }
+    if (!m.limits.feasible()) outside += (outside.empty() ? "" : ", ") + m.name;
+    if (!m.unexcited.empty()) unexcited += (unexcited.empty() ? "" : ", ") + m.name;
+  }
+  if (!outside.empty()) out += "outside the limits: " + outside + "\n";
+  if (!unexcited.empty()) out += "not exciting every parameter: " + unexcited + "\n";
+  return out + std::string(kCompareStatusNames.Name(status)) + "\n";
 }
 
 std::string FormatCompareTable(const CompareOptions& options, const CompareReport& report) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "compare: %s model, %zu parameters, %d samples per motion, %d noisy trials\n\n",
-                std::string(kIdentificationModelNames.Name(options.model)).c_str(), report.parameter_names.size(), options.samples, options.trials);
-  out += line;
+  out += Headline(report) + "\n\n";
   std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %11s %11s  %s\n", "rank", "motion", "cond(W)",
                 "norm cond", "log det", "sigma_min", "realised", "MC error", "limits, clearance");
   out += line;

@@ -33,6 +33,14 @@ bool ExportOptions::IsValid(std::string* why) const {
   return true;
 }
 
+std::string ExportReport::BriefReport() const {
+  std::string out = "export of robot '" + robot + "' from " + identified + ": " + file_name;
+  if (writes) out += " (" + std::to_string(content.size()) + " bytes)";
+  out += ", " + std::string(kExportStatusNames.Name(status));
+  if (!refused.empty()) out += ": " + refused;
+  return out;
+}
+
 ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
                        const std::optional<Transmission>& transmission) {
   if (!IsMountedAt(model, options.base_pose)) {
@@ -86,8 +94,14 @@ ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
     // The verdict decides, as for identify.
     const nlohmann::json& verdict = field(json, "verdict");
     ExportReport report;
+    report.robot = model.name();
+    report.identified = path;
+    report.file_name = options.file_name();
     report.fit_to_load = field(verdict, "fit_to_load").get<bool>();
     report.writes = report.fit_to_load || options.write_unverified;
+    report.status = report.fit_to_load ? ExportStatus::kWritten
+                    : report.writes    ? ExportStatus::kWrittenUnverified
+                                       : ExportStatus::kRefused;
     if (!report.fit_to_load) {
       const nlohmann::json& cause = field(verdict, "cause");
       report.refused = "the physically consistent estimate is not a robot model (" +

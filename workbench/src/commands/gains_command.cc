@@ -24,7 +24,41 @@ CurrentLog ToCurrentLog(PreparedLog prepared) {
 // JSON number, or null where not finite (not determined).
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+// "Drive gains of <robot> from <data> (unloaded, N samples) and ...: U unknowns, rank R".
+std::string Headline(const GainsReport& report) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "Drive gains of %s from %s (unloaded, %d samples) and %s (payload %g kg, %d "
+                "samples): %d unknowns, rank %d", report.robot.c_str(), report.data.c_str(), report.n_unloaded,
+                report.loaded.c_str(), report.payload_mass, report.n_loaded,
+                static_cast<int>(report.estimate.unknown_names.size()), report.estimate.rank);
+  return line;
+}
+
+std::string ResidualLine(const DriveGainEstimate& e) {
+  char line[128];
+  std::snprintf(line, sizeof(line), "Relative torque residual: unloaded %.4g, loaded %.4g", e.unloaded_relative_error,
+                e.loaded_relative_error);
+  return line;
+}
+
 }  // namespace
+
+std::string GainsReport::BriefReport() const {
+  const DriveGainEstimate& e = estimate;
+  std::string gains;
+  double worst = -1.0;  // largest %σ over the determined gains
+  int worst_joint = 0;
+  for (Eigen::Index j = 0; j < e.gains.size(); ++j) {
+    gains += (j > 0 ? ", " : "") + (std::isfinite(e.gains[j]) ? Format("%.6g", e.gains[j]) : std::string("not ident."));
+    const double percent = 100.0 * e.sigma[j] / std::abs(e.gains[j]);
+    if (std::isfinite(e.gains[j]) && percent > worst) worst = percent, worst_joint = static_cast<int>(j) + 1;
+  }
+  std::string out = Headline(*this) + "\nK [N m/A]: " + gains;
+  if (worst >= 0.0) out += " (largest %sigma " + Format("%.3g", worst) + ", joint " + std::to_string(worst_joint) + ")";
+  out += "\n" + ResidualLine(e) + "\n" + std::string(kDriveGainStatusNames.Name(e.status));
+  if (!e.message.empty()) out += ": " + e.message;
+  return out + "\n";
+}
 
 FrictionModel GainsOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
@@ -66,6 +100,10 @@ bool GainsOptions::IsValid(std::string* why) const {
 
 GainsReport RunGains(const RobotModel& model, const GainsOptions& options) {
   GainsReport report;
+  report.robot = model.name();
+  report.data = options.data;
+  report.loaded = options.loaded;
+  report.payload_mass = options.payload_mass;
   DriveGainOptions gains;
   gains.friction = options.friction_model();
   gains.payload_mass = options.payload_mass;
@@ -86,11 +124,7 @@ std::string FormatGainsTable(const RobotModel& model, const GainsOptions& option
   std::string out;
   for (const std::string& note : report.notes) out += note + "\n";
   char line[512];
-  std::snprintf(line, sizeof(line), "Drive gains of %s from %s (unloaded, %d samples) and %s (payload %g kg, %d "
-                "samples): %d unknowns, rank %d\n\n", model.name().c_str(), options.data.c_str(), report.n_unloaded,
-                options.loaded.c_str(), options.payload_mass, report.n_loaded, static_cast<int>(e.unknown_names.size()),
-                e.rank);
-  out += line;
+  out += Headline(report) + "\n\n";
   std::snprintf(line, sizeof(line), "%6s  %14s  %11s  %8s\n", "joint", "K [N m/A]", "sigma", "%sigma");
   out += line;
   for (int j = 0; j < model.n_dof(); ++j) {
@@ -102,9 +136,7 @@ std::string FormatGainsTable(const RobotModel& model, const GainsOptions& option
     }
     out += line;
   }
-  std::snprintf(line, sizeof(line), "Relative torque residual: unloaded %.4g, loaded %.4g\n", e.unloaded_relative_error,
-                e.loaded_relative_error);
-  out += line;
+  out += ResidualLine(e) + "\n";
   std::snprintf(line, sizeof(line), "Payload torque / loaded residual: %.3g (at least %g); unloaded K·i / robot file's "
                 "torques: %.3g (%g to %g)\n", e.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
                 e.torque_scale, 1.0 / DriveGainOptions::kMaxTorqueScale, DriveGainOptions::kMaxTorqueScale);

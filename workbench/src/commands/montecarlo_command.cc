@@ -26,7 +26,29 @@ JointLog SimulateNoiseFree(const RobotModel& model, const Trajectory& motion, do
   return Measure(Simulate(model, motion, sim), sensors);
 }
 
+// "Monte-Carlo: N trials, ..." without its newline.
+std::string Headline(const MonteCarloReport& report) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "Monte-Carlo: %d trials, %d samples of '%s' (held out: '%s'), %d base parameters, WLS",
+                report.trials, report.samples, report.trajectory.c_str(), report.held_out.c_str(), report.base.n_base());
+  return line;
+}
+
+// The errors and the worst σ ratio: three lines.
+std::string Errors(const MonteCarloReport& report) {
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "mean |dbeta|/|beta|: %.4g (predicted %.4g)\n"
+                "worst empirical/predicted sigma: %.3f (parameter %d)\n"
+                "held-out torque relative error: %.4g (noise alone: %.4g)\n",
+                report.mean_relative_error, report.predicted_relative_error, 1.0 + report.worst_sigma_ratio,
+                report.worst_sigma_index + 1, report.mean_held_out_error, report.held_out_noise_floor);
+  return line;
+}
+
 }  // namespace
+
+std::string MonteCarloReport::BriefReport() const { return Headline(*this) + "\n" + Errors(*this); }
 
 bool MonteCarloOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
@@ -85,6 +107,10 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   const JointLog log = SimulateNoiseFree(model, motion, options.dt, sensors.rate_hz);
   const JointLog held = SimulateNoiseFree(model, *held_motion, options.dt, sensors.rate_hz);
   MonteCarloReport report;
+  report.trajectory = options.trajectory;
+  report.held_out = options.held_out;
+  report.trials = options.trials;
+  report.samples = options.samples;
   report.log = log;
   report.base = ComputeBaseParameters(model, friction);
   report.beta_true = report.base.combination * StandardParameters(model, friction);
@@ -141,11 +167,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
 std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof(line),
-                "Monte-Carlo: %d trials, %d samples of '%s' (held out: '%s'), %d base parameters, WLS\n\n",
-                options.trials, options.samples, options.trajectory.c_str(), options.held_out.c_str(),
-                report.base.n_base());
-  out += line;
+  out += Headline(report) + "\n\n";
   std::snprintf(line, sizeof(line), "%4s  %14s  %12s  %12s  %7s  %12s  %s\n", "#", "true", "predicted σ", "empirical σ",
                 "ratio", "bias/σ", "base parameter");
   out += line;
@@ -158,13 +180,7 @@ std::string FormatMonteCarloTables(const MonteCarloOptions& options, const Monte
                   report.base.names[static_cast<size_t>(k)].c_str());
     out += line;
   }
-  std::snprintf(line, sizeof(line),
-                "\nmean |dbeta|/|beta|: %.4g (predicted %.4g)\n"
-                "worst empirical/predicted sigma: %.3f (parameter %d)\n"
-                "held-out torque relative error: %.4g (noise alone: %.4g)\n",
-                report.mean_relative_error, report.predicted_relative_error, 1.0 + report.worst_sigma_ratio,
-                report.worst_sigma_index + 1, report.mean_held_out_error, report.held_out_noise_floor);
-  out += line;
+  out += "\n" + Errors(report);
   return out;
 }
 

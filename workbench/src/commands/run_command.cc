@@ -20,7 +20,40 @@ constexpr double kPaperMaxRelError = 3.1e-4;  // the paper's Table 3: 0.031 %
 
 nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
+// "idbench run: paper6r, paper motion, ..." without its newline.
+std::string Headline(const RunReport& report) {
+  char line[256];
+  std::snprintf(line, sizeof(line), "idbench run: %s, %s motion, %.0f steps of %g s, %d samples, per-body quaternion method",
+                report.robot.c_str(), report.motion.c_str(), report.duration / report.dt, report.dt,
+                report.identification.n_samples);
+  return line;
+}
+
+// "largest relative error over identifiable parameters: ..." without its newline.
+std::string LargestError(const PerBodyIdentificationResult& r) {
+  char line[256];
+  std::snprintf(line, sizeof(line), "largest relative error over identifiable parameters: %.3e (%s); the paper's: %.1e",
+                r.max_rel_error, r.max_rel_error_at.c_str(), kPaperMaxRelError);
+  return line;
+}
+
 }  // namespace
+
+std::string RunReport::BriefReport() const {
+  int n_parameters = 0, n_identified = 0;
+  std::string unidentified;  // "B1.m_e1, ..."
+  for (const BodyResult& body : identification.bodies) {
+    for (const ParameterResult& p : body.parameters) {
+      ++n_parameters;
+      if (p.identifiable) ++n_identified;
+      else unidentified += (unidentified.empty() ? "" : ", ") + body.name + "." + p.name;
+    }
+  }
+  std::string out = Headline(*this) + "\n" + std::to_string(n_identified) + " of " + std::to_string(n_parameters) +
+                    " parameters identified";
+  if (!unidentified.empty()) out += "; not identifiable: " + unidentified;
+  return out + "\n" + LargestError(identification) + "\n";
+}
 
 SimulationOptions RunOptions::simulation() const {
   SimulationOptions sim;
@@ -84,6 +117,10 @@ bool RunOptions::IsValid(std::string* why) const {
 RunReport RunExperiment(const RobotModel& model, const RunOptions& options) {
   const std::unique_ptr<Trajectory> motion = MakeRunMotion(model, options);
   RunReport report;
+  report.robot = options.robot;
+  report.motion = options.motion;
+  report.duration = options.duration;
+  report.dt = options.dt;
   report.log = Simulate(model, *motion, options.simulation());
   if (options.all_samples) {
     for (int n = 0; n < static_cast<int>(report.log.steps.size()); ++n) report.sample_steps.push_back(n);
@@ -98,11 +135,7 @@ std::string FormatRunTables(const RunOptions& options, const RunReport& report) 
   std::string out;
   char line[256];
   const PerBodyIdentificationResult& r = report.identification;
-  std::snprintf(line, sizeof(line),
-                "idbench run: %s, %s motion, %.0f steps of %g s, %d samples, per-body quaternion method\n\n",
-                options.robot.c_str(), options.motion.c_str(), options.duration / options.dt, options.dt,
-                r.n_samples);
-  out += line;
+  out += Headline(report) + "\n\n";
   for (const BodyResult& body : r.bodies) {
     std::snprintf(line, sizeof(line), "%-4s %-5s %16s %20s %12s %10s  %s\n", body.name.c_str(), "param", "true",
                   "identified", "abs error", "rel error", "status");
@@ -121,10 +154,7 @@ std::string FormatRunTables(const RunOptions& options, const RunReport& report) 
                   body.euler.rank, body.euler.cond, body.euler.residual_norm);
     out += line;
   }
-  std::snprintf(line, sizeof(line),
-                "largest relative error over identifiable parameters: %.3e (%s); the paper's: %.1e\n",
-                r.max_rel_error, r.max_rel_error_at.c_str(), kPaperMaxRelError);
-  out += line;
+  out += LargestError(r) + "\n";
   return out;
 }
 

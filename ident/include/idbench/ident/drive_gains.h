@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/ident/base_parameters.h"
@@ -67,6 +68,9 @@ enum class DriveGainStatus {
   kNotObserved,       // determined in rank, but the data do not carry them: the payload not seen above the
                       // noise, or torques K·i against or far from the robot file's (message says what to check)
 };
+
+inline constexpr EnumNames<DriveGainStatus, 3> kDriveGainStatusNames{"status",
+                                                                   {"estimated", "not identifiable", "not observed"}};
 
 struct DriveGainEstimate {
   DriveGainStatus status = DriveGainStatus::kEstimated;

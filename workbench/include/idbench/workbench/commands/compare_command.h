@@ -11,6 +11,7 @@
 #pragma once
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/enum_names.h"
 
 #include <string>
 #include <vector>
@@ -68,10 +69,28 @@ struct MotionComparison {
   int rank = 0;                         // 1 = lowest cond(W) among the motions; 0: rank-deficient
 };
 
+// The verdict on the motions compared: the first of these that holds.
+enum class CompareStatus {
+  kCompared,       // every motion excites every parameter and stays within the limits
+  kOutsideLimits,  // some motion violates the robot file's limits or the clearance (MotionComparison::limits)
+  kNotExcited,     // some motion does not excite every parameter: no estimate (MotionComparison::unexcited)
+};
+inline constexpr EnumNames<CompareStatus, 3> kCompareStatusNames{"status",
+                                                                 {"compared", "outside limits", "not excited"}};
+
 struct CompareReport {
+  CompareStatus status = CompareStatus::kCompared;
+  IdentificationModel model = IdentificationModel::kJointTorque;
+  int samples = 0, trials = 0;  // per motion, as run
   std::vector<std::string> parameter_names;
   Eigen::VectorXd true_parameters;
   std::vector<MotionComparison> motions;
+
+  // A few lines: the comparison's settings (FormatCompareTable's first line),
+  // the best-ranked motion with its cond(W) and Monte-Carlo error, the motions
+  // outside the limits and those that do not excite every parameter, and the
+  // status.
+  std::string BriefReport() const;
 };
 
 // Throws std::invalid_argument naming a bad trajectory or option.

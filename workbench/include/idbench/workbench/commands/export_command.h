@@ -35,13 +35,30 @@ struct ExportOptions {
   bool IsValid(std::string* why) const;
 };
 
+// What became of the file (identified.json's verdict and write_unverified).
+enum class ExportStatus {
+  kWritten,            // fit to load: content is the file
+  kWrittenUnverified,  // not fit to load, written as asked (write_unverified): refused says why it is not fit
+  kRefused,            // not fit to load: nothing written (refused says why and how to write it anyway)
+};
+inline constexpr EnumNames<ExportStatus, 3> kExportStatusNames{"status",
+                                                               {"written", "written unverified", "refused"}};
+
 struct ExportReport {
+  ExportStatus status = ExportStatus::kWritten;
   bool fit_to_load = false;  // identified.json's verdict
   // When not fit to load: the verdict, its cause and whether the file is
   // written (write_unverified); empty otherwise.
   std::string refused;
   bool writes = false;       // fit to load, or write_unverified
   std::string content;       // the file's text (set when writes)
+  std::string robot;         // the robot's name
+  std::string identified;    // the identified.json read
+  std::string file_name;     // the file: identified.xml, identified.urdf or joints.yaml
+
+  // One line: the robot and file, the file's size and the status, with why
+  // when not fit to load.
+  std::string BriefReport() const;
 };
 
 // Reads options.identified and rebuilds the identified robot model from

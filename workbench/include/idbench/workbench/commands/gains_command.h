@@ -35,10 +35,20 @@ struct GainsOptions {
 };
 
 struct GainsReport {
-  DriveGainEstimate estimate;
+  DriveGainEstimate estimate;        // estimate.status: the verdict (estimated, not identifiable, not observed)
+  std::string robot;                 // the robot's name
+  std::string data, loaded;          // the logs read (options' data and loaded)
+  double payload_mass = 0.0;         // [kg]
   int n_unloaded = 0, n_loaded = 0;  // samples used
   std::vector<std::string> notes;     // how the logs were read, for stdout
   std::vector<std::string> warnings;  // for stderr
+
+  DriveGainStatus status() const { return estimate.status; }
+  // Every gain determined and carried by the data: gains.json is written.
+  bool good() const { return estimate.status == DriveGainStatus::kEstimated; }
+  // Four lines: the logs and rank, the gains with the largest %σ, the
+  // relative torque residuals, and the verdict (with its message when not good).
+  std::string BriefReport() const;
 };
 
 // Reads both logs and estimates. Throws std::invalid_argument naming the file,

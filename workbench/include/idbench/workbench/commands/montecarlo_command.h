@@ -29,7 +29,11 @@ struct MonteCarloOptions {
   bool IsValid(std::string* why) const;
 };
 
+// One outcome: a motion that does not excite every base parameter throws
+// (RunMonteCarlo), so a report always holds the trials' statistics.
 struct MonteCarloReport {
+  std::string trajectory, held_out;    // the motions' names (options' trajectory and held_out)
+  int trials = 0, samples = 0;         // as run
   JointLog log;                        // the noise-free identification log (Bullet-executed states)
   BaseParameters base;
   Eigen::VectorXd beta_true;           // C·π of the robot file (n_base)
@@ -42,6 +46,11 @@ struct MonteCarloReport {
   double held_out_noise_floor = 0.0;   // the same for the true parameters (noise alone)
   double worst_sigma_ratio = 0.0;      // max |empirical/predicted − 1| over base parameters
   int worst_sigma_index = 0;
+
+  // Four lines: what ran, the mean error against the predicted one, the worst
+  // σ ratio and the held-out error against the noise alone (the first and
+  // last lines of FormatMonteCarloTables).
+  std::string BriefReport() const;
 };
 
 // The most Monte-Carlo trials montecarlo and compare run (each costs one

@@ -36,10 +36,20 @@ struct RunOptions {
   bool IsValid(std::string* why) const;
 };
 
+// One outcome: which parameters the motion determines is part of the result
+// (ParameterResult::identifiable), not a verdict on the run.
 struct RunReport {
+  std::string robot, motion;  // options' robot and motion, as run
+  double duration = 0.0;      // [s]
+  double dt = 0.0;            // [s]
   SimulationLog log;
   std::vector<int> sample_steps;
   PerBodyIdentificationResult identification;
+
+  // Three lines: what ran (FormatRunTables' first line), how many parameters
+  // were identified and which were not, and the largest relative error
+  // against the paper's (its last line).
+  std::string BriefReport() const;
 };
 
 // Runs the experiment (options must be valid).

@@ -1,0 +1,68 @@
+// RunMonteCarlo as a library call: the brief report gives the numbers
+// montecarlo.json records for the same run, and the first and last lines of
+// the table the command prints.
+#include "idbench/workbench/commands/montecarlo_command.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "idbench/engine/puma560.h"
+
+namespace idbench {
+namespace {
+
+TEST(MonteCarloCommandTest, BriefReportAgreesWithTheJson) {
+  const RobotModel model = MakePuma560();
+  MonteCarloOptions options;
+  options.duration = 4.0;
+  options.samples = 400;
+  options.trials = 20;
+  const MonteCarloReport report = RunMonteCarlo(model, options);
+  const std::string brief = report.BriefReport();
+  const nlohmann::json json = nlohmann::json::parse(FormatMonteCarloJson(options, report));
+
+  char trajectory[32] = {}, held_out[32] = {};
+  int trials = 0, samples = 0, n_base = 0, worst_index = 0;
+  double mean = 0.0, predicted = 0.0, worst = 0.0, held = 0.0, floor = 0.0;
+  ASSERT_EQ(std::sscanf(brief.c_str(),
+                        "Monte-Carlo: %d trials, %d samples of '%31[^']' (held out: '%31[^']'), %d base parameters, WLS\n"
+                        "mean |dbeta|/|beta|: %lg (predicted %lg)\n"
+                        "worst empirical/predicted sigma: %lg (parameter %d)\n"
+                        "held-out torque relative error: %lg (noise alone: %lg)\n",
+                        &trials, &samples, trajectory, held_out, &n_base, &mean, &predicted, &worst, &worst_index,
+                        &held, &floor),
+            11)
+      << brief;
+  EXPECT_EQ(trials, 20);
+  EXPECT_EQ(samples, 400);
+  EXPECT_EQ(std::string(trajectory), "general");
+  EXPECT_EQ(std::string(held_out), "general-reversed");
+  EXPECT_EQ(static_cast<size_t>(n_base), json["base_parameter_names"].size());
+  // Printed to 4 significant digits (the ratio to 3 decimals).
+  auto near = [](double printed, double value, double tolerance) { return std::abs(printed - value) <= tolerance; };
+  EXPECT_TRUE(near(mean, json["mean_relative_error"].get<double>(), 1e-3 * mean)) << brief;
+  EXPECT_TRUE(near(predicted, json["predicted_relative_error"].get<double>(), 1e-3 * predicted)) << brief;
+  EXPECT_TRUE(near(worst, 1.0 + json["worst_sigma_ratio_deviation"].get<double>(), 1e-3)) << brief;
+  EXPECT_TRUE(near(held, json["mean_held_out_relative_error"].get<double>(), 1e-3 * held)) << brief;
+  EXPECT_TRUE(near(floor, json["held_out_noise_floor"].get<double>(), 1e-3 * floor)) << brief;
+  // The worst σ ratio is the one the JSON's σs give.
+  const auto& empirical = json["empirical_sigma"];
+  const auto& sigma = json["predicted_sigma"];
+  ASSERT_GE(worst_index, 1);
+  ASSERT_LE(worst_index, n_base);
+  for (int k = 0; k < n_base; ++k) {
+    const double deviation = std::abs(empirical[k].get<double>() / sigma[k].get<double>() - 1.0);
+    EXPECT_LE(deviation, json["worst_sigma_ratio_deviation"].get<double>() * (1.0 + 1e-12)) << k;
+  }
+  // The table's first line and last three lines.
+  const std::string tables = FormatMonteCarloTables(options, report);
+  const size_t first = brief.find('\n') + 1;
+  EXPECT_EQ(tables.substr(0, first), brief.substr(0, first));
+  EXPECT_EQ(tables.substr(tables.size() - (brief.size() - first)), brief.substr(first));
+}
+
+}  // namespace
+}  // namespace idbench
