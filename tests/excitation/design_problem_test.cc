@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <memory>
+#include <random>
 
 #include "excitation/design_test_util.h"
 
@@ -152,7 +155,9 @@ TEST(DesignProblemTest, TorqueConstraintValueAndGradient) {
 }
 
 // Clearance constraints: one per pair, the worst grid distance against the
-// minimum, with the gradient at that sample against central differences.
+// minimum, with the gradient at that sample against central differences. A
+// pair certified 2 cm clear of its minimum (NonlinearConstraints) may get the
+// distance at one instant instead: never above the exact value, < −0.2.
 TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
   const Puma puma;
   const RobotModel& model = puma.model;
@@ -163,38 +168,71 @@ TEST(DesignProblemTest, ClearanceConstraintValueAndGradient) {
   ASSERT_NE(problem.clearance(), nullptr);
   const int m = problem.n_nonlinear_constraints();
   ASSERT_EQ(m, static_cast<int>(problem.clearance()->pairs().size()));
-  DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(9, &ws);
+  // A new workspace per evaluation: nothing carried between them, so each
+  // pair is treated alike at θ and θ ± h.
+  const Eigen::VectorXd theta = problem.StartPoint(9, std::make_unique<DesignProblem::Workspace>(problem).get());
+  auto evaluate = [&](const Eigen::VectorXd& t, double* value, double* grad) {
+    DesignProblem::Workspace ws(problem);
+    problem.NonlinearConstraints(t.data(), value, grad, &ws);
+  };
   std::vector<double> value(static_cast<size_t>(m)), grad(static_cast<size_t>(m * problem.n_unknowns()));
-  problem.NonlinearConstraints(theta.data(), value.data(), grad.data(), &ws);
-  // Values: the 1 kHz check over the same instants agrees.
+  evaluate(theta, value.data(), grad.data());
+  // Values: the check at the grid's instants (10 Hz) and at 1 kHz bracket
+  // them: a pair within 2 cm of its minimum (value > −0.2) is the grid's
+  // minimum or closer, where a time between the instants is, never closer than
+  // the 1 kHz check finds; one farther may be below its grid value, never
+  // above nor ≥ −0.2.
   const FeasibilityCheck check =
       CheckTrajectoryLimits(model, puma.limits, problem.Trajectory(theta), 10.0, problem.clearance());
-  int compared = 0;
+  const FeasibilityCheck dense =
+      CheckTrajectoryLimits(model, puma.limits, problem.Trajectory(theta), 1000.0, problem.clearance());
+  std::vector<double> dense_value(static_cast<size_t>(m));
+  for (const ConstraintMargin& c : dense.margins) {
+    if (c.quantity == "clearance") dense_value[static_cast<size_t>(c.joint)] = (0.05 + 0.001 - c.value) / 0.1;
+  }
+  int near = 0, clear = 0;
+  std::vector<char> is_near(static_cast<size_t>(m), 0);
   for (const ConstraintMargin& c : check.margins) {
     if (c.quantity != "clearance") continue;
-    EXPECT_NEAR((0.05 + 0.001 - c.value) / 0.1, value[static_cast<size_t>(c.joint)], 1e-9) << c.pair;
-    ++compared;
+    const double expected = (0.05 + 0.001 - c.value) / 0.1, v = value[static_cast<size_t>(c.joint)];
+    if (expected > -0.2) {
+      EXPECT_GE(v, expected - 1e-9) << c.pair;
+      EXPECT_LE(v, dense_value[static_cast<size_t>(c.joint)] + 1e-5) << c.pair;
+      is_near[static_cast<size_t>(c.joint)] = 1;
+      ++near;
+    } else {
+      EXPECT_LE(v, expected + 1e-9) << c.pair;
+      EXPECT_LT(v, -0.2) << c.pair;
+      ++clear;
+    }
   }
-  EXPECT_EQ(compared, m);
+  EXPECT_EQ(near + clear, m);
+  EXPECT_GT(near, 0);
+  EXPECT_GT(clear, 0);
   const double h = 1e-5;
   for (int i = 0; i < problem.n_unknowns(); ++i) {
     Eigen::VectorXd tp = theta, tm = theta;
     tp[i] += h;
     tm[i] -= h;
     std::vector<double> vp(static_cast<size_t>(m)), vm(static_cast<size_t>(m));
-    problem.NonlinearConstraints(tp.data(), vp.data(), nullptr, &ws);
-    problem.NonlinearConstraints(tm.data(), vm.data(), nullptr, &ws);
+    evaluate(tp, vp.data(), nullptr);
+    evaluate(tm, vm.data(), nullptr);
     for (int c = 0; c < m; ++c) {
+      // (A clear pair's instant may switch between θ ± h: not differentiable.)
+      if (!is_near[static_cast<size_t>(c)]) continue;
       EXPECT_NEAR(grad[static_cast<size_t>(c * problem.n_unknowns() + i)], (vp[c] - vm[c]) / (2 * h), 2e-3)
           << problem.clearance()->pairs()[static_cast<size_t>(c)].Name(model) << " unknown " << i;
     }
   }
 }
 
-// The pruned minimum over the clearance grid (capsule and reach bounds)
-// equals the brute force: every pair at every grid instant by GJK, for
-// starts and for motions grown well beyond them.
+// The pruned minimum over the clearance grid (capsule bounds, reach bounds
+// within an evaluation and carried from the one before) is at least the
+// brute force's (every pair at every grid instant by GJK) and at most the
+// 1 kHz check's (dips between the instants), for starts, motions grown well
+// beyond them and small steps from there (as an optimizer takes them, all in
+// one workspace). A pair the bounds certify 2 cm clear may report less than
+// its grid minimum; that minimum must then be < −0.2.
 TEST(DesignProblemTest, ClearanceMinimumEqualsTheBruteForceOverTheGrid) {
   const Puma puma;
   const RobotModel& model = puma.model;
@@ -213,11 +251,20 @@ TEST(DesignProblemTest, ClearanceMinimumEqualsTheBruteForceOverTheGrid) {
   clearance.Compute(k, &d);
   std::vector<double> slack(m);
   for (size_t i = 0; i < m; ++i) slack[i] = std::clamp(d[i].distance - clearance.pairs()[i].minimum, 0.0, 1e-3);
-  int compared = 0;
+  int exact = 0, clear = 0;
+  double worst_gap = 0.0;  // how far below the 1 kHz minimum a pair within 2 cm stays
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
   for (unsigned seed = 1; seed <= 3; ++seed) {
-    for (double grow : {1.0, 4.0}) {
-      Eigen::VectorXd theta = problem.StartPoint(seed, &ws);
-      for (int j = 0; j < 6; ++j) theta.segment(j * problem.block() + 1, 2 * problem.harmonics()) *= grow;
+    Eigen::VectorXd theta;
+    for (int step = 0; step < 8; ++step) {
+      if (step == 0 || step == 4) {
+        theta = problem.StartPoint(seed, &ws);
+        const double grow = step == 0 ? 1.0 : 4.0;
+        for (int j = 0; j < 6; ++j) theta.segment(j * problem.block() + 1, 2 * problem.harmonics()) *= grow;
+      } else {
+        for (Eigen::Index u = 0; u < theta.size(); ++u) theta[u] += 0.003 * normal(rng);
+      }
       std::vector<double> value(m);
       problem.NonlinearConstraints(theta.data(), value.data(), nullptr, &ws);
       const FourierSeriesTrajectory trajectory = problem.Trajectory(theta);
@@ -230,14 +277,34 @@ TEST(DesignProblemTest, ClearanceMinimumEqualsTheBruteForceOverTheGrid) {
         clearance.Compute(k, &d);
         for (size_t i = 0; i < m; ++i) worst[i] = std::min(worst[i], d[i].distance);
       }
+      const FeasibilityCheck dense = CheckTrajectoryLimits(model, puma.limits, trajectory, 1000.0, &clearance);
+      std::vector<double> dense_worst(m);
+      for (const ConstraintMargin& c : dense.margins) {
+        if (c.quantity == "clearance") dense_worst[static_cast<size_t>(c.joint)] = c.value;
+      }
       for (size_t i = 0; i < m; ++i) {
-        EXPECT_NEAR(value[i], (clearance.pairs()[i].minimum + slack[i] - worst[i]) / 0.1, 1e-6)
-            << clearance.pairs()[i].Name(model) << " seed " << seed << " grown " << grow;
-        ++compared;
+        const double expected = (clearance.pairs()[i].minimum + slack[i] - worst[i]) / 0.1;
+        const double at_1khz = (clearance.pairs()[i].minimum + slack[i] - dense_worst[i]) / 0.1;
+        const bool bracketed = value[i] >= expected - 1e-6 && value[i] <= at_1khz + 1e-5;
+        if (expected > -0.2 || (bracketed && value[i] > expected + 1e-6)) {
+          EXPECT_TRUE(bracketed) << clearance.pairs()[i].Name(model) << " seed " << seed << " step " << step << ": "
+                                 << value[i] << " not in [" << expected << ", " << at_1khz << "]";
+          worst_gap = std::max(worst_gap, at_1khz - value[i]);
+          ++exact;
+        } else {
+          EXPECT_LE(value[i], expected + 1e-6) << clearance.pairs()[i].Name(model) << " seed " << seed << " step " << step;
+          EXPECT_LT(value[i], -0.2) << clearance.pairs()[i].Name(model) << " seed " << seed << " step " << step;
+          ++clear;
+        }
       }
     }
   }
-  EXPECT_EQ(compared, static_cast<int>(6 * m));
+  EXPECT_EQ(exact + clear, static_cast<int>(24 * m));
+  EXPECT_GT(exact, 0);
+  EXPECT_GT(clear, 0);
+  // The dips between grid instants are found to within half the 1 mm slack
+  // (5e-3 of the 0.1 m scale; 0.27 mm measured, in motions grown 4×).
+  EXPECT_LT(worst_gap, 5e-3);
 }
 
 }  // namespace

@@ -53,8 +53,17 @@ class DesignProblem {
     Eigen::MatrixXd W, G, torque_rows;
     std::vector<Clearance> clearances;
     std::vector<FourierBasis> clearance_extra;  // instants added by AddClearanceInstant
+    std::vector<double> clearance_extra_t;      // [s] their times
+    // Per pair: the closest time found between the grid's instants, if any.
+    std::vector<char> clearance_refined;
+    std::vector<FourierBasis> clearance_refined_basis;
+    std::vector<KinematicsData<double>> clearance_refined_pose;  // and a last one to try the next in
     std::vector<KinematicsData<double>> clearance_poses;  // per clearance instant
-    std::vector<double> clearance_bounds;                 // per instant, per pair: LowerBound
+    std::vector<double> clearance_bounds;                 // per instant, per pair: a lower bound of the distance
+    // What the last evaluation knew (per instant, per pair: a lower bound of
+    // the distance, exact where GJK ran) and the joint positions it held at.
+    std::vector<double> clearance_known;
+    Eigen::MatrixXd clearance_known_q;
     std::vector<size_t> clearance_order, clearance_done;
     Eigen::MatrixXd clearance_q;  // n_dof × instants
     std::vector<double> clearance_done_distance;
@@ -99,7 +108,13 @@ class DesignProblem {
   //    the grid of |w·τ|/τ_max − (1 − margin);
   //  - per clearance pair, max over the grid (every ⌈samples/100⌉-th sample,
   //    and the instants added) of (minimum + slack − distance)/0.1 m, the
-  //    slack 1 mm, or less when the pair is closer at the home pose.
+  //    slack 1 mm, or less when the pair is closer at the home pose. A pair
+  //    whose certified lower bound stays 2 cm above that at every instant is
+  //    inactive: its value and gradient are the distance's at the instant of
+  //    that least bound (below the exact value; both < −0.2). The bound
+  //    carries what this workspace's last evaluation measured, so which
+  //    pairs count as inactive depends on the evaluations before
+  //    (deterministically); the other pairs' values are exact.
   void NonlinearConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
   // Nonlinear constraint i: "clearance 'a–b' >= 0.01 m", "torque limit of
   // joint 'x'"; with by how much its normalised value c > 0 breaks it:
@@ -138,6 +153,10 @@ class DesignProblem {
   JointState StateAt(const FourierBasis& basis, const double* theta) const;
   void BuildLinearRows();
   void ClearanceConstraints(const double* theta, double* result, double* grad, Workspace* ws) const;
+  // Pair i's distance about its closest grid instant at time t: *distance and
+  // *witness lowered where a time between the instants is closer.
+  void RefineClearanceMinimum(const double* theta, int i, double t, double* distance, Clearance* witness,
+                              Workspace* ws) const;
 
   const DesignRegressor& regressor_;
   std::vector<JointLimits> limits_;
