@@ -3,6 +3,8 @@
 // the whole design of issue 3's acceptance case.
 #include <benchmark/benchmark.h>
 
+#include <random>
+
 #include "idbench/engine/puma560.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/excitation/design_problem.h"
@@ -93,7 +95,7 @@ void BenchmarkUrLikeConstraints(benchmark::State& state, bool gradient) {
     problem.NonlinearConstraints(theta.data(), values.data(), gradient ? grad.data() : nullptr, &ws);
     benchmark::DoNotOptimize(values.data());
   }
-  state.counters["pairs"] = static_cast<double>(m);
+  state.counters["rows"] = static_cast<double>(m);  // torque limits and clearance pairs
 }
 void BM_ClearanceConstraintsUr10eLike(benchmark::State& state) { BenchmarkUrLikeConstraints(state, false); }
 BENCHMARK(BM_ClearanceConstraintsUr10eLike)->Unit(benchmark::kMillisecond);
@@ -108,6 +110,55 @@ void BM_DesignCriterionGradientUr10eLike(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(problem.Criterion(theta.data(), grad.data(), &ws));
 }
 BENCHMARK(BM_DesignCriterionGradientUr10eLike)->Unit(benchmark::kMillisecond);
+
+// tests/data/panda_like (8 mesh links, 21 clearance pairs at 1 cm) with
+// Franka's acceleration limits: the nonlinear constraints with their
+// gradient along a walk of small steps (0.003 per unknown, as an optimizer
+// takes them; one workspace), so that what one evaluation carries to the
+// next counts as it does in a design. The criterion beside it for scale.
+struct PandaLikeCase {
+  RobotModel model = LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/panda_like/panda_like.urdf").model;
+  DesignRegressor regressor = DesignRegressor::JointTorque(model, FrictionModel{});
+  std::vector<JointLimits> limits;
+  DesignOptions options;
+  PandaLikeCase() {
+    const double qdd[7] = {15, 7.5, 10, 12.5, 15, 20, 20};
+    for (int j = 0; j < 7; ++j) limits.push_back(model.link(j).limits), limits.back().qdd_max = qdd[j];
+  }
+};
+
+void BM_ClearanceConstraintsGradientPandaLikeWalk(benchmark::State& state) {
+  const PandaLikeCase c;
+  const DesignProblem problem(c.regressor, c.limits, c.options);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd start = problem.StartPoint(1, &ws);
+  std::vector<Eigen::VectorXd> walk(64, start);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal(0.0, 0.003);
+  for (size_t k = 1; k < walk.size(); ++k) {
+    walk[k] = walk[k - 1];
+    for (Eigen::Index u = 0; u < walk[k].size(); ++u) walk[k][u] += normal(rng);
+  }
+  const size_t m = static_cast<size_t>(problem.n_nonlinear_constraints());
+  std::vector<double> values(m), grad(m * static_cast<size_t>(problem.n_unknowns()));
+  size_t k = 0;
+  for (auto _ : state) {
+    problem.NonlinearConstraints(walk[k].data(), values.data(), grad.data(), &ws);
+    benchmark::DoNotOptimize(values.data());
+    k = (k + 1) % walk.size();
+  }
+  state.counters["rows"] = static_cast<double>(m);  // torque limits and clearance pairs
+}
+BENCHMARK(BM_ClearanceConstraintsGradientPandaLikeWalk)->Unit(benchmark::kMillisecond);
+void BM_DesignCriterionGradientPandaLike(benchmark::State& state) {
+  const PandaLikeCase c;
+  const DesignProblem problem(c.regressor, c.limits, c.options);
+  DesignProblem::Workspace ws(problem);
+  const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
+  Eigen::VectorXd grad(problem.n_unknowns());
+  for (auto _ : state) benchmark::DoNotOptimize(problem.Criterion(theta.data(), grad.data(), &ws));
+}
+BENCHMARK(BM_DesignCriterionGradientPandaLike)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idbench
