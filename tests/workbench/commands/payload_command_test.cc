@@ -83,5 +83,34 @@ TEST(PayloadCommandTest, TheVerdictDecidesTheFiles) {
   EXPECT_NE(FormatPayloadTable(options, unseen).find("Ixx         not ident."), std::string::npos);
 }
 
+// A log held as every k-th sample (longer than LogPreparationOptions::
+// kMaxHeldSamples) is fitted as held, and the summary says so with the counts.
+TEST(PayloadCommandTest, ALogHeldInPartIsSaidToBe) {
+  const RobotModel puma = MakePuma560();
+  const RobotModel loaded = testing::WithPayload(puma, 2.5, {0.02, -0.03, 0.08},
+                                                 Eigen::Vector3d(0.02, 0.025, 0.015).asDiagonal());
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
+  PayloadOptions options;
+  options.robot = "puma560";
+  options.loaded_log = "long.csv";
+  options.out_dir = "out";
+  PreparedLog held;
+  held.log = testing::SyntheticJointLog(loaded, *MakeBuiltinMotion("general", 6, {.duration = 10.0}), t);
+  held.n_samples = 3003;
+  held.log_stride = 3;
+  const PayloadSummary summary = RunPayloadOnLogs(puma, options, held, std::nullopt);
+  EXPECT_EQ(summary.n_loaded, 1001);
+  const std::string table = FormatPayloadTable(options, summary);
+  EXPECT_NE(table.find("long.csv: 3003 prepared samples, one in 3 (1001) used for the payload fit (at most 200000 "
+                       "held; a time window chooses which part of the log)"),
+            std::string::npos)
+      << table;
+  PreparedLog whole;
+  whole.log = held.log;
+  whole.n_samples = 1001;
+  EXPECT_EQ(FormatPayloadTable(options, RunPayloadOnLogs(puma, options, whole, std::nullopt)).find("prepared samples"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace idbench

@@ -135,6 +135,16 @@ PayloadSummary RunPayloadOnLogs(const RobotModel& model, const PayloadOptions& o
     if (!log) continue;
     for (std::string& note : log->notes) summary.notes.push_back(std::move(note));
     for (std::string& warning : log->warnings) summary.warnings.push_back(std::move(warning));
+    // The estimate takes the log as held: beyond LogPreparationOptions::
+    // kMaxHeldSamples, every log_stride-th sample. Said, not hidden.
+    if (log->log_stride > 1) {
+      const std::string& path = log == &loaded ? options.loaded_log : options.unloaded_log;
+      summary.notes.push_back(path + ": " + std::to_string(log->n_samples) + " prepared samples, one in " +
+                              std::to_string(log->log_stride) + " (" + std::to_string(log->log.n_samples()) +
+                              ") used for the payload fit (at most " +
+                              std::to_string(LogPreparationOptions::kMaxHeldSamples) +
+                              " held; a time window chooses which part of the log)");
+    }
   }
   summary.n_loaded = loaded.log.n_samples();
   summary.n_unloaded = unloaded ? unloaded->log.n_samples() : 0;
