@@ -54,17 +54,31 @@ TEST(PayloadCommandTest, OptionsAreCheckedByField) {
 
 // The summary on prepared logs: a good verdict writes both files; a motion
 // that leaves terms unseen writes only payload.json, even when forced.
-TEST(PayloadCommandTest, TheVerdictDecidesTheFiles) {
-  const RobotModel puma = MakePuma560();
-  const RobotModel loaded = testing::WithPayload(puma, 2.5, {0.02, -0.03, 0.08},
-                                                 Eigen::Vector3d(0.02, 0.025, 0.015).asDiagonal());
-  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
+// PUMA 560 carrying 2.5 kg on link6, logged over 10 s at 100 Hz.
+struct LoadedPuma {
+  RobotModel puma = MakePuma560();
+  RobotModel loaded = testing::WithPayload(puma, 2.5, {0.02, -0.03, 0.08},
+                                           Eigen::Vector3d(0.02, 0.025, 0.015).asDiagonal());
+  Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
   PayloadOptions options;
-  options.robot = "puma560";
-  options.loaded_log = "<loaded>";
-  options.out_dir = "out";
+  explicit LoadedPuma(const std::string& loaded_log) {
+    options.robot = "puma560";
+    options.loaded_log = loaded_log;
+    options.out_dir = "out";
+  }
+  JointLog GeneralMotion() const {
+    return testing::SyntheticJointLog(loaded, *MakeBuiltinMotion("general", 6, {.duration = 10.0}), t);
+  }
+};
+
+TEST(PayloadCommandTest, TheVerdictDecidesTheFiles) {
+  LoadedPuma c("<loaded>");
+  const RobotModel& puma = c.puma;
+  const RobotModel& loaded = c.loaded;
+  const Eigen::VectorXd& t = c.t;
+  PayloadOptions& options = c.options;
   PreparedLog general;
-  general.log = testing::SyntheticJointLog(loaded, *MakeBuiltinMotion("general", 6, {.duration = 10.0}), t);
+  general.log = c.GeneralMotion();
   const PayloadSummary good = RunPayloadOnLogs(puma, options, general, std::nullopt);
   EXPECT_TRUE(good.good()) << good.message;
   EXPECT_NE(good.BriefReport().find("payload on link 'link6': mass 2.5 kg"), std::string::npos) << good.BriefReport();
@@ -86,16 +100,11 @@ TEST(PayloadCommandTest, TheVerdictDecidesTheFiles) {
 // A log held as every k-th sample (longer than LogPreparationOptions::
 // kMaxHeldSamples) is fitted as held, and the summary says so with the counts.
 TEST(PayloadCommandTest, ALogHeldInPartIsSaidToBe) {
-  const RobotModel puma = MakePuma560();
-  const RobotModel loaded = testing::WithPayload(puma, 2.5, {0.02, -0.03, 0.08},
-                                                 Eigen::Vector3d(0.02, 0.025, 0.015).asDiagonal());
-  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
-  PayloadOptions options;
-  options.robot = "puma560";
-  options.loaded_log = "long.csv";
-  options.out_dir = "out";
+  const LoadedPuma c("long.csv");
+  const RobotModel& puma = c.puma;
+  const PayloadOptions& options = c.options;
   PreparedLog held;
-  held.log = testing::SyntheticJointLog(loaded, *MakeBuiltinMotion("general", 6, {.duration = 10.0}), t);
+  held.log = c.GeneralMotion();
   held.n_samples = 3003;
   held.log_stride = 3;
   const PayloadSummary summary = RunPayloadOnLogs(puma, options, held, std::nullopt);
