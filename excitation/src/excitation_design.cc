@@ -115,7 +115,8 @@ void CheckDesignLimits(const RobotModel& model, const std::vector<JointLimits>& 
 namespace {
 
 // The home pose: options.home when given (it must meet every limit, the
-// ranges tightened by the margin, and the clearance), else FindHomePose.
+// ranges tightened by the margin, the motors' torque limits, and the
+// clearance), else FindHomePose.
 // Returns the home's source, or (before the search) the explanation when
 // there is none, in *none.
 std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& limits, const DesignOptions& options,
@@ -130,7 +131,7 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
     home.q = options.home;
     home.source = "given";
   } else {
-    home = FindHomePose(model, limits, options.margin, problem->clearance());
+    home = FindHomePose(model, limits, options.margin, problem->clearance(), options.actuators);
   }
   // The ranges as the search tightens them: the home must be inside.
   std::vector<JointLimits> tightened = limits;
@@ -138,7 +139,7 @@ std::string ChooseHome(const RobotModel& model, const std::vector<JointLimits>& 
     const double range = l.q_max - l.q_min;
     if (std::isfinite(range)) l.q_min += options.margin * range, l.q_max -= options.margin * range;
   }
-  FeasibilityCheck check = CheckPose(model, tightened, home.q, problem->clearance());
+  FeasibilityCheck check = CheckPose(model, tightened, home.q, problem->clearance(), options.actuators);
   if (!check.feasible()) {
     std::string pose;
     for (int j = 0; j < n; ++j) pose += (j ? "," : "") + Format("%.4g", home.q[j]);

@@ -19,11 +19,11 @@ bool FiniteRange(const JointLimits& l) { return std::isfinite(l.q_min) && std::i
 }  // namespace
 
 FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimits>& limits, const Eigen::VectorXd& q,
-                           const ClearanceModel* clearance) {
+                           const ClearanceModel* clearance, const ActuatorLimits& actuators) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
   // Held still for an instant: one sample at t = 0.
   const ConstantAccelerationTrajectory still(q, zero, zero, 1e-6);
-  return CheckTrajectoryLimits(model, limits, still, 1.0, clearance);
+  return CheckTrajectoryLimits(model, limits, still, 1.0, clearance, actuators);
 }
 
 std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vector<JointLimits>& limits,
@@ -62,15 +62,16 @@ std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vecto
 }
 
 double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
-                const Eigen::VectorXd& q, const ClearanceModel* clearance, const std::vector<double>* room_asked) {
-  const FeasibilityCheck check = CheckPose(model, limits, q, clearance);
+                const Eigen::VectorXd& q, const ClearanceModel* clearance, const std::vector<double>* room_asked,
+                const ActuatorLimits& actuators) {
+  const FeasibilityCheck check = CheckPose(model, limits, q, clearance, actuators);
   double room = std::numeric_limits<double>::infinity();
   for (const ConstraintMargin& m : check.margins) {
     if (m.quantity == "clearance") {
       const size_t pair = static_cast<size_t>(m.joint);
       const double asked = room_asked && pair < room_asked->size() ? (*room_asked)[pair] : kClearanceRoom;
       room = std::min(room, (m.margin - asked) / kClearanceScale);
-    } else if (m.quantity == "tau") {
+    } else if (m.quantity == "tau") {  // a joint's, or a motor's (τm = A⁻ᵀ·τ)
       room = std::min(room, m.margin / m.limit - margin);
     } else if (m.quantity == "q_min" || m.quantity == "q_max") {
       const JointLimits& l = limits[static_cast<size_t>(m.joint)];
@@ -81,7 +82,7 @@ double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits,
 }
 
 HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
-                      const ClearanceModel* clearance) {
+                      const ClearanceModel* clearance, const ActuatorLimits& actuators) {
   const int n = model.n_dof();
   Eigen::VectorXd middle = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd first_step = Eigen::VectorXd::Constant(n, 0.5);  // [rad]
@@ -99,7 +100,7 @@ HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& l
     home.source = source;
     Eigen::VectorXd step = first_step;
     const std::vector<double> asked = ClearanceRoomAsked(model, limits, home.q, clearance);
-    home.room = HomeRoom(model, limits, margin, home.q, clearance, &asked);
+    home.room = HomeRoom(model, limits, margin, home.q, clearance, &asked, actuators);
     constexpr double kSmallestStep = 1e-3;  // [rad]
     while (home.room < 0.0 && step.maxCoeff() >= kSmallestStep) {
       bool moved = false;
@@ -112,7 +113,7 @@ HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& l
             const double inset = kRangeRoom * (l.q_max - l.q_min);
             q[j] = std::clamp(q[j], l.q_min + inset, l.q_max - inset);
           }
-          const double room = HomeRoom(model, limits, margin, q, clearance, &asked);
+          const double room = HomeRoom(model, limits, margin, q, clearance, &asked, actuators);
           if (room > home.room) {
             home.q = q, home.room = room, home.source = "searched", moved = true;
             break;

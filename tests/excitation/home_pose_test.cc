@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include "excitation/design_test_util.h"
+#include "idbench/engine/inverse_dynamics.h"
+#include "idbench/engine/puma560.h"
 #include "idbench/engine/urdf.h"
 
 namespace idbench {
@@ -144,6 +146,100 @@ TEST(HomePoseTest, ShoulderRangeInTheFloorIsExplainedBeforeTheSearch) {
   for (const std::string& a : e.advice) shoulder_range |= a.find("joint 2's range q_min..q_max (0.3..0.5 rad)") == 0;
   EXPECT_TRUE(shoulder_range) << e.explanation;
   EXPECT_EQ(result.evaluations, 0);  // nothing searched
+}
+
+// The PUMA with a TX40-like coupled wrist (N = [32, 32, 45, −48, 45, 32],
+// motor 6 turning with joints 5 and 6), a motor torque limit on motor 2
+// (τm2 = τ2/32, written out here rather than through A⁻ᵀ).
+ActuatorLimits PumaMotors(int motor, double tau_max) {
+  constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
+  ActuatorLimits actuators;
+  actuators.transmission.actuator_from_joint = Eigen::MatrixXd::Zero(6, 6);
+  for (int j = 0; j < 6; ++j) actuators.transmission.actuator_from_joint(j, j) = kN[j];
+  actuators.transmission.actuator_from_joint(5, 4) = kN[5];
+  actuators.motors.resize(6);
+  actuators.motors[static_cast<size_t>(motor)].tau_max = tau_max;
+  return actuators;
+}
+// Motor 2's gravity holding torque at q: |τ2|/32 from the inverse dynamics at rest.
+double Motor2HoldingTorque(const RobotModel& model, const Eigen::VectorXd& q) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  RobotData data(model);
+  Eigen::VectorXd tau = InverseDynamics(model, q, zero, zero, &data);
+  AddJointDynamicsTorque(model, zero, zero, &tau);
+  return std::abs(tau[1]) / 32.0;
+}
+
+// A motor whose torque limit is half its gravity load at mid-range (the
+// shoulder's range centred on 0.6 rad, where gravity loads it): the pose has
+// room −1.02 (1 − margin − |τm|/τm_max = 1 − 0.02 − 2), and the search moves
+// the home to where that motor holds the arm within 1 − margin of its limit;
+// without the motors' limits mid-range has room.
+TEST(HomePoseTest, TheHomeKeepsTheMotorsHoldingTorqueWithinItsLimit) {
+  const RobotModel model = MakePuma560();
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 3.0, 20.0);
+  limits[1].q_min = 0.6 - 1.5, limits[1].q_max = 0.6 + 1.5;
+  Eigen::VectorXd middle(6);
+  for (int j = 0; j < 6; ++j) middle[j] = 0.5 * (limits[static_cast<size_t>(j)].q_min + limits[static_cast<size_t>(j)].q_max);
+  const double holding = Motor2HoldingTorque(model, middle);
+  ASSERT_GT(holding, 0.1);
+  const ActuatorLimits motors = PumaMotors(1, 0.5 * holding);
+  EXPECT_EQ(FindHomePose(model, limits, 0.02, nullptr).source, "mid-range");
+  EXPECT_NEAR(HomeRoom(model, limits, 0.02, middle, nullptr, nullptr, motors), 1.0 - 0.02 - 2.0, 1e-12);
+  const HomePose home = FindHomePose(model, limits, 0.02, nullptr, motors);
+  EXPECT_TRUE(home.found) << home.room;
+  EXPECT_EQ(home.source, "searched");
+  EXPECT_GE(home.room, 0.0);
+  EXPECT_LE(Motor2HoldingTorque(model, home.q), (1.0 - 0.02) * 0.5 * holding);
+  std::printf("motor 2 holding torque: %.4g N m at mid-range, limit %.4g, %.4g at the searched home\n", holding,
+              0.5 * holding, Motor2HoldingTorque(model, home.q));
+}
+
+// A motor torque limit no home within the ranges can hold (the shoulder and
+// elbow ranges narrowed to 0.2 rad around 0.6 and −0.4 rad, the limit a
+// quarter of the least holding torque on a grid over them) is explained before the search, naming
+// the motor, its joint, its |τm| at the home tried and the field to relax.
+TEST(HomePoseTest, AMotorThatCannotHoldTheArmIsExplainedBeforeTheSearch) {
+  const RobotModel model = MakePuma560();
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 3.0, 20.0);
+  limits[1].q_min = 0.5, limits[1].q_max = 0.7;
+  limits[2].q_min = -0.5, limits[2].q_max = -0.3;
+  double least = INFINITY;
+  Eigen::VectorXd q(6);
+  for (int j = 0; j < 6; ++j) q[j] = 0.5 * (limits[static_cast<size_t>(j)].q_min + limits[static_cast<size_t>(j)].q_max);
+  for (int a = 0; a <= 10; ++a) {
+    for (int b = 0; b <= 10; ++b) {
+      Eigen::VectorXd p = q;
+      p[1] = limits[1].q_min + 0.02 * a;
+      p[2] = limits[2].q_min + 0.02 * b;
+      least = std::min(least, Motor2HoldingTorque(model, p));
+    }
+  }
+  ASSERT_GT(least, 0.1);
+  const double limit = 0.25 * least;
+  DesignOptions options;
+  options.actuators = PumaMotors(1, limit);
+  const DesignRegressor regressor = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
+  const DesignResult result = DesignExcitation(regressor, limits, options);
+  ASSERT_EQ(result.status, DesignStatus::kNoMotionPossible);
+  const DesignInfeasibility& e = result.infeasibility;
+  EXPECT_TRUE(e.before_search);
+  EXPECT_EQ(result.evaluations, 0);
+  int violations = 0;
+  for (const ConstraintMargin& m : e.check.margins) {
+    if (m.margin >= 0.0) continue;
+    ++violations;
+    EXPECT_EQ(m.motor, 1);
+    EXPECT_EQ(m.quantity, "tau");
+    EXPECT_NEAR(m.value, Motor2HoldingTorque(model, result.home), 1e-9 * m.value);
+    EXPECT_EQ(m.limit, limit);
+  }
+  EXPECT_EQ(violations, 1) << e.explanation;
+  EXPECT_NE(e.explanation.find("no pose with room to move was found"), std::string::npos) << e.explanation;
+  EXPECT_NE(e.explanation.find("motor 2 (joints joint2) tau: |τm| = "), std::string::npos) << e.explanation;
+  bool relax = false;
+  for (const std::string& a : e.advice) relax |= a.rfind("motor 2's torque limit actuators[1].tau_max", 0) == 0;
+  EXPECT_TRUE(relax) << e.explanation;
 }
 
 }  // namespace

@@ -96,5 +96,31 @@ TEST_F(GainsCliTest, PairThatDoesNotDetermineTheGainsFails) {
   EXPECT_NE(no_currents.err.find("missing column 'i1'"), std::string::npos) << no_currents.err;
 }
 
+// A log longer than the bound on what gains holds (200 000 samples): exit 2
+// before it is held, one message naming the log, its samples, the bound and
+// the --time-window that fits (q only: the filter's decimation would not
+// shrink what is held), nothing written.
+TEST_F(GainsCliTest, LogLongerThanTheBoundIsRefused) {
+  const fs::path unloaded = WriteCurrents("unloaded.csv", MakePuma560());
+  const fs::path long_log = dir_ / "long.csv";
+  {
+    std::ofstream out(long_log);
+    char line[32];
+    for (int s = 0; s <= 200000; ++s) {
+      std::snprintf(line, sizeof(line), "%.3f", s * 1e-3);
+      out << line << ",0,0,0,0,0,0,1,1,1,1,1,1\n";
+    }
+  }
+  const Result r = Run("gains --robot puma560 --data " + long_log.string() + " --loaded " + unloaded.string() +
+                       " --payload-mass 2.5 --columns t,q1..q6,i1..i6 --out " + (dir_ / "g").string());
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  const size_t error = r.err.find("idbench: error: ");  // after the robot file's warning
+  ASSERT_NE(error, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.substr(error), "idbench: error: " + long_log.string() + ": 200001 samples to hold whole, more than 200000 (the "
+                   "bound that keeps memory from growing with the log); choose a --time-window of at most 199.999 s "
+                   "(200000 samples at 1000 Hz)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "g"));
+}
+
 }  // namespace
 }  // namespace idbench

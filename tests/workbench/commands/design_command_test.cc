@@ -205,5 +205,48 @@ TEST_F(DesignActuatorLimitsTest, AViolationNamesTheMotor) {
   EXPECT_NE(explained.find("exceeds the limit"), std::string::npos) << explained;
 }
 
+// A motor torque limit below the home pose's gravity holding torque (through
+// A⁻ᵀ) is explained before the search, as a joint's torque limit is: the
+// motor, the joints it drives, its |τm| at home and the field to relax
+// (actuators[1].tau_max). The holding torque is computed here by hand: the
+// inverse dynamics at rest, then τm2 = τ2/N2 (MotorTorques).
+TEST_F(DesignActuatorLimitsTest, AMotorTorqueLimitBelowTheHomeHoldingTorqueIsExplainedBeforeTheSearch) {
+  const Eigen::VectorXd home = (Eigen::VectorXd(6) << 0.0, 0.6, -0.4, 0.0, 1.0, 0.0).finished();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  RobotData data(model_);
+  Eigen::VectorXd tau = InverseDynamics(model_, home, zero, zero, &data);
+  AddJointDynamicsTorque(model_, zero, zero, &tau);
+  const double holding = std::abs(MotorTorques(tau)[1]);
+  ASSERT_GT(holding, 0.1) << "the shoulder's gravity load at this home";
+  const double limit = 0.5 * holding;
+  options_.home = {home.data(), home.data() + home.size()};
+  char motors[256];
+  std::snprintf(motors, sizeof motors, "[{}, {\"tau_max\": %.17g}, {}, {}, {}, {}]", limit);
+  const DesignCommandReport report = Run(motors);
+  const DesignResult& result = report.result;
+  EXPECT_EQ(result.status, DesignStatus::kNoMotionPossible);
+  EXPECT_TRUE(result.infeasibility.before_search);
+  EXPECT_EQ(result.evaluations, 0);
+  EXPECT_TRUE(result.starts.empty());
+  // The one violation: motor 2's torque at the home pose, by the value computed here.
+  int violations = 0;
+  for (const ConstraintMargin& m : result.infeasibility.check.margins) {
+    if (m.margin >= 0.0) continue;
+    ++violations;
+    EXPECT_EQ(m.motor, 1);
+    EXPECT_EQ(m.quantity, "tau");
+    EXPECT_EQ(m.driven, "joint2");
+    EXPECT_NEAR(m.value, holding, 1e-9 * holding);
+    EXPECT_EQ(m.limit, limit);
+  }
+  EXPECT_EQ(violations, 1);
+  const std::string& explained = result.infeasibility.explanation;
+  char line[256];
+  std::snprintf(line, sizeof line, "motor 2 (joints joint2) tau: |τm| = %.6g N m at the home pose exceeds the limit %.6g N m",
+                holding, limit);
+  EXPECT_NE(explained.find(line), std::string::npos) << explained;
+  EXPECT_NE(explained.find("actuators[1].tau_max"), std::string::npos) << explained;
+}
+
 }  // namespace
 }  // namespace idbench

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "idbench/engine/puma560.h"
@@ -110,6 +111,33 @@ TEST_F(GainsCommandTest, SwappedLogsAreNotObserved) {
   ASSERT_GE(brief.size(), verdict.size());
   EXPECT_EQ(brief.substr(brief.size() - verdict.size()), verdict) << brief;
   EXPECT_NE(report.estimate.message.find("swapped"), std::string::npos) << report.estimate.message;
+}
+
+// The logs are held whole, so each is bounded: one of more prepared samples
+// than LogPreparationOptions::kMaxHeldSamples is refused after the counting
+// pass (before any is held), naming the log, its samples, the bound and the
+// fix in the option's field (loaded_time_window for the loaded log).
+TEST_F(GainsCommandTest, LogsLongerThanTheBoundAreRefused) {
+  const Eigen::Index n = LogPreparationOptions::kMaxHeldSamples + 1;  // at 1 kHz, standing still
+  {
+    std::ofstream long_log(dir_ / "long.csv");
+    char line[32];
+    for (Eigen::Index s = 0; s < n; ++s) {
+      std::snprintf(line, sizeof(line), "%.3f", static_cast<double>(s) * 1e-3);
+      long_log << line << ",0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,1,1,1,1,1,1\n";
+    }
+  }
+  options_.data = unloaded_;
+  options_.loaded = (dir_ / "long.csv").string();
+  std::string message;
+  try {
+    RunGains(model_, options_);
+  } catch (const std::invalid_argument& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, options_.loaded + ": 200001 samples to hold whole, more than 200000 (the bound that keeps memory "
+                     "from growing with the log); choose a loaded_time_window of at most 199.999 s (200000 samples at "
+                     "1000 Hz), or a filter.decimation of at least 2");
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/builtin_motions.h"
@@ -114,6 +116,57 @@ TEST_F(LogPreparationTest, RecordedDerivativesAreDecimatedAndFolded) {
   EXPECT_EQ(prepared.log.tau, kept.tau);
   ExpectSameFit(SolveOls(FoldPreparedLog(prepared, model_, friction_, base_)),
                 SolveOls(FactorStackedEquations(model_, friction_, base_, kept)));
+}
+
+// What holds a log whole (max_held_samples = 0) bounds it by max_samples: a
+// longer log is refused after the counting pass, the message naming the log,
+// its samples, the bound and the window (and, with qd and qdd recorded, the
+// decimation) that fits; at the bound it is held whole.
+TEST_F(LogPreparationTest, LogsBeyondMaxSamplesAreRefused) {
+  LogPreparationOptions options;
+  options.max_held_samples = 0;
+  options.max_samples = 10000;
+  auto refusal = [&](const JointLog& log) {
+    try {
+      Prepare(log, options);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("not refused");
+  };
+  // qd, qdd recorded: 30001 samples at 1 kHz; decimation acts before holding.
+  EXPECT_EQ(refusal(full_), "log.csv: 30001 samples to hold whole, more than 10000 (the bound that keeps memory from "
+                            "growing with the log); choose a time_window of at most 9.999 s (10000 samples at 1000 Hz), "
+                            "or a filter.decimation of at least 4");
+  options.filter.decimation = 3;  // 10001 kept
+  EXPECT_NE(refusal(full_).find("log.csv: 10001 samples to hold whole, more than 10000"), std::string::npos);
+  options.filter.decimation = 4;  // 7501 kept, all held
+  const PreparedLog decimated = Prepare(full_, options);
+  EXPECT_EQ(decimated.n_samples, 7501);
+  EXPECT_EQ(decimated.log.n_samples(), 7501);
+  const Eigen::VectorXd kept_t = Decimate(full_.t, 4);
+  EXPECT_EQ(decimated.log.t, kept_t);
+  options.filter.decimation = 1;
+  options.time_window = {0.4995, 10.4995};  // samples 500 to 10499: the bound
+  const PreparedLog window = Prepare(full_, options);
+  EXPECT_EQ(window.n_samples, 10000);
+  EXPECT_EQ(window.log.tau, Window(full_, 500, 10000).tau);
+
+  // qdd estimated: the filter's decimation acts on the samples held, so only
+  // the window is named.
+  JointLog filtered = full_;
+  filtered.qdd.resize(0, 0);
+  options.time_window.clear();
+  options.filter.decimation = 2;
+  EXPECT_EQ(refusal(filtered), "log.csv: 30001 samples to hold whole, more than 10000 (the bound that keeps memory "
+                               "from growing with the log); choose a time_window of at most 9.999 s (10000 samples at "
+                               "1000 Hz)");
+  options.max_samples = 0;  // no bound
+  EXPECT_EQ(Prepare(filtered, options).log.n_samples(), 30001);
+  options.max_samples = -1;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_EQ(why, "max_samples: expected >= 0 (0: no bound), got -1");
 }
 
 }  // namespace

@@ -1,13 +1,15 @@
 // The Design tab's cell and mounting driven headless: a scene file's box
 // beside the robot is drawn in the viewport (pixels of the obstacles' sand
 // colour appear where there were none), a bad scene file is named with its
-// field in the messages, and a design in the cell on a moved base equals
-// RunDesign on the same options (the command line's call).
+// field in the messages, and a design in the cell on a moved base, or with a
+// motor limit through a transmission, equals RunDesign on the same options
+// (the command line's call).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "idbench/engine/robot_library.h"
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
 #include "workbench/gui/gui_test_util.h"
@@ -39,6 +41,14 @@ long long SandPixels(HeadlessGui& gui) {
 long long ViewportPixels(HeadlessGui& gui) {
   const WidgetRect& r = gui.widgets().Find("viewport")->rect;
   return static_cast<long long>(r.width()) * static_cast<long long>(r.height());
+}
+
+// A limits file (limits_file.h) for six joints, each with `joint`'s limits,
+// and the motors' `actuators`.
+void WriteLimitsFile(const fs::path& path, const std::string& joint, const std::string& actuators) {
+  std::string joints;
+  for (int j = 0; j < 6; ++j) joints += (j ? ", " : "") + joint;
+  std::ofstream(path) << "{\"joints\": [" << joints << "], \"actuators\": " << actuators << "}";
 }
 
 TEST(DesignTabTest, SceneIsDrawnAndItsErrorsNamed) {
@@ -127,6 +137,124 @@ TEST(DesignTabTest, ACellWithoutRoomIsExplainedAsRunDesignExplainsIt) {
   ASSERT_EQ(direct.status(), DesignStatus::kNoRoom) << direct.BriefReport();
   EXPECT_NE(direct.result.infeasibility.explanation.find("pillar"), std::string::npos);
   EXPECT_EQ(session.last_error(), "design failed: " + direct.result.infeasibility.explanation);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
+// A motor limit set through the Design tab (a limits file's "actuators" and
+// the transmission they act through, as `idbench design --limits
+// --transmission`): the joint limits fill the table, the design equals
+// RunDesign's on the same options (the command line's call, which reads the
+// file itself), and its check holds the motor within its limit.
+TEST(DesignTabTest, AMotorLimitThroughTheTransmissionEqualsRunDesign) {
+  const fs::path out = TempDir("motor");
+  const fs::path transmission = out / "tx40.json";
+  std::ofstream(transmission) << "{\"actuator_from_joint\": [[32,0,0,0,0,0], [0,32,0,0,0,0], [0,0,45,0,0,0], "
+                                 "[0,0,0,-48,0,0], [0,0,0,0,45,0], [0,0,0,0,32,32]]}";
+  const fs::path limits = out / "limits.json";
+  constexpr double kMotorQdMax = 20.0;  // [rad/s] motor 6 (joints 5 and 6 through 32·(q̇5 + q̇6))
+  WriteLimitsFile(limits, "{\"q_min\": -2.5, \"q_max\": 2.5, \"qd_max\": 3, \"qdd_max\": 20}",
+                  "[{}, {}, {}, {}, {}, {\"qd_max\": " + std::to_string(kMotorQdMax) + "}]");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  // Without the transmission the motor limits are refused, naming the field.
+  RunScript(gui, "click tab.design\nset design.limits " + limits.string() +
+                     "\nset design.harmonics 2\nset design.f0 0.5\nset design.samples 40\n"
+                     "set design.max_evaluations 20\nset design.clearance -1\nclick design.run\nframes 2\n");
+  EXPECT_FALSE(session.design_report().has_value());
+  EXPECT_EQ(session.last_error().rfind("design: transmission: ", 0), 0u) << session.last_error();
+  // The file's joint limits are the table's.
+  ASSERT_EQ(session.limits.size(), 6u);
+  for (const JointLimits& l : session.limits) {
+    EXPECT_EQ(l.q_min, -2.5);
+    EXPECT_EQ(l.qdd_max, 20.0);
+  }
+  // "urdf" for a built-in robot: no URDF transmission, named.
+  RunScript(gui, "set design.transmission urdf\nclick design.run\nframes 2\n");
+  EXPECT_FALSE(session.design_report().has_value());
+  EXPECT_NE(session.last_error().find("robot"), std::string::npos) << session.last_error();
+
+  RunScript(gui, "set design.transmission " + transmission.string() + "\nclick design.run\nwait design 300\n");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  const DesignCommandReport& shown = *session.design_report();
+  EXPECT_EQ(session.design.limits, limits.string());
+  EXPECT_EQ(session.design.transmission, transmission.string());
+  ASSERT_EQ(shown.actuators.motors.size(), 6u);
+  EXPECT_EQ(shown.actuators.motors[5].qd_max, kMotorQdMax);
+  EXPECT_EQ(shown.actuators.transmission.actuator_from_joint(5, 4), 32.0);
+
+  // The command line's RunDesign, reading the limits file and the transmission itself.
+  const DesignCommandReport direct = RunDesign(session.model(), session.design, nullptr, std::nullopt);
+  EXPECT_EQ(shown.result.value, direct.result.value);
+  EXPECT_EQ(shown.result.final.cond, direct.result.final.cond);
+  EXPECT_EQ(shown.result.trajectory.q0(), direct.result.trajectory.q0());
+  EXPECT_EQ(shown.result.trajectory.a(), direct.result.trajectory.a());
+  EXPECT_EQ(shown.result.trajectory.b(), direct.result.trajectory.b());
+  ASSERT_EQ(shown.result.check.margins.size(), direct.result.check.margins.size());
+  int motor_margins = 0;
+  double motor_peak = 0.0;
+  for (size_t i = 0; i < shown.result.check.margins.size(); ++i) {
+    const ConstraintMargin& m = shown.result.check.margins[i];
+    EXPECT_EQ(m.margin, direct.result.check.margins[i].margin) << i;
+    if (m.motor < 0) continue;
+    ++motor_margins;
+    EXPECT_EQ(m.motor, 5);
+    EXPECT_EQ(m.limit, kMotorQdMax);
+    EXPECT_LE(m.value, kMotorQdMax);
+    motor_peak = m.value;
+  }
+  EXPECT_EQ(motor_margins, 1);
+  std::printf("motor limit through the GUI: criterion %.17g (RunDesign %.17g), motor 6 peak %.4g of %.4g rad/s\n",
+              shown.result.value, direct.result.value, motor_peak, kMotorQdMax);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
+// design.transmission "urdf": the robot URDF's ros_control transmissions (a
+// reduction of 50 on each of paper6r's joints, added to its URDF) carry the
+// limits file's motor limit, as `idbench design --transmission urdf` does.
+TEST(DesignTabTest, AMotorLimitThroughTheUrdfTransmissionEqualsRunDesign) {
+  const fs::path out = TempDir("urdf_motor");
+  std::string urdf = ReadFile(fs::path(IDBENCH_SOURCE_DIR) / "engine" / "robots" / "paper6r.urdf");
+  std::string transmissions;
+  for (int j = 1; j <= 6; ++j) {
+    const std::string n = std::to_string(j);
+    transmissions += "<transmission name=\"t" + n + "\"><type>transmission_interface/SimpleTransmission</type>"
+                     "<joint name=\"O" + n + "\"/><actuator name=\"m" + n +
+                     "\"><mechanicalReduction>50</mechanicalReduction></actuator></transmission>\n";
+  }
+  const size_t end = urdf.rfind("</robot>");
+  ASSERT_NE(end, std::string::npos);
+  urdf.insert(end, transmissions);
+  const fs::path robot = out / "geared.urdf";
+  std::ofstream(robot) << urdf;
+  const fs::path limits = out / "limits.json";
+  WriteLimitsFile(limits, "{\"q_min\": -2.5, \"q_max\": 2.5, \"qd_max\": 2, \"qdd_max\": 10}",
+                  "[{\"qd_max\": 30}, {}, {}, {}, {}, {}]");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = robot.string(), .out_dir = out.string()}});
+  Session& session = gui.session();
+  ASSERT_TRUE(session.robot_transmission().has_value()) << session.last_error();
+  RunScript(gui, "click tab.design\nset design.limits " + limits.string() +
+                     "\nset design.transmission urdf\nset design.harmonics 2\nset design.f0 0.5\n"
+                     "set design.samples 40\nset design.max_evaluations 20\nset design.clearance -1\n"
+                     "click design.run\nwait design 300\n");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  const DesignCommandReport& shown = *session.design_report();
+  ASSERT_EQ(shown.actuators.motors.size(), 6u);
+  EXPECT_EQ(shown.actuators.motors[0].qd_max, 30.0);
+  EXPECT_EQ(shown.actuators.transmission.actuator_from_joint, 50.0 * Eigen::MatrixXd::Identity(6, 6));
+  const DesignCommandReport direct =
+      RunDesign(session.model(), session.design, nullptr, idbench::LoadRobot(robot.string()).transmission);
+  EXPECT_EQ(shown.result.value, direct.result.value);
+  EXPECT_EQ(shown.result.trajectory.a(), direct.result.trajectory.a());
+  EXPECT_EQ(shown.result.trajectory.b(), direct.result.trajectory.b());
+  int motor_margins = 0;
+  for (const ConstraintMargin& m : shown.result.check.margins) {
+    if (m.motor < 0) continue;
+    ++motor_margins;
+    EXPECT_EQ(m.motor, 0);
+    EXPECT_LE(m.value, 30.0);
+    std::printf("motor 1 through the URDF's reduction 50: peak %.4g of 30 rad/s\n", m.value);
+  }
+  EXPECT_EQ(motor_margins, 1);
   if (!HasFailure()) fs::remove_all(out);
 }
 

@@ -395,6 +395,41 @@ TEST(HeadlessGuiTest, DragOnTheLogPlotChoosesTheTimeWindow) {
   if (!HasFailure()) fs::remove_all(out);
 }
 
+// The log's plot of a motion faster than its buckets: joint 1 a sine of
+// period 16 ms in a 40 s log at 1 kHz (buckets of 16 samples, the interval
+// at which every 16th sample, the plot's points before LogEnvelope, shows a
+// flat line), the other joints still at 0. The plot shows the whole swing:
+// in a column of the plot, the band covers the plotted height (±0.5 rad,
+// the log's range), where a line would cover a pixel or two.
+TEST(HeadlessGuiTest, LogPlotShowsTheSwingOfAMotionFasterThanItsBuckets) {
+  const fs::path out = TempDir("envelope");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  const Eigen::Index n = 40001;
+  JointLog log;
+  log.t = Eigen::VectorXd::LinSpaced(n, 0.0, 40.0);
+  log.q = Eigen::MatrixXd::Zero(n, 6);
+  for (Eigen::Index i = 0; i < n; ++i) log.q(i, 0) = 0.5 * std::sin(2 * M_PI * log.t[i] / 0.016 + 0.3);
+  log.tau = Eigen::MatrixXd::Zero(n, 6);
+  std::ofstream(out / "fast.csv") << FormatJointLogCsv(log);
+  RunScript(gui, "click tab.log\nset log.data " + (out / "fast.csv").string() + "\nframes 2\n");
+  const WidgetEntry* plot = gui.widgets().Find("log.overview");
+  ASSERT_NE(plot, nullptr) << gui.session().last_error();
+  const Image image = gui.Screenshot();
+  // The plotted rows: 16 px under the top (the caption) to 4 px above the bottom.
+  const int top = static_cast<int>(plot->rect.y0) + 16, bottom = static_cast<int>(plot->rect.y1) - 4;
+  for (double fraction : {0.25, 0.5, 0.75}) {
+    const int u = static_cast<int>(plot->rect.x0 + fraction * plot->rect.width());
+    int drawn = 0;
+    for (int v = top; v < bottom; ++v) {
+      const std::uint8_t* p = image.at(u, v);
+      drawn += std::max({std::abs(p[0] - 252), std::abs(p[1] - 252), std::abs(p[2] - 252)}) > 15;
+    }
+    EXPECT_GE(drawn, 0.9 * (bottom - top)) << "column at " << fraction << " of the plot";
+    std::printf("log plot column at %.2f: %d of %d rows drawn\n", fraction, drawn, bottom - top);
+  }
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // Identify on a long log shows its progress while frames keep coming, and
 // Cancel (log.cancel) ends it: a message says so and nothing is identified.
 TEST(HeadlessGuiTest, LogTabIdentifyShowsProgressAndCancels) {

@@ -6,17 +6,21 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <exception>
 #include <string>
 #include <vector>
 
 #include "gui_app_impl.h"
 #include "gui_helpers.h"
+#include "idbench/workbench/formats/limits_file.h"
 
 namespace idbench::gui {
 
 // The cell and the mounting: the scene file (DesignCommandOptions::scene, read
 // again by the viewport when edited; its errors go to the messages) and the
-// base pose (DesignOptions::base_pose), which compare uses too.
+// base pose (DesignOptions::base_pose), which compare uses too; the limits
+// file and the transmission its motor limits act through (as `idbench design`
+// --limits and --transmission).
 void GuiApp::Impl::DrawDesignCell() {
   DesignCommandOptions& d = session.design;
   if (!design_fields_initialised) {
@@ -32,6 +36,26 @@ void GuiApp::Impl::DrawDesignCell() {
     return true;
   });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Obstacles in the world frame (boxes, cylinders, spheres, meshes); empty: the floor only");
+  ImGui::InputText("limits (JSON)##design.limits", &d.limits);
+  if (ImGui::IsItemDeactivatedAfterEdit()) ReadDesignLimitsFile();
+  widgets.Record("design.limits", [this](const std::string& text, std::string*) {
+    session.design.limits = text;
+    ReadDesignLimitsFile();
+    return true;
+  });
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("Its joint limits go into the table; its \"actuators\" (motor qd_max, tau_max) bound the motors "
+                      "through the transmission; empty: the table alone");
+  }
+  ImGui::InputText("transmission##design.transmission", &d.transmission);
+  widgets.Record("design.transmission", [this](const std::string& text, std::string*) {
+    session.design.transmission = text;
+    return true;
+  });
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("What the limits file's actuators act through: urdf (the robot URDF's) or a JSON/YAML file "
+                      "({\"reduction\": [...]} or {\"actuator_from_joint\": [[...], ...]}); empty: none");
+  }
   ImGui::InputText("base pose##design.base_pose", &base_pose_text);
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     std::string why;
@@ -44,6 +68,19 @@ void GuiApp::Impl::DrawDesignCell() {
   });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("x,y,z [m], roll,pitch,yaw [rad] of the robot's base in the world (gravity along its -z)");
   ImGui::PopItemWidth();
+}
+
+// The limits file (DesignCommandOptions::limits) fills the joint table (the
+// robot file's limits where it omits one), which the design keeps; its
+// "actuators" are read when the design starts (Session::StartDesign). A bad
+// file is named with its field in the messages and leaves the table.
+void GuiApp::Impl::ReadDesignLimitsFile() {
+  if (session.design.limits.empty()) return;
+  try {
+    session.limits = ReadLimitsFile(session.design.limits, session.model());
+  } catch (const std::exception& e) {
+    session.Error(std::string("design.limits: ") + e.what());
+  }
 }
 
 void GuiApp::Impl::DrawDesignTab() {

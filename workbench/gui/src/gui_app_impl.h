@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "idbench/gui/gui_app.h"
+#include "idbench/gui/log_envelope.h"
 #include "idbench/gui/recent_files.h"
 #include "idbench/gui/session.h"
 #include "idbench/gui/widget_registry.h"
@@ -81,11 +82,10 @@ struct GuiApp::Impl {
   bool plot_residuals = false;  // the torque plots show measured − predicted
   bool was_identifying = false; // identify ran last frame (its end selects the Torques tab)
   // The log's overview plot (log_overview.cc): joint positions against time,
-  // decimated; a drag on it chooses the time window.
+  // as a min/max envelope per time bucket; a drag on it chooses the time window.
   std::string overview_key;        // the log, robot and columns it was read for
-  Eigen::VectorXd overview_t;      // [s] (n_points)
-  Eigen::MatrixXd overview_q;      // [rad] (n_points × n_dof)
-  double overview_t_first = 0.0, overview_t_last = 0.0;  // [s] the whole log's first and last sample
+  LogEnvelope overview;            // [rad] per joint; no bucket until a read has finished
+  Eigen::MatrixXd overview_mean;   // [rad] its buckets' means (n_buckets × n_dof)
   std::string overview_error;      // why the log cannot be read ("" = it can)
   // Reads the log for the plot off the UI thread (an hour at 1 kHz takes
   // seconds); a change of log, robot or columns stops a read in flight.
@@ -131,6 +131,7 @@ struct GuiApp::Impl {
   void DrawRobotPanel();
   void DrawDesignTab();
   void DrawDesignCell();
+  void ReadDesignLimitsFile();  // design.limits into the joint table (design_tab.cc)
   void DrawExperimentTab();
   void DrawPerBodyExperiment(bool busy);
   void DrawCompareTab();

@@ -1,8 +1,10 @@
 // The Log tab's plot of the log: its joint positions against time (read with
-// the robot and the column mapping the identification uses, decimated to a
-// few thousand points, streamed in bounded memory). A drag across it chooses the time window
-// (IdentifyOptions::time_window, the log.time_window field), a click without
-// a drag clears it (the whole log); the window is drawn shaded.
+// the robot and the column mapping the identification uses, streamed in
+// bounded memory into a few thousand time buckets, each drawn as the band
+// between its min and max with a line through the means: LogEnvelope). A
+// drag across it chooses the time window (IdentifyOptions::time_window, the
+// log.time_window field), a click without a drag clears it (the whole log);
+// the window is drawn shaded.
 #include <imgui.h>
 
 #include <algorithm>
@@ -15,13 +17,14 @@
 
 #include "gui_app_impl.h"
 #include "gui_helpers.h"
+#include "idbench/gui/log_envelope.h"
 #include "idbench/gui/time_axis.h"
 #include "idbench/logs/open_joint_log.h"
 
 namespace idbench::gui {
 namespace {
 
-constexpr Eigen::Index kMaxOverviewPoints = 2000;  // 2000..4000 points drawn
+constexpr Eigen::Index kMaxOverviewBuckets = 2000;  // 2000..4000 buckets once the log has as many samples
 constexpr float kOverviewHeight = 96.0f;  // [px]
 
 ImU32 JointColor(int j) {
@@ -50,47 +53,21 @@ void GuiApp::Impl::DrawLogOverview() {
     overview_key = key;
     overview_job.RequestStop();  // a read of the previous log ends at its next chunk
     CollectLogOverview(true);
-    overview_t.resize(0);
-    overview_q.resize(0, 0);
+    overview = LogEnvelope(kMaxOverviewBuckets);
+    overview_mean.resize(0, 0);
     overview_error.clear();
     if (!id.data.empty()) {
       overview_job.Start([this, data = id.data, model = session.model(),
                           format = id.format](const std::atomic<bool>& stop) -> std::function<void()> {
         const std::unique_ptr<JointLogSource> source = OpenJointLog(data, model, format, TorqueColumns::kOptional);
-        // Streamed, in bounded memory whatever the log's length: every
-        // stride-th sample is kept; when 2 kMaxOverviewPoints are held, every
-        // other one is dropped and the stride doubles. The last sample too.
-        std::vector<double> t;
-        std::vector<Eigen::VectorXd> q;
-        Eigen::Index stride = 1, index = 0, n_dof = 0;
-        double t_first = 0.0, t_last = 0.0;
-        Eigen::VectorXd q_last;
-        JointLogChunk chunk;
-        while (!stop && source->Next(4096, &chunk))
-          for (Eigen::Index k = 0; k < chunk.samples.t.size(); ++k, ++index) {
-            if (index == 0) t_first = chunk.samples.t[k], n_dof = chunk.samples.q.cols();
-            t_last = chunk.samples.t[k];
-            q_last = chunk.samples.q.row(k).transpose();
-            if (index % stride != 0) continue;
-            t.push_back(t_last);
-            q.push_back(q_last);
-            if (static_cast<Eigen::Index>(t.size()) == 2 * kMaxOverviewPoints) {
-              for (size_t r = 0; 2 * r < t.size(); ++r) t[r] = t[2 * r], q[r] = q[2 * r];
-              t.resize(t.size() / 2), q.resize(q.size() / 2);
-              stride *= 2;
-            }
-          }
-        if (stop) return nullptr;  // superseded: nothing to show
-        if (index < 2) throw std::invalid_argument(data + ": fewer than two samples");
-        if (t.back() != t_last) t.push_back(t_last), q.push_back(q_last);
-        Eigen::MatrixXd q_kept(static_cast<Eigen::Index>(t.size()), n_dof);
-        for (size_t r = 0; r < q.size(); ++r) q_kept.row(static_cast<Eigen::Index>(r)) = q[r].transpose();
-        return [this, t_kept = Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()))),
-                q_kept = std::move(q_kept), t_first, t_last]() mutable {
-          overview_t = std::move(t_kept);
-          overview_q = std::move(q_kept);
-          overview_t_first = t_first;
-          overview_t_last = t_last;
+        // Streamed, in bounded memory whatever the log's length (LogEnvelope:
+        // 2 kMaxOverviewBuckets buckets at most, 3 + 3 n_dof doubles each).
+        LogEnvelope envelope(kMaxOverviewBuckets);
+        if (!FoldJointPositions(*source, stop, &envelope)) return nullptr;  // superseded: nothing to show
+        if (envelope.n_samples() < 2) throw std::invalid_argument(data + ": fewer than two samples");
+        return [this, envelope = std::move(envelope)]() mutable {
+          overview_mean = envelope.Mean();
+          overview = std::move(envelope);
         };
       });
     }
@@ -101,7 +78,7 @@ void GuiApp::Impl::DrawLogOverview() {
     return;
   }
   if (id.data.empty()) return;
-  if (overview_t.size() < 2) {
+  if (overview.n_samples() < 2) {
     ImGui::TextColored(kDimColor, "No plot of the log: %s", overview_error.c_str());
     return;
   }
@@ -111,7 +88,8 @@ void GuiApp::Impl::DrawLogOverview() {
   const ImVec2 size(std::max(100.0f, ImGui::GetContentRegionAvail().x), kOverviewHeight);
   ImGui::InvisibleButton("##log.overview", size);
   const ImVec2 p1(p0.x + size.x, p0.y + size.y);
-  const TimeAxis axis{.x0 = p0.x, .x1 = p1.x, .t0 = overview_t_first, .t1 = overview_t_last};
+  const double t_first = overview.t_begin(0), t_last = overview.t_end(overview.n_buckets() - 1);
+  const TimeAxis axis{.x0 = p0.x, .x1 = p1.x, .t0 = t_first, .t1 = t_last};
   const ImGuiIO& io = ImGui::GetIO();
   std::vector<double> window = id.time_window;
   if (ImGui::IsItemActive() || ImGui::IsItemDeactivated()) {
@@ -134,20 +112,35 @@ void GuiApp::Impl::DrawLogOverview() {
     draw->AddLine(ImVec2(b, p0.y), ImVec2(b, p1.y), IM_COL32(70, 130, 230, 200));
   }
   draw->AddRect(p0, p1, IM_COL32(150, 150, 160, 255));
-  const double lo = overview_q.minCoeff(), hi = overview_q.maxCoeff();
+  const double lo = overview.min().minCoeff(), hi = overview.max().maxCoeff();
   const double span = hi > lo ? hi - lo : 1.0;
   const float top = p0.y + 16.0f, height = size.y - 20.0f;
-  std::vector<ImVec2> points(static_cast<size_t>(overview_t.size()));
-  for (Eigen::Index j = 0; j < overview_q.cols(); ++j) {
-    for (Eigen::Index k = 0; k < overview_t.size(); ++k)
-      points[static_cast<size_t>(k)] = ImVec2(static_cast<float>(axis.PixelAt(overview_t[k])),
-                                              top + static_cast<float>((hi - overview_q(k, j)) / span) * height);
-    draw->AddPolyline(points.data(), static_cast<int>(points.size()), JointColor(static_cast<int>(j)), 0, 1.0f);
+  auto y_at = [&](double q) { return top + static_cast<float>((hi - q) / span) * height; };
+  const Eigen::Index n = overview.n_buckets();
+  std::vector<float> x_mid(static_cast<size_t>(n));  // [px] each bucket's middle
+  for (Eigen::Index k = 0; k < n; ++k)
+    x_mid[static_cast<size_t>(k)] = static_cast<float>(axis.PixelAt(0.5 * (overview.t_begin(k) + overview.t_end(k))));
+  std::vector<ImVec2> points(static_cast<size_t>(n));
+  for (Eigen::Index j = 0; j < overview.n_channels(); ++j) {
+    const ImU32 color = JointColor(static_cast<int>(j));
+    // The envelope: per pixel column, the min and max of the buckets whose
+    // middle falls in it, filled (at least a pixel high).
+    const ImU32 band = (color & ~IM_COL32_A_MASK) | IM_COL32(0, 0, 0, 110);
+    for (Eigen::Index k = 0; k < n;) {
+      const float x = std::floor(x_mid[static_cast<size_t>(k)]);
+      double q_min = overview.min()(k, j), q_max = overview.max()(k, j);
+      for (++k; k < n && std::floor(x_mid[static_cast<size_t>(k)]) == x; ++k)
+        q_min = std::min(q_min, overview.min()(k, j)), q_max = std::max(q_max, overview.max()(k, j));
+      draw->AddRectFilled(ImVec2(x, y_at(q_max)), ImVec2(x + 1.0f, y_at(q_min) + 1.0f), band);
+    }
+    // The line through the buckets' means, at their middles.
+    for (Eigen::Index k = 0; k < n; ++k)
+      points[static_cast<size_t>(k)] = ImVec2(x_mid[static_cast<size_t>(k)], y_at(overview_mean(k, j)));
+    draw->AddPolyline(points.data(), static_cast<int>(n), color, 0, 1.0f);
   }
   char text[200];
   std::snprintf(text, sizeof text, "q [rad] against t, %.4g to %.4g s; drag to choose the time window%s",
-                overview_t_first, overview_t_last,
-                window.size() == 2 ? "" : " (now: all of it)");
+                t_first, t_last, window.size() == 2 ? "" : " (now: all of it)");
   draw->AddText(ImVec2(p0.x + 4.0f, p0.y + 1.0f), IM_COL32(90, 90, 90, 255), text);
 }
 

@@ -65,6 +65,7 @@ bool Session::LoadRobot(const std::string& name_or_path) {
   try {
     UrdfLoadResult loaded = idbench::LoadRobot(name_or_path);
     model_ = std::make_shared<const RobotModel>(std::move(loaded.model));
+    robot_transmission_ = std::move(loaded.transmission);
     for (const std::string& w : CollapseRepeatedMessages(loaded.warnings)) Info("warning: " + w);
   } catch (const std::exception& e) {
     Error(e.what());
@@ -122,6 +123,14 @@ void Session::StartDesign() {
   std::string why;
   design.robot = robot_source_;
   if (!design.IsValid(&why)) return Error("design: " + why);
+  // The joint limits are the table's; the motors' are the limits file's
+  // "actuators" through design.transmission, as the command line reads them.
+  DesignCommandOptions options = design;
+  try {
+    options.design.actuators = DesignActuatorLimits(*model_, design, robot_transmission_);
+  } catch (const std::exception& e) {
+    return Error(std::string("design: ") + e.what());
+  }
   {
     const std::lock_guard<std::mutex> lock(curve_mutex_);
     curve_.clear();
@@ -129,7 +138,8 @@ void Session::StartDesign() {
                        std::numeric_limits<double>::infinity());
   }
   // The job works on copies: the panels may keep editing.
-  StartJob(JobKind::kDesign, [this, model = model_, options = design, table = limits](const std::atomic<bool>& stop) {
+  StartJob(JobKind::kDesign, [this, model = model_, options = std::move(options),
+                              table = limits](const std::atomic<bool>& stop) {
     DesignControl control;
     control.stop = &stop;
     control.progress = [this](const DesignProgress& p) {

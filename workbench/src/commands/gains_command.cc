@@ -74,7 +74,10 @@ LogPreparationOptions GainsOptions::preparation(bool loaded_log) const {
   out.torques = TorqueColumns::kCurrents;
   out.filter = filter;
   out.max_gap_s = max_gap_s;
-  out.max_held_samples = 0;  // EstimateDriveGains takes the prepared logs whole (not streamed)
+  // EstimateDriveGains takes the prepared logs whole (not streamed): a log
+  // is held whole, and one longer than the bound is refused before it is.
+  out.max_held_samples = 0;
+  out.max_samples = LogPreparationOptions::kMaxHeldSamples;
   return out;
 }
 

@@ -131,7 +131,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   id_options.estimator = options.estimator;
   id_options.plausibility = options.plausibility;
   report.log = std::move(data.log);
-  report.n_samples = data.n_samples;
+  report.n_samples_read = data.n_raw;
   id_options.parallel_filter = data.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
   report.parallel_filter = id_options.parallel_filter;
@@ -144,6 +144,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     const StackedFactors factors = FoldPreparedLog(data, model, id_options.friction, base, {}, nullptr,
                                                    LogPreparationOptions::kMaxHeldSamples,
                                                    stages->Next("identifying from " + options.data));
+    report.n_samples = factors.n_samples();  // what the fold kept
     stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
     report.identification = IdentifyJointTorque(model, base, factors, id_options);
   } catch (const std::invalid_argument& e) {

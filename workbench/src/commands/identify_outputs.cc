@@ -194,6 +194,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"robot", model.name()},
       {"data", options.data},
       {"n_samples", report.n_samples},
+      {"n_samples_read", report.n_samples_read},
       {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences (" + report.derivatives + ")"
                                       : "from the log"},
       {"log_preparation", report.notes},

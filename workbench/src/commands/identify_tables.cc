@@ -3,10 +3,43 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "number_format.h"
 
 namespace idbench {
+
+namespace {
+
+// The summary's sample count: "2000 samples" when the fit used every sample
+// read; otherwise both counts and why they differ, "2000 samples read, 375
+// used (qd, qdd from the filtered q; 250 filter-transient samples dropped at
+// each end, then one in 4 kept)". A filtered log's derivatives are said
+// either way.
+std::string SamplesText(const IdentifyReport& report) {
+  std::vector<std::string> why;
+  if (report.filtered) why.push_back(report.derivatives);
+  if (report.n_samples == report.n_samples_read) {
+    return std::to_string(report.n_samples) + " samples" + (why.empty() ? "" : " (" + why.front() + ")");
+  }
+  std::string dropped;
+  int decimation = report.prepared ? report.prepared->decimation : 1;
+  if (report.parallel_filter) {
+    const ParallelFilter& pf = *report.parallel_filter;
+    decimation = pf.filter.decimation;
+    if (const Eigen::Index trim = ParallelFilterTrimSamples(pf.filter, pf.sample_rate_hz); trim > 0) {
+      dropped = std::to_string(trim) + " filter-transient samples dropped at each end";
+    }
+  }
+  if (decimation > 1) dropped += (dropped.empty() ? "" : ", then ") + std::string("one in ") + std::to_string(decimation) + " kept";
+  if (!dropped.empty()) why.push_back(dropped);
+  std::string text = std::to_string(report.n_samples_read) + " samples read, " + std::to_string(report.n_samples) + " used";
+  for (size_t i = 0; i < why.size(); ++i) text += (i ? "; " : " (") + why[i];
+  return why.empty() ? text : text + ")";
+}
+
+}  // namespace
 
 double RelativeSigmaPercent(double value, double sigma) {
   if (!std::isfinite(value) || !std::isfinite(sigma) || !(std::abs(value) > 3.0 * sigma)) return std::nan("");
@@ -19,11 +52,9 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   std::string out;
   for (const std::string& note : report.notes) out += note + "\n";
   char line[512];
-  std::snprintf(line, sizeof(line), "Joint-torque identification of %s from %s: %d samples%s, %d base parameters, "
-                "estimator %s, cond(W) = %.4g\n\n", model.name().c_str(), options.data.c_str(), static_cast<int>(report.n_samples),
-                report.filtered ? (" (" + report.derivatives + ")").c_str() : "", id.base.n_base(), std::string(ToString(options.estimator)).c_str(),
-                id.linear.cond);
-  out += line;
+  out += "Joint-torque identification of " + model.name() + " from " + options.data + ": " + SamplesText(report) + ", " +
+         std::to_string(id.base.n_base()) + " base parameters, estimator " + std::string(ToString(options.estimator)) +
+         ", cond(W) = " + Format("%.4g", id.linear.cond) + "\n\n";
   std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
                 "%sigma", "status", "base parameter");
   out += line;

@@ -30,6 +30,7 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
   if (!(max_gap_s >= 0.0 && max_gap_s <= kMaxGapS)) {
     return fail("max_gap_s: expected 0 (10 median steps) to " + Shortest(kMaxGapS) + " s, got " + Shortest(max_gap_s));
   }
+  if (max_samples < 0) return fail("max_samples: expected >= 0 (0: no bound), got " + std::to_string(max_samples));
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("filter." + filter_why);
   return true;
@@ -291,6 +292,23 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
     out.notes.push_back(path + ": " + label + " " + Shortest(t0) + "–" + Shortest(t1) + " s: " + std::to_string(n) +
                         " of " + std::to_string(n_total) + " samples");
   }
+  // A log of more than max_samples prepared samples (at rate_hz [Hz]) is
+  // refused before it is held, naming the window (and the decimation, when
+  // decimation_helps: it acts before holding) that keeps it in bound.
+  auto refuse_beyond_bound = [&](Eigen::Index n_prepared, double rate_hz, bool decimation_helps) {
+    const Eigen::Index max = options.max_samples;
+    if (max == 0 || n_prepared <= max) return;
+    // A window of (max − 1) steps holds max samples, its ends included.
+    std::string fix = "choose a " + options.window_field + " of at most " +
+                      Format("%.6g", static_cast<double>(max - 1) / rate_hz) + " s (" + std::to_string(max) +
+                      " samples at " + Format("%.6g", rate_hz) + " Hz)";
+    if (decimation_helps) {  // ceil(n / k) <= max
+      fix += ", or a filter.decimation of at least " + std::to_string((n + max - 1) / max);
+    }
+    throw std::invalid_argument(path + ": " + std::to_string(n_prepared) + " samples to hold whole, more than " +
+                                std::to_string(max) + " (the bound that keeps memory from growing with the log); " +
+                                fix);
+  };
   auto hold = [&](Eigen::Index n_prepared) {
     out.n_samples = n_prepared;
     const Eigen::Index max = options.max_held_samples;
@@ -303,6 +321,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
     // filter here: the recorded signals are used as they are).
     const int k = options.filter.decimation;
     out.decimation = k;
+    refuse_beyond_bound((n + k - 1) / k, static_cast<double>(n - 1) / (w_last - w_first) / k, true);
     hold((n + k - 1) / k);
     if (k > 1) {
       out.notes.push_back(path + ": decimation " + std::to_string(k) + ": one sample in " + std::to_string(k) +
@@ -315,6 +334,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
       throw std::invalid_argument(path + ": " + std::to_string(n) +
                                   " samples, too few to estimate qd, qdd by filtering");
     }
+    refuse_beyond_bound(n, static_cast<double>(n - 1) / (w_last - w_first), false);  // before resampling holds it
     if (!(scan.max_step - scan.min_step <= ResamplingOptions{}.uniform_tolerance * scan.min_step)) {
       ResampleWindow(path, options, &out, &w_first, &w_last);
       n = out.n_raw;
@@ -339,6 +359,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
                                   " Hz (fs = " + Shortest(rate_hz) + " Hz)");
     }
     out.parallel_filter = ParallelFilter{options.filter, rate_hz};
+    refuse_beyond_bound(n, rate_hz, false);  // decimation acts after filtering, on the samples held
     hold(n);
     if (const int k = options.filter.decimation; k > 1) {  // the equations kept (ParallelFilterKeptSamples)
       const Eigen::Index trim = ParallelFilterTrimSamples(options.filter, rate_hz);

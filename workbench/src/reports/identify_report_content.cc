@@ -10,16 +10,20 @@
 namespace idbench {
 namespace {
 
-// "N samples", and for a filtered log how many equations of them were kept
-// (ParallelFilterKeptSamples: the filter's ends dropped, the decimation).
+// "N samples", and when the fit used fewer (a filtered log's ends dropped,
+// a decimated one) how many it was identified from and why.
 std::string SamplesText(const IdentifyReport& report) {
-  std::string text = std::to_string(report.n_samples) + " samples";
-  if (!report.parallel_filter) return text;
-  const ParallelFilter& pf = *report.parallel_filter;
-  const size_t kept = ParallelFilterKeptSamples(pf.filter, pf.sample_rate_hz, report.n_samples).size();
-  return text + ", qd and qdd estimated by zero-phase filtering; " + std::to_string(kept) +
-         " identified from, the filter's ends dropped" +
-         (pf.filter.decimation > 1 ? " and one in " + std::to_string(pf.filter.decimation) + " kept" : "");
+  std::string text = std::to_string(report.n_samples_read) + " samples";
+  const int decimation = report.parallel_filter ? report.parallel_filter->filter.decimation
+                         : report.prepared      ? report.prepared->decimation
+                                                : 1;
+  const std::string kept = decimation > 1 ? "one in " + std::to_string(decimation) + " kept" : "";
+  if (report.parallel_filter) {
+    return text + ", qd and qdd estimated by zero-phase filtering; " + std::to_string(report.n_samples) +
+           " identified from, the filter's ends dropped" + (kept.empty() ? "" : " and " + kept);
+  }
+  if (report.n_samples == report.n_samples_read) return text;
+  return text + "; " + std::to_string(report.n_samples) + " identified from" + (kept.empty() ? "" : ", " + kept);
 }
 
 }  // namespace

@@ -2,12 +2,13 @@
 // oscillates about it, so it must be clear of the limits with room to move.
 //
 // A pose is checked held still (qd = qdd = 0) against the joint ranges, the
-// torque limits (gravity) and the clearance (CheckPose). It is a home with
+// torque limits (gravity), the motors' torque limits (τm = A⁻ᵀ·τ, when the
+// design has actuator limits) and the clearance (CheckPose). It is a home with
 // room when, besides, each joint is at least 10 % of its range inside it, the
-// gravity torque at most 1 − margin of its limit, and every clearance pair at
-// least 10 cm beyond the minimum clearance (less where the joints cannot give
-// a pair that much, ClearanceRoomAsked): a first dip of a joint then does not
-// reach the floor or another link.
+// gravity torque at most 1 − margin of its limit (a joint's or a motor's),
+// and every clearance pair at least 10 cm beyond the minimum clearance (less
+// where the joints cannot give a pair that much, ClearanceRoomAsked): a first
+// dip of a joint then does not reach the floor or another link.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,6 +17,7 @@
 
 #include "idbench/engine/link_clearance.h"
 #include "idbench/engine/robot_model.h"
+#include "idbench/excitation/actuator_limits.h"
 #include "idbench/excitation/excitation_design.h"
 
 namespace idbench {
@@ -23,10 +25,10 @@ namespace idbench {
 // How far inside each joint's range a home stays, as a fraction of the range.
 inline constexpr double kHomeRangeRoom = 0.1;
 
-// The limits and the clearance of the pose q [rad] (n_dof) held still; its
-// margins have time 0.
+// The limits (the joints', and the motors' of `actuators`) and the clearance
+// of the pose q [rad] (n_dof) held still; its margins have time 0.
 FeasibilityCheck CheckPose(const RobotModel& model, const std::vector<JointLimits>& limits, const Eigen::VectorXd& q,
-                           const ClearanceModel* clearance);
+                           const ClearanceModel* clearance, const ActuatorLimits& actuators = {});
 
 // The room a home asks of each clearance pair (one entry per pair of
 // clearance; none without it) [m]: 0.1 m, but at most half of what the joints
@@ -40,13 +42,14 @@ std::vector<double> ClearanceRoomAsked(const RobotModel& model, const std::vecto
 
 // How much room q has, in units of each constraint's scale: the smallest of
 //   (distance to the nearer range end)/range − 0.1,
-//   1 − margin − |τ_gravity|/τ_max,
+//   1 − margin − |τ_gravity|/τ_max, and per motor of `actuators`
+//   1 − margin − |τm|/τm_max with τm = A⁻ᵀ·τ_gravity,
 //   (clearance − minimum − asked)/0.1 m, asked = room_asked[pair] (0.1 m
 //   when not given, see ClearanceRoomAsked);
 // ≥ 0 for a home with room.
 double HomeRoom(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
                 const Eigen::VectorXd& q, const ClearanceModel* clearance,
-                const std::vector<double>* room_asked = nullptr);
+                const std::vector<double>* room_asked = nullptr, const ActuatorLimits& actuators = {});
 
 struct HomePose {
   Eigen::VectorXd q;         // [rad] (n_dof)
@@ -60,6 +63,6 @@ struct HomePose {
 // HomeRoom (per joint a step either way, 0.5 rad or a quarter of the range at
 // first, halved down to 1 mrad; each joint kept 10 % inside its range).
 HomePose FindHomePose(const RobotModel& model, const std::vector<JointLimits>& limits, double margin,
-                      const ClearanceModel* clearance);
+                      const ClearanceModel* clearance, const ActuatorLimits& actuators = {});
 
 }  // namespace idbench

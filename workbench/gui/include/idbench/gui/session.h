@@ -25,6 +25,7 @@
 #include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/trajectory.h"
+#include "idbench/engine/transmission.h"
 #include "idbench/gui/background_job.h"
 #include "idbench/workbench/commands/simulate_command.h"
 
@@ -79,6 +80,9 @@ class Session {
   // ---- Robot -------------------------------------------------------------
   const RobotModel& model() const { return *model_; }
   const std::string& robot_source() const { return robot_source_; }
+  // The robot URDF's ros_control transmission (design.transmission "urdf");
+  // nullopt when it has none (a built-in robot).
+  const std::optional<Transmission>& robot_transmission() const { return robot_transmission_; }
   // Loads a built-in robot or a URDF. On failure (unknown name, unreadable or
   // unsupported file) keeps the current robot and posts the error; refused
   // while a job runs. Resets the limit table and the results.
@@ -193,6 +197,7 @@ class Session {
 
   std::shared_ptr<const RobotModel> model_;
   std::string robot_source_;
+  std::optional<Transmission> robot_transmission_;
   std::unique_ptr<Trajectory> builtin_motion_;
   std::string builtin_motion_key_;
   int motion_version_ = 0;

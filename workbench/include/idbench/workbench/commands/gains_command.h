@@ -52,7 +52,9 @@ struct GainsReport {
 };
 
 // Reads both logs and estimates. Throws std::invalid_argument naming the file,
-// line and column of bad data. Gains the logs do not determine are
+// line and column of bad data, or a log of more prepared samples than
+// LogPreparationOptions::kMaxHeldSamples (both are held whole; refused before
+// either is held, the message naming the window or decimation that fits). Gains the logs do not determine are
 // report.estimate.status, not a throw.
 GainsReport RunGains(const RobotModel& model, const GainsOptions& options);
 

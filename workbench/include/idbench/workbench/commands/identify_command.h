@@ -90,7 +90,12 @@ struct IdentifyReport {
   // As identified (after filtering, if any): every sample up to
   // LogPreparationOptions::kMaxHeldSamples, else every k-th (plots, playback).
   JointLog log;
-  Eigen::Index n_samples = 0;        // of the prepared log, all identified from
+  // The samples counted twice: those the fit used (its equations' samples:
+  // after decimation and, when filtered, the filter's transient ends
+  // dropped), and those read (in the time window, after resampling) before
+  // either. Equal when the log is neither filtered nor decimated.
+  Eigen::Index n_samples = 0;        // in the fit
+  Eigen::Index n_samples_read = 0;   // read from the log
   bool filtered = false;             // qd/qdd were estimated by filtering
   std::string derivatives;           // where the identification log's qd, qdd come from
   std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout

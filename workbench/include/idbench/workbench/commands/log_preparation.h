@@ -36,6 +36,12 @@ struct LogPreparationOptions {
   // PreparedLog::log holds at most this many samples (every k-th beyond it);
   // 0: all of them (what needs the whole log, e.g. drive-gain estimation).
   Eigen::Index max_held_samples = kMaxHeldSamples;
+  // For what holds a log whole (max_held_samples = 0): a log of more prepared
+  // samples than this is refused after the first (counting) pass, before any
+  // is held: std::invalid_argument naming the log, its samples, the bound and
+  // the fix (time_window, or filter.decimation where it applies before the
+  // samples are held). 0: no bound.
+  Eigen::Index max_samples = 0;
 
   // 200 000 prepared samples of a 7-joint arm (t, q, qd, qdd, τ) are 46 MB.
   static constexpr Eigen::Index kMaxHeldSamples = 200000;
