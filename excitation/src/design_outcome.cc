@@ -6,6 +6,7 @@
 #include <string>
 
 #include "excitation_design_internal.h"
+#include "idbench/ident/least_squares.h"
 
 namespace idbench {
 namespace internal {
@@ -64,6 +65,25 @@ DesignResult ExplainNoFeasibleStart(const RobotModel& model, const std::vector<J
       std::move(check), std::move(advice), false);
   result.check = result.infeasibility.check;
   return result;
+}
+
+DesignInfeasibility ExplainUnexcited(const DesignRegressor& regressor, const Eigen::MatrixXd& W, int rank,
+                                     const std::vector<std::string>& held_still, FeasibilityCheck check) {
+  // Name what the limits leave unexcited (the least-squares classifier's reasons).
+  const LeastSquaresSolution ls = SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
+  std::string unexcited;
+  for (size_t i = 0; i < ls.identifiable.size(); ++i) {
+    if (!ls.identifiable[i]) unexcited += "\n  " + ls.reason[i];
+  }
+  // Joints the start held still (their motion alone broke a constraint).
+  std::string held;
+  for (const std::string& h : held_still) held += "\n  held still: " + h;
+  DesignInfeasibility out;
+  out.explanation = "no design within these limits excites every parameter (rank " + std::to_string(rank) + " of " +
+                    std::to_string(regressor.n_parameters()) + "); check the limits of the joints involved:" +
+                    unexcited + held;
+  out.check = std::move(check);
+  return out;
 }
 
 }  // namespace internal

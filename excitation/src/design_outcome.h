@@ -1,5 +1,6 @@
 // What the excitation design's search came to (internal to excitation/src):
-// each start's outcome line, and the explanation when no start was feasible.
+// each start's outcome line, and the explanation when no start was feasible
+// or the design leaves parameters unexcited.
 #pragma once
 
 #include <string>
@@ -31,5 +32,13 @@ DesignStatus InfeasibilityStatus(const DesignInfeasibility& infeasibility);
 DesignResult ExplainNoFeasibleStart(const RobotModel& model, const std::vector<JointLimits>& limits,
                                     const DesignOptions& options, const DesignProblem& problem,
                                     const std::vector<DesignStartSummary>& summaries, std::vector<StartRun>* runs);
+
+// A design that meets the limits but leaves parameters unexcited (W of rank
+// `rank` below the parameter count): the kNotExcited explanation names the
+// rank, the parameters the least-squares classifier finds unidentifiable, with
+// its reasons, and the joints the winning start held still; check is the
+// design's own.
+DesignInfeasibility ExplainUnexcited(const DesignRegressor& regressor, const Eigen::MatrixXd& W, int rank,
+                                     const std::vector<std::string>& held_still, FeasibilityCheck check);
 
 }  // namespace idbench::internal

@@ -20,7 +20,6 @@
 #include "idbench/engine/resource_limits.h"
 #include "idbench/excitation/design_problem.h"
 #include "idbench/excitation/home_pose.h"
-#include "idbench/ident/least_squares.h"
 
 namespace idbench {
 namespace {
@@ -289,20 +288,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   result.initial = ComputeIdentifiability(regressor.Stack(result.initial_trajectory, times));
   const Eigen::MatrixXd W = regressor.Stack(result.trajectory, times);
   result.final = ComputeIdentifiability(W);
-  if (result.final.rank < regressor.n_parameters()) {
-    // Name what the limits leave unexcited (the least-squares classifier's reasons).
-    const LeastSquaresSolution ls =
-        SolveLeastSquares(W, Eigen::VectorXd::Zero(W.rows()), regressor.parameter_names());
-    std::string unexcited;
-    for (size_t i = 0; i < ls.identifiable.size(); ++i) {
-      if (!ls.identifiable[i]) unexcited += "\n  " + ls.reason[i];
-    }
-    // Joints the start held still (their motion alone broke a constraint).
-    std::string held;
-    for (const std::string& h : winner.held_still) held += "\n  held still: " + h;
-    throw std::runtime_error("no design within these limits excites every parameter (rank " +
-                             std::to_string(result.final.rank) + " of " + std::to_string(regressor.n_parameters()) +
-                             "); check the limits of the joints involved:" + unexcited + held);
+  if (result.final.rank < regressor.n_parameters()) {  // feasible, but the limits leave parameters unexcited
+    result.status = DesignStatus::kNotExcited;
+    result.infeasibility = internal::ExplainUnexcited(regressor, W, result.final.rank, winner.held_still, result.check);
   }
   result.stopped = control.stop && control.stop->load();
   result.wall_seconds = seconds_since_begin();

@@ -201,6 +201,116 @@ bool PayloadEstimatorOptions::IsValidFor(const RobotModel& model, std::string* w
   return true;
 }
 
+namespace {
+
+// Step 1 of EstimatePayload, the equations A x = b on `link`: with two logs
+// x = [β; φ] over both logs' rows (the unloaded first), with one log x = φ and
+// b the loaded torques less the robot file's; names: β's (two logs), then φ's.
+struct PayloadEquations {
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  std::vector<std::string> names;
+  Eigen::Index loaded_first = 0;  // first row of the loaded log
+};
+
+PayloadEquations StackPayloadEquations(const RobotModel& model, const TorqueLog& loaded, const TorqueLog* unloaded,
+                                       const PayloadEstimatorOptions& options, int link) {
+  PayloadEquations eq;
+  if (unloaded) {
+    const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
+    const int n_base = base.n_base();
+    const Eigen::MatrixXd U =
+        internal::StackLinkEquations(model, options.friction, &base, link, unloaded->motion,
+                                     StackedTorques(model, *unloaded, false, "unloaded"), unloaded->parallel_filter,
+                                     "unloaded");
+    const Eigen::MatrixXd L =
+        internal::StackLinkEquations(model, options.friction, &base, link, loaded.motion,
+                                     StackedTorques(model, loaded, false, "loaded"), loaded.parallel_filter, "loaded");
+    eq.loaded_first = U.rows();
+    eq.A = Eigen::MatrixXd::Zero(U.rows() + L.rows(), n_base + kP);
+    eq.A.topLeftCorner(U.rows(), n_base) = U.leftCols(n_base);
+    eq.A.bottomRows(L.rows()) = L.leftCols(n_base + kP);
+    eq.b.resize(eq.A.rows());
+    eq.b << U.col(n_base + kP), L.col(n_base + kP);
+    eq.names = base.names;
+  } else {
+    const Eigen::MatrixXd L = internal::StackLinkEquations(model, options.friction, nullptr, link, loaded.motion,
+                                                           StackedTorques(model, loaded, true, "loaded"),
+                                                           loaded.parallel_filter, "loaded");
+    eq.A = L.leftCols(kP);
+    eq.b = L.col(kP) - L.col(kP + 1);
+  }
+  for (const std::string& name : PayloadInertialParameterNames()) eq.names.push_back("payload " + name);
+  return eq;
+}
+
+// Step 3 of EstimatePayload: the quantities' identifiability. Each depends
+// on the φ entries its row of ∂q/∂φ touches (at a point where no entry
+// vanishes by chance); one whose entries the motion does not determine
+// (out->parameter_identifiable, parameter_reason) is not identifiable.
+void ClassifyPayloadQuantities(const std::vector<std::string>& parameter_reason, const std::string& link_name,
+                               PayloadEstimate* out) {
+  InertialParameters generic;
+  generic << 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0;
+  const Matrix10 structure = PayloadQuantityJacobian(generic);
+  out->identifiable.assign(kP, true);
+  out->not_identifiable_reason.assign(kP, "");
+  for (int k = 0; k < kP; ++k) {
+    std::vector<std::string> missing, reasons;
+    for (int i = 0; i < kP; ++i) {
+      if (structure(k, i) == 0.0 || out->parameter_identifiable[i]) continue;
+      missing.push_back(PayloadInertialParameterNames()[i]);
+      if (reasons.empty()) reasons.push_back(parameter_reason[i]);
+    }
+    if (missing.empty()) continue;
+    out->identifiable[k] = false;
+    out->not_identifiable_reason[k] = "depends on " + JoinNames(missing) + " of link '" + link_name +
+                                      "', which the motion does not determine (" + reasons.front() + ")";
+  }
+}
+
+// Step 5 of EstimatePayload: the verdict (out->status, out->message) on an
+// estimate whose quantities, σ and projection are set.
+void JudgePayload(const PayloadEstimatorOptions& options, const std::string& link_name, bool all_identifiable,
+                  PayloadEstimate* out) {
+  char text[512];
+  if (!all_identifiable) {
+    std::vector<std::string> missing;
+    for (int k = 0; k < kP; ++k) {
+      if (!out->identifiable[k]) missing.push_back(PayloadQuantityNames()[k]);
+    }
+    out->status = PayloadStatus::kNotIdentifiable;
+    out->message = "the motion does not determine the payload's " + JoinNames(missing) + " on link '" + link_name +
+                   "' (" + out->not_identifiable_reason[static_cast<size_t>(std::find(out->identifiable.begin(),
+                   out->identifiable.end(), false) - out->identifiable.begin())] +
+                   "); record a motion that turns the payload about three axes and moves it against gravity";
+  } else if (out->projection_distance > options.max_projection_distance) {
+    std::snprintf(text, sizeof(text),
+                  "the least-squares payload on link '%s' is not a physical body (smallest pseudo-inertia eigenvalue "
+                  "%.3g), and the nearest body is %.3g sigma from it (at most %g): check the link, the robot file (a "
+                  "single log subtracts its model; an unloaded log of the same motion cancels its errors) and the "
+                  "torque signs",
+                  link_name.c_str(), out->min_pseudo_inertia_eigenvalue, out->projection_distance,
+                  options.max_projection_distance);
+    out->status = PayloadStatus::kNotPhysical;
+    out->message = text;
+  } else if (const int worst = WorstRelativeSigma(out->body, out->sigma);
+             !(out->body.mass > 0.0) ||
+             !(out->sigma[worst] <= options.max_relative_sigma * PayloadQuantityScale(out->body, worst))) {
+    std::snprintf(text, sizeof(text),
+                  "the payload's %s on link '%s' is %.4g with sigma %.3g (at most %g of %.3g expected): the payload's "
+                  "torques are too small against the noise (signal/noise %.3g) or the motion hardly turns it; record "
+                  "a longer or richer motion",
+                  PayloadQuantityNames()[worst].c_str(), link_name.c_str(), PayloadQuantities(out->body)[worst],
+                  out->sigma[worst], options.max_relative_sigma, PayloadQuantityScale(out->body, worst),
+                  out->payload_signal_to_noise);
+    out->status = PayloadStatus::kPoorlyDetermined;
+    out->message = text;
+  }
+}
+
+}  // namespace
+
 PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded, const TorqueLog* unloaded,
                                 const PayloadEstimatorOptions& options) {
   std::string why;
@@ -210,38 +320,12 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   out.link = options.link < 0 ? model.n_links() - 1 : options.link;
   const std::string& link_name = model.links()[static_cast<size_t>(out.link)].name;
 
-  // 1. The equations A x = b: with two logs x = [β; φ] over both logs' rows
-  //    (the unloaded first), with one log x = φ and b the loaded torques less
-  //    the robot file's.
-  std::vector<std::string> names;
-  Eigen::MatrixXd A;
-  Eigen::VectorXd b;
-  Eigen::Index loaded_first = 0;  // first row of the loaded log
-  if (unloaded) {
-    const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
-    const int n_base = base.n_base();
-    const Eigen::MatrixXd U =
-        internal::StackLinkEquations(model, options.friction, &base, out.link, unloaded->motion,
-                                     StackedTorques(model, *unloaded, false, "unloaded"), unloaded->parallel_filter,
-                                     "unloaded");
-    const Eigen::MatrixXd L =
-        internal::StackLinkEquations(model, options.friction, &base, out.link, loaded.motion,
-                                     StackedTorques(model, loaded, false, "loaded"), loaded.parallel_filter, "loaded");
-    loaded_first = U.rows();
-    A = Eigen::MatrixXd::Zero(U.rows() + L.rows(), n_base + kP);
-    A.topLeftCorner(U.rows(), n_base) = U.leftCols(n_base);
-    A.bottomRows(L.rows()) = L.leftCols(n_base + kP);
-    b.resize(A.rows());
-    b << U.col(n_base + kP), L.col(n_base + kP);
-    names = base.names;
-  } else {
-    const Eigen::MatrixXd L = internal::StackLinkEquations(model, options.friction, nullptr, out.link, loaded.motion,
-                                                           StackedTorques(model, loaded, true, "loaded"),
-                                                           loaded.parallel_filter, "loaded");
-    A = L.leftCols(kP);
-    b = L.col(kP) - L.col(kP + 1);
-  }
-  for (const std::string& name : PayloadInertialParameterNames()) names.push_back("payload " + name);
+  // 1. The equations A x = b (StackPayloadEquations).
+  const PayloadEquations equations = StackPayloadEquations(model, loaded, unloaded, options, out.link);
+  const Eigen::MatrixXd& A = equations.A;
+  const Eigen::VectorXd& b = equations.b;
+  const std::vector<std::string>& names = equations.names;
+  const Eigen::Index loaded_first = equations.loaded_first;
   const Eigen::Index p = A.cols(), first = p - kP;
   out.n_equations = A.rows();
   if (out.n_equations <= p) {
@@ -275,25 +359,8 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   const Eigen::VectorXd residual = A * solution.x - b;
   out.payload_signal_to_noise = payload_torque.norm() / residual.tail(A.rows() - loaded_first).norm();
 
-  // 3. The quantities' identifiability: each depends on the φ entries its
-  //    row of ∂q/∂φ touches (at a point where no entry vanishes by chance).
-  InertialParameters generic;
-  generic << 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0;
-  const Matrix10 structure = PayloadQuantityJacobian(generic);
-  out.identifiable.assign(kP, true);
-  out.not_identifiable_reason.assign(kP, "");
-  for (int k = 0; k < kP; ++k) {
-    std::vector<std::string> missing, reasons;
-    for (int i = 0; i < kP; ++i) {
-      if (structure(k, i) == 0.0 || out.parameter_identifiable[i]) continue;
-      missing.push_back(PayloadInertialParameterNames()[i]);
-      if (reasons.empty()) reasons.push_back(parameter_reason[i]);
-    }
-    if (missing.empty()) continue;
-    out.identifiable[k] = false;
-    out.not_identifiable_reason[k] = "depends on " + JoinNames(missing) + " of link '" + link_name +
-                                     "', which the motion does not determine (" + reasons.front() + ")";
-  }
+  // 3. The quantities' identifiability.
+  ClassifyPayloadQuantities(parameter_reason, link_name, &out);
 
   // 4. The physically consistent estimate and the quantities' σ at it.
   out.min_pseudo_inertia_eigenvalue = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(PseudoInertia(phi_filled))
@@ -323,39 +390,7 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   }
 
   // 5. The verdict.
-  char text[512];
-  if (!all_identifiable) {
-    std::vector<std::string> missing;
-    for (int k = 0; k < kP; ++k) {
-      if (!out.identifiable[k]) missing.push_back(PayloadQuantityNames()[k]);
-    }
-    out.status = PayloadStatus::kNotIdentifiable;
-    out.message = "the motion does not determine the payload's " + JoinNames(missing) + " on link '" + link_name +
-                  "' (" + out.not_identifiable_reason[static_cast<size_t>(std::find(out.identifiable.begin(),
-                  out.identifiable.end(), false) - out.identifiable.begin())] +
-                  "); record a motion that turns the payload about three axes and moves it against gravity";
-  } else if (out.projection_distance > options.max_projection_distance) {
-    std::snprintf(text, sizeof(text),
-                  "the least-squares payload on link '%s' is not a physical body (smallest pseudo-inertia eigenvalue "
-                  "%.3g), and the nearest body is %.3g sigma from it (at most %g): check the link, the robot file (a "
-                  "single log subtracts its model; an unloaded log of the same motion cancels its errors) and the "
-                  "torque signs",
-                  link_name.c_str(), out.min_pseudo_inertia_eigenvalue, out.projection_distance,
-                  options.max_projection_distance);
-    out.status = PayloadStatus::kNotPhysical;
-    out.message = text;
-  } else if (const int worst = WorstRelativeSigma(out.body, out.sigma);
-             !(out.body.mass > 0.0) || !(out.sigma[worst] <= options.max_relative_sigma * PayloadQuantityScale(out.body, worst))) {
-    std::snprintf(text, sizeof(text),
-                  "the payload's %s on link '%s' is %.4g with sigma %.3g (at most %g of %.3g expected): the payload's "
-                  "torques are too small against the noise (signal/noise %.3g) or the motion hardly turns it; record "
-                  "a longer or richer motion",
-                  PayloadQuantityNames()[worst].c_str(), link_name.c_str(), PayloadQuantities(out.body)[worst],
-                  out.sigma[worst], options.max_relative_sigma, PayloadQuantityScale(out.body, worst),
-                  out.payload_signal_to_noise);
-    out.status = PayloadStatus::kPoorlyDetermined;
-    out.message = text;
-  }
+  JudgePayload(options, link_name, all_identifiable, &out);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace idbench::internal {
 namespace {
@@ -205,7 +206,10 @@ bool IsStrictlyFeasible(const QuadraticSdp& problem, const Eigen::VectorXd& u) {
   return std::isfinite(barrier.Phi(u, 0.0));
 }
 
-QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const QuadraticSdpOptions& options) {
+namespace {
+
+// Throws std::invalid_argument for a malformed problem.
+void CheckQuadraticSdp(const QuadraticSdp& problem) {
   const int n = problem.n_variables();
   if (problem.R.rows() != n || problem.z.size() != n || n < 1)
     throw std::invalid_argument("SolveQuadraticSdp: expected a square R and z of its size");
@@ -219,10 +223,15 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   for (const LinearInequality& row : problem.rows)
     for (const auto& [i, a] : row.a)
       if (i < 0 || i >= n) throw std::invalid_argument("SolveQuadraticSdp: row variable out of range");
+}
 
-  QuadraticSdpSolution solution;
-  Eigen::VectorXd u = options.start.size() == n ? options.start : Eigen::VectorXd::Zero(n);
-
+// Phase I: moves *u to a strictly feasible point of problem (it stays when
+// it is one), counting the Newton steps in solution. False, with solution->u
+// and solution->status saying why, when the data or the start are not finite
+// or no point satisfies every constraint.
+bool FindStrictlyFeasibleStart(const QuadraticSdp& problem, const QuadraticSdpOptions& options, Eigen::VectorXd* u,
+                               QuadraticSdpSolution* solution) {
+  const int n = problem.n_variables();
   // Phase I, when the start is not strictly feasible: minimise s + η f(u)
   // over (u, s) with S_j(u) + s 𝟙 ⪰ 0 and r_k(u) + s ≥ 0 until s < 0. The
   // small multiple of the objective, η = 10⁻⁴/f(u₀), keeps the barrier
@@ -231,57 +240,62 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   BarrierProblem phase1;
   phase1.blocks = &problem.blocks;
   phase1.rows = &problem.rows;
-  {
-    double worst = kInf;  // the least eigenvalue or slack at u
-    BarrierProblem plain = phase1;
-    plain.q = Eigen::VectorXd::Zero(n);
-    for (int j = 0; j < static_cast<int>(problem.blocks.size()); ++j)
-      worst = std::min(worst, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plain.S(j, u), Eigen::EigenvaluesOnly)
-                                  .eigenvalues()[0]);
-    for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) worst = std::min(worst, plain.r(k, u));
-    if (!std::isfinite(worst) || !u.allFinite() || !problem.R.allFinite() || !problem.z.allFinite()) {
-      solution.u = u;
-      solution.status = "not finite: the problem's data or its start overflow (values beyond double precision)";
-      return solution;
-    }
-    if (!(worst > 0.0)) {
-      // η trades the objective against the violation: where the data pin a
-      // direction hard (a nearly noise-free log) even a small η can hold s
-      // above 0, so a phase that ends infeasible is retried with η 10⁻⁴ times
-      // smaller before the constraints are called contradictory.
-      const Eigen::VectorXd u0 = u;
-      const double f0 = std::max((problem.R * u0 - problem.z).squaredNorm(), 1e-300);
-      phase1.extra = n;
-      Eigen::VectorXd w(n + 1);
-      bool found = false;
-      for (double eta = 1e-4 / f0; !found && eta > 1e-24 / f0; eta *= 1e-4) {
-        phase1.P = Eigen::MatrixXd::Zero(n + 1, n + 1);
-        phase1.P.topLeftCorner(n, n) = 2.0 * eta * problem.R.transpose() * problem.R;
-        phase1.q = Eigen::VectorXd::Zero(n + 1);
-        phase1.q.head(n) = -2.0 * eta * problem.R.transpose() * problem.z;
-        phase1.q[n] = 1.0;
-        w << u0, 1.0 - worst;
-        // τ grows geometrically to 10¹⁴, so the loop ends; a start that is
-        // not finite (values that overflow) ends it at once.
-        for (double tau = 1.0 / std::max(1.0 - worst, 1.0);
-             std::isfinite(tau) && tau > 0.0 && tau < 1e14 && !found && solution.newton_steps < options.max_newton_steps;
-             tau *= kBarrierGrowth) {
-          const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
-          Centre(phase1, tau, &w, &solution.newton_steps, limit,
-                 [&](const Eigen::VectorXd& v) { return found = v[n] < 0.0; });
-          found = found || w[n] < 0.0;
-        }
-      }
-      if (!found) {
-        solution.u = w.head(n);
-        solution.status = "infeasible: no parameters satisfy every constraint (the least violation is " +
-                          std::to_string(w[n]) + ")";
-        return solution;
-      }
-      u = w.head(n);
-    }
+  double worst = kInf;  // the least eigenvalue or slack at u
+  BarrierProblem plain = phase1;
+  plain.q = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < static_cast<int>(problem.blocks.size()); ++j)
+    worst = std::min(worst, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(plain.S(j, *u), Eigen::EigenvaluesOnly)
+                                .eigenvalues()[0]);
+  for (int k = 0; k < static_cast<int>(problem.rows.size()); ++k) worst = std::min(worst, plain.r(k, *u));
+  if (!std::isfinite(worst) || !u->allFinite() || !problem.R.allFinite() || !problem.z.allFinite()) {
+    solution->u = *u;
+    solution->status = "not finite: the problem's data or its start overflow (values beyond double precision)";
+    return false;
   }
+  if (!(worst > 0.0)) {
+    // η trades the objective against the violation: where the data pin a
+    // direction hard (a nearly noise-free log) even a small η can hold s
+    // above 0, so a phase that ends infeasible is retried with η 10⁻⁴ times
+    // smaller before the constraints are called contradictory.
+    const Eigen::VectorXd u0 = *u;
+    const double f0 = std::max((problem.R * u0 - problem.z).squaredNorm(), 1e-300);
+    phase1.extra = n;
+    Eigen::VectorXd w(n + 1);
+    bool found = false;
+    for (double eta = 1e-4 / f0; !found && eta > 1e-24 / f0; eta *= 1e-4) {
+      phase1.P = Eigen::MatrixXd::Zero(n + 1, n + 1);
+      phase1.P.topLeftCorner(n, n) = 2.0 * eta * problem.R.transpose() * problem.R;
+      phase1.q = Eigen::VectorXd::Zero(n + 1);
+      phase1.q.head(n) = -2.0 * eta * problem.R.transpose() * problem.z;
+      phase1.q[n] = 1.0;
+      w << u0, 1.0 - worst;
+      // τ grows geometrically to 10¹⁴, so the loop ends; a start that is
+      // not finite (values that overflow) ends it at once.
+      for (double tau = 1.0 / std::max(1.0 - worst, 1.0);
+           std::isfinite(tau) && tau > 0.0 && tau < 1e14 && !found && solution->newton_steps < options.max_newton_steps;
+           tau *= kBarrierGrowth) {
+        const int limit = std::min(options.max_newton_steps, solution->newton_steps + kMaxStepsPerCentring);
+        Centre(phase1, tau, &w, &solution->newton_steps, limit,
+               [&](const Eigen::VectorXd& v) { return found = v[n] < 0.0; });
+        found = found || w[n] < 0.0;
+      }
+    }
+    if (!found) {
+      solution->u = w.head(n);
+      solution->status = "infeasible: no parameters satisfy every constraint (the least violation is " +
+                         std::to_string(w[n]) + ")";
+      return false;
+    }
+    *u = w.head(n);
+  }
+  return true;
+}
 
+// Phase II from the strictly feasible u: the barrier's outer iterations;
+// sets solution's u, objective, lower bound, gap, verdict and status.
+void MinimiseFromInside(const QuadraticSdp& problem, const QuadraticSdpOptions& options, Eigen::VectorXd u,
+                        QuadraticSdpSolution* solution) {
+  const int n = problem.n_variables();
   // Phase II: f(u) = ‖R u − z‖² = ½ uᵀ(2RᵀR)u − 2(Rᵀz)ᵀu + zᵀz.
   BarrierProblem phase2;
   phase2.blocks = &problem.blocks;
@@ -350,9 +364,9 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
   };
   // Each round either takes a Newton step or raises τ (finite, below 10³⁰⁰):
   // the loop ends.
-  while (solution.newton_steps < options.max_newton_steps && std::isfinite(tau) && tau > 0.0 && tau < 1e300) {
-    const int limit = std::min(options.max_newton_steps, solution.newton_steps + kMaxStepsPerCentring);
-    stalled = !Centre(phase2, tau, &u, &solution.newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
+  while (solution->newton_steps < options.max_newton_steps && std::isfinite(tau) && tau > 0.0 && tau < 1e300) {
+    const int limit = std::min(options.max_newton_steps, solution->newton_steps + kMaxStepsPerCentring);
+    stalled = !Centre(phase2, tau, &u, &solution->newton_steps, limit, [](const Eigen::VectorXd&) { return false; });
     double objective = f(u), gap = objective - lower_bound(u, tau);
     if (!std::isfinite(gap) || !phase2.Inside(u)) break;
     Eigen::VectorXd candidate = u, stepped;
@@ -366,23 +380,34 @@ QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const Quadra
     if (improved) {
       best_gap = gap;
       best_u = candidate;
-      solution.objective = objective;
-      solution.lower_bound = objective - gap;
+      solution->objective = objective;
+      solution->lower_bound = objective - gap;
     }
     fruitless_stalls = stalled && !improved ? fruitless_stalls + 1 : 0;
-    if (relative(best_gap, solution.objective) <= options.relative_gap || gap > 10.0 * best_gap || fruitless_stalls >= 2)
+    if (relative(best_gap, solution->objective) <= options.relative_gap || gap > 10.0 * best_gap || fruitless_stalls >= 2)
       break;
     tau *= kBarrierGrowth;
   }
-  solution.u = best_u;
-  solution.relative_gap = relative(best_gap, solution.objective);
-  solution.feasible = phase2.Inside(best_u);
-  solution.converged = solution.feasible && solution.relative_gap <= options.relative_gap;
-  solution.status = solution.converged                              ? "converged"
-                    : !std::isfinite(best_gap)                        ? "stopped: the objective or its bound is not finite"
-                    : stalled                                         ? "stopped where rounding ends the progress"
-                    : solution.newton_steps >= options.max_newton_steps ? "stopped: Newton step limit reached"
-                                                                      : "stopped: the barrier parameter reached 1e300 before the gap closed";
+  solution->u = best_u;
+  solution->relative_gap = relative(best_gap, solution->objective);
+  solution->feasible = phase2.Inside(best_u);
+  solution->converged = solution->feasible && solution->relative_gap <= options.relative_gap;
+  solution->status = solution->converged                                ? "converged"
+                     : !std::isfinite(best_gap)                          ? "stopped: the objective or its bound is not finite"
+                     : stalled                                           ? "stopped where rounding ends the progress"
+                     : solution->newton_steps >= options.max_newton_steps ? "stopped: Newton step limit reached"
+                                                                          : "stopped: the barrier parameter reached 1e300 before the gap closed";
+}
+
+}  // namespace
+
+QuadraticSdpSolution SolveQuadraticSdp(const QuadraticSdp& problem, const QuadraticSdpOptions& options) {
+  CheckQuadraticSdp(problem);
+  const int n = problem.n_variables();
+  QuadraticSdpSolution solution;
+  Eigen::VectorXd u = options.start.size() == n ? options.start : Eigen::VectorXd::Zero(n);
+  if (!FindStrictlyFeasibleStart(problem, options, &u, &solution)) return solution;
+  MinimiseFromInside(problem, options, std::move(u), &solution);
   return solution;
 }
 

@@ -4,6 +4,7 @@
 
 #include "excitation/design_test_util.h"
 
+#include <algorithm>
 #include <numbers>
 
 #include "idbench/engine/inverse_dynamics.h"
@@ -103,7 +104,9 @@ TEST(ExcitationDesignTest, PerBodyDesignBeatsThePaperMotion) {
 }
 
 // A joint that may barely move leaves its parameters unexcited: the design
-// says which ones instead of reporting cond = inf.
+// says which ones instead of reporting cond = inf, as a status (kNotExcited)
+// whose explanation names the rank and the parameters, and whose motion's
+// regressor columns of joint 6's viscous friction are indeed zero.
 TEST(ExcitationDesignTest, UnexcitableParametersAreNamed) {
   const RobotModel model = MakePuma560();
   const DesignRegressor r = DesignRegressor::JointTorque(model, testing::ViscousCoulomb());
@@ -113,14 +116,31 @@ TEST(ExcitationDesignTest, UnexcitableParametersAreNamed) {
   DesignOptions o = QuickOptions();
   o.starts = 1;
   o.max_evaluations = 5;
-  try {
-    DesignExcitation(r, limits, o);
-    FAIL() << "expected an error";
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("excites every parameter"), std::string::npos) << what;
-    EXPECT_NE(what.find("Fv6"), std::string::npos) << what;
-  }
+  const DesignResult design = DesignExcitation(r, limits, o);
+  ASSERT_EQ(design.status, DesignStatus::kNotExcited);
+  EXPECT_FALSE(design.usable());
+  EXPECT_FALSE(design.infeasibility.before_search);
+  EXPECT_TRUE(design.infeasibility.advice.empty());
+  EXPECT_TRUE(design.check.feasible()) << design.check.Explain();  // a motion within the limits
+  EXPECT_EQ(design.infeasibility.check.margins.size(), design.check.margins.size());
+  // The rank of the design's own regressor, recomputed here.
+  const Eigen::MatrixXd W = r.Stack(design.trajectory, DesignSampleTimes(o));
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W);
+  const int rank = static_cast<int>((svd.singularValues().array() > 1e-9 * svd.singularValues()[0]).count());
+  EXPECT_EQ(design.final.rank, rank);
+  ASSERT_LT(rank, r.n_parameters());
+  const std::string& what = design.infeasibility.explanation;
+  const std::string head = "no design within these limits excites every parameter (rank " + std::to_string(rank) +
+                           " of " + std::to_string(r.n_parameters()) + "); check the limits of the joints involved:";
+  EXPECT_EQ(what.rfind(head, 0), 0u) << what;
+  EXPECT_EQ(design.Rejection(), head.substr(0, head.size() - 1));  // the first line without its ':'
+  // Fv6 is named, and its column of W, joint 6's velocity qd6 on its rows, is
+  // within the limit qd_max = 1e-12 rad/s: joint 6 does not move.
+  EXPECT_NE(what.find("\n  column of Fv6 is zero"), std::string::npos) << what;
+  const std::vector<std::string>& names = r.parameter_names();
+  const auto fv6 = std::find(names.begin(), names.end(), "Fv6");
+  ASSERT_NE(fv6, names.end());
+  EXPECT_LE(W.col(fv6 - names.begin()).cwiseAbs().maxCoeff(), limits[5].qd_max);
 }
 
 // The re-check covers the ramps from and to the home: too short a ramp

@@ -2,21 +2,18 @@
 // identification within the joint limits; its flags fill DesignCommandOptions.
 // Ctrl-C stops the search and keeps the best feasible design so far.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "cli_command.h"
-#include "ctrl_c_stop.h"
 #include "common_flags.h"
+#include "ctrl_c_stop.h"
 #include "idbench/workbench/commands/design_command.h"
-#include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/workbench/reports/design_report.h"
 #include "idbench/workbench/reports/report_command.h"
+#include "output_files.h"
 
 namespace idbench::cli {
 namespace {
@@ -46,49 +43,50 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
   std::optional<Transmission> from_urdf;
   const RobotModel model = LoadRobotOrThrow(options.robot, load, &from_urdf);
   if (!options.IsValidFor(model, &why)) return context.UsageError(why);
-  const std::filesystem::path dir(options.out_dir);
   std::optional<DesignCommandReport> searched;
   {
     const CtrlCStop ctrl_c;  // Ctrl-C: stop and keep the best feasible design so far
     searched.emplace(RunDesign(model, options, ctrl_c.flag(), from_urdf));
   }
   const DesignCommandReport& report = *searched;
+  const std::string& explanation = report.result.infeasibility.explanation;
   switch (report.status()) {
     case DesignStatus::kFeasible:
       break;
     case DesignStatus::kNoMotionPossible:  // settings that admit no motion are wrong input: nothing written
-      return context.UsageError(report.result.infeasibility.explanation);
+      return context.UsageError(explanation);
     case DesignStatus::kInfeasible:  // the search ran, or the cell has no room: design.json explains it
-    case DesignStatus::kNoRoom:
-      EnsureOutputDirectory(dir);
-      WriteFileAtomically(dir / "design.json", FormatDesignJson(model, options, report));
-      std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(report.result.infeasibility.explanation).c_str());
+    case DesignStatus::kNoRoom: {
+      OutputFiles out(options.out_dir);
+      out.Add("design.json", FormatDesignJson(model, options, report));
+      out.Write();
+      std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(explanation).c_str());
+      return kExitFailure;
+    }
+    case DesignStatus::kNotExcited:  // a motion within the limits that leaves parameters unexcited: nothing written
+      std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(explanation).c_str());
       return kExitFailure;
   }
   std::fputs(context.FlagSpelling(FormatDesignSummary(options, report)).c_str(), stdout);
-  EnsureOutputDirectory(dir);
+  OutputFiles out(options.out_dir);
   // What a controller would run only from a usable design (or when asked).
   const bool usable = report.result.usable();
-  std::vector<std::pair<std::filesystem::path, std::string>> files{
-      {dir / "design.json", FormatDesignJson(model, options, report)}};
+  out.Add("design.json", FormatDesignJson(model, options, report));
   if (usable || options.write_trajectory_anyway) {
-    files.push_back({dir / "trajectory.json", FormatTrajectoryJson(report.result.trajectory)});
-    files.push_back({dir / "trajectory.csv", FormatDesignTrajectoryCsv(model, options, report)});
+    out.Add("trajectory.json", FormatTrajectoryJson(report.result.trajectory));
+    out.Add("trajectory.csv", FormatDesignTrajectoryCsv(model, options, report));
   }
-  if (with_report) {
-    for (auto& file : FormatReportFiles(MakeDesignReportContent(model, options, report), dir))
-      files.push_back(std::move(file));
-  }
-  WriteFilesAtomically(files);
+  if (with_report) out.AddReport(MakeDesignReportContent(model, options, report));
   if (!usable) {
+    out.Write();
     std::fprintf(stderr, "idbench: error: the design is not usable: %s; wrote %s with the diagnostics%s\n",
-                 report.result.Rejection().c_str(), (dir / "design.json").c_str(),
+                 report.result.Rejection().c_str(), out.Path("design.json").c_str(),
                  options.write_trajectory_anyway ? " and, as asked, trajectory.json and trajectory.csv"
                                                  : ", no trajectory (--write-trajectory-anyway writes it)");
     return kExitFailure;
   }
-  std::printf("wrote %s, trajectory.csv and design.json%s\n", (dir / "trajectory.json").c_str(),
-              with_report ? ", report.html and report.pdf" : "");
+  out.Write("wrote " + out.Path("trajectory.json").string() + ", trajectory.csv and design.json" +
+            (with_report ? ", report.html and report.pdf" : ""));
   return 0;
 }
 

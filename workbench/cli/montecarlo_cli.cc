@@ -21,6 +21,8 @@ int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& l
   if (!options.IsValid(&why)) return context.UsageError(why);
   const RobotModel model = LoadRobotOrThrow(options.robot, load);
   const MonteCarloReport report = RunMonteCarlo(model, options);
+  // A motion that does not excite every base parameter is wrong input: nothing printed or written.
+  if (report.status == MonteCarloStatus::kNotExcited) return context.UsageError(report.message);
   std::fputs(FormatMonteCarloTables(options, report).c_str(), stdout);
   if (!options.out_dir.empty()) {
     const std::filesystem::path dir(options.out_dir);

@@ -114,8 +114,8 @@ DesignOutput Design(const Robot& robot, DesignCommandOptions options, const py::
   // No design: raised as the command line's exit codes are chosen (the
   // module's translator spells the fields as keywords). Settings that admit
   // no motion are wrong input (ValueError, exit 2); a search that found
-  // nothing feasible, or a cell whose obstacles leave no room, failed
-  // (RuntimeError, exit 1).
+  // nothing feasible or only a motion that leaves parameters unexcited, or a
+  // cell whose obstacles leave no room, failed (RuntimeError, exit 1).
   switch (report->status()) {
     case DesignStatus::kFeasible:
       break;
@@ -123,6 +123,7 @@ DesignOutput Design(const Robot& robot, DesignCommandOptions options, const py::
       throw std::invalid_argument(report->result.infeasibility.explanation);
     case DesignStatus::kInfeasible:
     case DesignStatus::kNoRoom:
+    case DesignStatus::kNotExcited:
       throw std::runtime_error(report->result.infeasibility.explanation);
   }
   return ToDesignOutput(model, options, *report);

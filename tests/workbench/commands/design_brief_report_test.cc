@@ -2,7 +2,8 @@
 // PUMA 560 within loose limits is feasible; a shoulder torque limit just
 // above the gravity torque at the given home leaves no start feasible (the
 // search ran); a home outside the paper robot's range admits no motion
-// (nothing searched). The one-line report carries the run's own numbers: the
+// (nothing searched); a joint held still by its limits leaves parameters
+// unexcited. The one-line report carries the run's own numbers: the
 // condition numbers of W before and after (Identifiability, computed apart
 // from the criterion), the evaluations and the wall time.
 #include <gtest/gtest.h>
@@ -82,6 +83,36 @@ TEST(DesignBriefReportTest, NoFeasibleStartReportsTheSearchThatFailed) {
   EXPECT_EQ(report.BriefReport(),
             "design infeasible: no feasible design: no start met the limits (tightened by the margin 0.02) and the "
             "clearance on the sample grid" + EvaluationsAndTime(r));
+}
+
+// Joint 6 held still by its limits: the design meets every limit but leaves
+// its parameters unexcited; the report says so as a status (the front ends
+// then write nothing), naming the rank of W and the parameters.
+TEST(DesignBriefReportTest, AJointHeldStillLeavesParametersUnexcited) {
+  const RobotModel model = MakePuma560();
+  DesignCommandOptions options = QuickOptions("puma560");
+  options.design.starts = 1;
+  options.design.max_evaluations = 5;
+  std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
+  limits[5].qd_max = limits[5].qdd_max = 1e-12;
+  const DesignCommandReport report = RunDesign(model, options, limits, {});
+  ASSERT_EQ(report.status(), DesignStatus::kNotExcited) << report.BriefReport();
+  const DesignResult& r = report.result;
+  EXPECT_FALSE(r.usable());
+  EXPECT_TRUE(r.check.feasible()) << r.check.Explain();
+  EXPECT_GT(r.evaluations, 0);  // the search ran
+  // Viscous and Coulomb friction on 6 joints with the inertial parameters: the
+  // regressor's columns, of which joint 6's viscous friction is not excited.
+  const int n = static_cast<int>(report.parameter_names.size());
+  ASSERT_LT(r.final.rank, n);
+  const std::string head = "no design within these limits excites every parameter (rank " +
+                           std::to_string(r.final.rank) + " of " + std::to_string(n) +
+                           "); check the limits of the joints involved";
+  EXPECT_EQ(r.infeasibility.explanation.rfind(head + ":\n", 0), 0u) << r.infeasibility.explanation;
+  EXPECT_NE(r.infeasibility.explanation.find("\n  column of Fv6 is zero: the data do not excite it"),
+            std::string::npos)
+      << r.infeasibility.explanation;
+  EXPECT_EQ(report.BriefReport(), "design not_excited: " + head + EvaluationsAndTime(r));
 }
 
 TEST(DesignBriefReportTest, AHomeOutsideTheRangeAdmitsNoMotion) {

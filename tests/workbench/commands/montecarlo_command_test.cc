@@ -1,15 +1,18 @@
 // RunMonteCarlo as a library call: the brief report gives the numbers
 // montecarlo.json records for the same run, and the first and last lines of
-// the table the command prints.
+// the table the command prints; a motion that excites too little is a status.
 #include "idbench/workbench/commands/montecarlo_command.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "idbench/engine/puma560.h"
+#include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/joint_torque_regressor.h"
 
 namespace idbench {
 namespace {
@@ -62,6 +65,33 @@ TEST(MonteCarloCommandTest, BriefReportAgreesWithTheJson) {
   const size_t first = brief.find('\n') + 1;
   EXPECT_EQ(tables.substr(0, first), brief.substr(0, first));
   EXPECT_EQ(tables.substr(tables.size() - (brief.size() - first)), brief.substr(first));
+}
+
+// The paper's motion on the PUMA 560 leaves base parameters unexcited: the
+// report says so as a status (no trials, no statistics), naming the rank of
+// the base regressor, recomputed here from the report's noise-free log.
+TEST(MonteCarloCommandTest, AMotionThatDoesNotExciteEveryBaseParameterIsAStatus) {
+  const RobotModel model = MakePuma560();
+  MonteCarloOptions options;
+  options.trajectory = "paper";
+  options.duration = 4.0;
+  options.samples = 400;
+  options.trials = 5;
+  const MonteCarloReport report = RunMonteCarlo(model, options);
+  ASSERT_EQ(report.status, MonteCarloStatus::kNotExcited);
+  const FrictionModel friction = *ParseFrictionTerms(options.friction, nullptr);
+  const Eigen::MatrixXd W = StackBaseRegressor(model, friction, report.base, report.log);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W);
+  const int rank = static_cast<int>((svd.singularValues().array() > 1e-9 * svd.singularValues()[0]).count());
+  const int n_base = report.base.n_base();
+  ASSERT_LT(rank, n_base);
+  EXPECT_EQ(report.message, "montecarlo: the motion does not excite every base parameter (W has rank " +
+                                std::to_string(rank) + " of " + std::to_string(n_base) +
+                                "); choose a richer `trajectory` (see compare)");
+  EXPECT_EQ(report.predicted_sigma.size(), 0);  // no statistics
+  EXPECT_EQ(report.BriefReport(), "Monte-Carlo: 5 trials, 400 samples of 'paper' (held out: 'general-reversed'), " +
+                                      std::to_string(n_base) + " base parameters, WLS\n" + report.message + "\n");
+  EXPECT_THROW(FormatMonteCarloJson(options, report), std::logic_error);
 }
 
 }  // namespace

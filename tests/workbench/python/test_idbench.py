@@ -337,3 +337,21 @@ def test_an_impossible_design_is_a_value_error_with_the_command_lines_explanatio
     as_keywords = cli_message.replace("--clearance", "`clearance`").replace("--home", "`home`")
     assert str(raised.value) == as_keywords.replace("--base-pose", "base_pose")
     assert "ground" in str(raised.value)
+
+
+def test_a_design_that_leaves_parameters_unexcited_is_a_runtime_error_as_the_command_lines_exit_1(tmp_path):
+    # Joint 6 held still by its limits: every limit is met, but its viscous friction and rotor inertia are
+    # never excited. Exit 1 on the command line with nothing written, RuntimeError here, the same message.
+    limits = [{"q_min": -2.5, "q_max": 2.5, "qd_max": 1.5, "qdd_max": 4.0}] * 5
+    limits.append({"q_min": -2.5, "q_max": 2.5, "qd_max": 1e-12, "qdd_max": 1e-12})
+    (tmp_path / "limits.json").write_text(json.dumps({"joints": limits}))
+    code, out, err = cli("design", "--limits", "limits.json", "--starts", "1", "--max-evaluations", "5", "--quiet",
+                         "--out", "d", cwd=tmp_path)
+    assert code == 1, err
+    assert out == "" and not (tmp_path / "d").exists()
+    with pytest.raises(RuntimeError) as raised:
+        idbench.design(idbench.Robot("puma560"), limits=str(tmp_path / "limits.json"), starts=1, max_evaluations=5)
+    cli_message = err.split("idbench: error: ", 1)[1].rstrip("\n")
+    assert str(raised.value) == cli_message
+    assert cli_message.startswith("no design within these limits excites every parameter (rank 50 of 52)")
+    assert "\n  column of Fv6 is zero: the data do not excite it" in cli_message

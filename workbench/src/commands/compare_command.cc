@@ -347,6 +347,8 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
       mc.trials = options.trials;
       mc.seed = options.seed;
       const MonteCarloReport r = RunMonteCarlo(model, mc, *motion);
+      // W of the motion had full rank, that of its simulated states not: the motion is wrong input.
+      if (r.status == MonteCarloStatus::kNotExcited) throw std::invalid_argument(r.message);
       row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
       SetPredictedSigma(r.predicted_sigma, r.beta_true, &row);
       row.mean_relative_error = r.mean_relative_error;

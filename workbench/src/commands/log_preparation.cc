@@ -129,6 +129,98 @@ void StreamPreparedSamples(const PreparedLog& log, const StreamedLogFilter::Sink
   }
 }
 
+// The first pass over a source: its samples and those in the time window
+// [t0, t1], the window's ends and its shortest and longest steps (uniform
+// when all are within 1e-6 of the shortest: what ResampleJointLog calls
+// uniform, without the median).
+struct WindowScan {
+  Eigen::Index n_total = 0, n = 0;  // samples in the log, in the window
+  Eigen::Index first = 0;           // the window's first sample
+  double t_first = 0.0, t_last = 0.0, w_first = 0.0, w_last = 0.0, min_step = INFINITY, max_step = 0.0;  // [s]
+};
+
+WindowScan ScanWindow(JointLogSource* source, double t0, double t1, const StreamObserver* observer) {
+  WindowScan scan;
+  JointLogChunk chunk;
+  source->Rewind();
+  double previous = 0.0;
+  while (source->Next(kStreamBlockSamples, &chunk)) {
+    if (observer && observer->stop && observer->stop->load()) throw StreamStopped();
+    for (double t : chunk.samples.t) {
+      if (scan.n_total == 0) scan.t_first = t;
+      scan.t_last = t;
+      ++scan.n_total;
+      if (t < t0 || t > t1) continue;
+      if (scan.n == 0) {
+        scan.first = scan.n_total - 1;
+        scan.w_first = t;
+      } else {
+        scan.min_step = std::min(scan.min_step, t - previous);
+        scan.max_step = std::max(scan.max_step, t - previous);
+      }
+      previous = scan.w_last = t;
+      ++scan.n;
+    }
+  }
+  return scan;
+}
+
+// Irregular steps in the window: the window (out->first, out->n_raw samples
+// of out->source) held whole and resampled onto a uniform grid, which
+// becomes out->source; a gap is an error naming its line. The new window's
+// ends in *w_first, *w_last.
+void ResampleWindow(const std::string& path, const LogPreparationOptions& options, PreparedLog* out, double* w_first,
+                    double* w_last) {
+  const Eigen::Index n = out->n_raw;
+  out->source->Rewind();
+  RecordedJointLog recorded = ReadWholeLog(*out->source);
+  const Eigen::Index last = out->first + n;
+  JointLog& log = recorded.log;
+  log.t = log.t.segment(out->first, n).eval();
+  for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) {
+    if (x->size() > 0) *x = x->middleRows(out->first, n).eval();
+  }
+  recorded.lines = std::vector<int>(recorded.lines.begin() + out->first, recorded.lines.begin() + last);
+  RecordedJointLog uniform;
+  const ResamplingSummary resampling = ResampleJointLog(log, {.max_gap_s = options.max_gap_s}, &uniform.log);
+  if (resampling.status == ResamplingStatus::kGap) {
+    const int line = recorded.lines[static_cast<size_t>(resampling.gap_sample)];
+    throw std::invalid_argument(path + ":" + std::to_string(line) + ": column 't': " + resampling.BriefReport() +
+                                "; split the log there or choose a time_window without it (max_gap_s sets the "
+                                "bound)");
+  }
+  if (resampling.status == ResamplingStatus::kResampled) out->notes.push_back(path + ": " + resampling.BriefReport());
+  const Eigen::Index m = uniform.log.n_samples();
+  *w_first = uniform.log.t[0];
+  *w_last = uniform.log.t[m - 1];
+  uniform.lines.resize(static_cast<size_t>(m));
+  for (Eigen::Index s = 0; s < m; ++s) uniform.lines[static_cast<size_t>(s)] = static_cast<int>(s);
+  const bool tau_is_current = out->source->layout().tau_is_current;
+  out->source = std::make_shared<RecordedJointLogSource>(std::move(uniform), path, tau_is_current);
+  out->first = 0;
+  out->n_raw = m;
+}
+
+// The second pass: out->log, the prepared log as held (every log_stride-th
+// sample of out->n_samples), with a progress line on long logs.
+void HoldPreparedLog(int n_dof, const std::string& path, const StreamObserver* observer, PreparedLog* out) {
+  const Eigen::Index k = out->log_stride, m = (out->n_samples + k - 1) / k;
+  JointLog& held = out->log;
+  held.t.resize(m);
+  for (Eigen::MatrixXd* x : {&held.q, &held.qd, &held.qdd, &held.tau}) x->resize(m, n_dof);
+  ProgressLine progress(path + ": filtering", out->n_raw > kStreamBlockSamples, observer);
+  StreamPreparedSamples(*out, [&](const JointLog& prepared, Eigen::Index s0) {
+    for (Eigen::Index s = (s0 + k - 1) / k * k; s < s0 + prepared.n_samples(); s += k) {
+      const Eigen::Index r = s - s0;
+      held.t[s / k] = prepared.t[r];
+      held.q.row(s / k) = prepared.q.row(r);
+      held.qd.row(s / k) = prepared.qd.row(r);
+      held.qdd.row(s / k) = prepared.qdd.row(r);
+      held.tau.row(s / k) = prepared.tau.row(r);
+    }
+  }, &progress);
+}
+
 }  // namespace
 
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options,
@@ -163,35 +255,15 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
   out.path = path;
 
   // First pass: the samples in the time window, its ends, and whether the
-  // steps are uniform (all within 1e-6 of the shortest: what ResampleJointLog
-  // calls uniform, without the median).
+  // steps are uniform.
   const bool windowed = !options.time_window.empty();
   const double t0 = windowed ? options.time_window[0] : -INFINITY, t1 = windowed ? options.time_window[1] : INFINITY;
-  Eigen::Index n_total = 0, n = 0;
-  double t_first = 0.0, t_last = 0.0, w_first = 0.0, w_last = 0.0, min_step = INFINITY, max_step = 0.0;
-  {
-    JointLogChunk chunk;
-    source->Rewind();
-    double previous = 0.0;
-    while (source->Next(kStreamBlockSamples, &chunk)) {
-      if (observer && observer->stop && observer->stop->load()) throw StreamStopped();
-      for (double t : chunk.samples.t) {
-        if (n_total == 0) t_first = t;
-        t_last = t;
-        ++n_total;
-        if (t < t0 || t > t1) continue;
-        if (n == 0) {
-          out.first = n_total - 1;
-          w_first = t;
-        } else {
-          min_step = std::min(min_step, t - previous);
-          max_step = std::max(max_step, t - previous);
-        }
-        previous = w_last = t;
-        ++n;
-      }
-    }
-  }
+  const WindowScan scan = ScanWindow(source.get(), t0, t1, observer);
+  const Eigen::Index n_total = scan.n_total;
+  Eigen::Index n = scan.n;
+  const double t_first = scan.t_first, t_last = scan.t_last;
+  double w_first = scan.w_first, w_last = scan.w_last;
+  out.first = scan.first;
   if (n_total == 0) throw std::invalid_argument(path + ": no samples");
   // The layout's notes and warnings after a whole pass (a source may add
   // some at its end, e.g. the degree check on the range of each joint).
@@ -263,33 +335,9 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
                                   " samples, too few to estimate qd, qdd by filtering");
     }
     refuse_beyond_bound(n, static_cast<double>(n - 1) / (w_last - w_first), false);  // before resampling holds it
-    if (!(max_step - min_step <= ResamplingOptions{}.uniform_tolerance * min_step)) {
-      source->Rewind();
-      RecordedJointLog recorded = ReadWholeLog(*source);
-      const Eigen::Index last = out.first + n;
-      JointLog& log = recorded.log;
-      log.t = log.t.segment(out.first, n).eval();
-      for (Eigen::MatrixXd* x : {&log.q, &log.qd, &log.qdd, &log.tau}) {
-        if (x->size() > 0) *x = x->middleRows(out.first, n).eval();
-      }
-      recorded.lines = std::vector<int>(recorded.lines.begin() + out.first, recorded.lines.begin() + last);
-      RecordedJointLog uniform;
-      const ResamplingSummary resampling = ResampleJointLog(log, {.max_gap_s = options.max_gap_s}, &uniform.log);
-      if (resampling.status == ResamplingStatus::kGap) {
-        const int line = recorded.lines[static_cast<size_t>(resampling.gap_sample)];
-        throw std::invalid_argument(path + ":" + std::to_string(line) + ": column 't': " + resampling.BriefReport() +
-                                    "; split the log there or choose a time_window without it (max_gap_s sets the "
-                                    "bound)");
-      }
-      if (resampling.status == ResamplingStatus::kResampled) out.notes.push_back(path + ": " + resampling.BriefReport());
-      n = uniform.log.n_samples();
-      w_first = uniform.log.t[0];
-      w_last = uniform.log.t[n - 1];
-      uniform.lines.resize(static_cast<size_t>(n));
-      for (Eigen::Index s = 0; s < n; ++s) uniform.lines[static_cast<size_t>(s)] = static_cast<int>(s);
-      out.source = std::make_shared<RecordedJointLogSource>(std::move(uniform), path, layout.tau_is_current);
-      out.first = 0;
-      out.n_raw = n;
+    if (!(scan.max_step - scan.min_step <= ResamplingOptions{}.uniform_tolerance * scan.min_step)) {
+      ResampleWindow(path, options, &out, &w_first, &w_last);
+      n = out.n_raw;
     }
     const double rate_hz = static_cast<double>(n - 1) / (w_last - w_first);
 
@@ -326,21 +374,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
   }
 
   // Second pass: the prepared log as held (every log_stride-th sample).
-  const Eigen::Index k = out.log_stride, m = (out.n_samples + k - 1) / k;
-  JointLog& held = out.log;
-  held.t.resize(m);
-  for (Eigen::MatrixXd* x : {&held.q, &held.qd, &held.qdd, &held.tau}) x->resize(m, layout.n_dof);
-  ProgressLine progress(path + ": filtering", out.n_raw > kStreamBlockSamples, observer);
-  StreamPreparedSamples(out, [&](const JointLog& prepared, Eigen::Index s0) {
-    for (Eigen::Index s = (s0 + k - 1) / k * k; s < s0 + prepared.n_samples(); s += k) {
-      const Eigen::Index r = s - s0;
-      held.t[s / k] = prepared.t[r];
-      held.q.row(s / k) = prepared.q.row(r);
-      held.qd.row(s / k) = prepared.qd.row(r);
-      held.qdd.row(s / k) = prepared.qdd.row(r);
-      held.tau.row(s / k) = prepared.tau.row(r);
-    }
-  }, &progress);
+  HoldPreparedLog(layout.n_dof, path, observer, &out);
   return out;
 }
 

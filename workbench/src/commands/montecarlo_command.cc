@@ -46,9 +46,19 @@ std::string Errors(const MonteCarloReport& report) {
   return line;
 }
 
+// FormatMonteCarloTables and FormatMonteCarloJson need the statistics.
+void CheckCompleted(const MonteCarloReport& report) {
+  if (report.status != MonteCarloStatus::kCompleted) {
+    throw std::logic_error("montecarlo: no statistics to format: " + report.message);
+  }
+}
+
 }  // namespace
 
-std::string MonteCarloReport::BriefReport() const { return Headline(*this) + "\n" + Errors(*this); }
+std::string MonteCarloReport::BriefReport() const {
+  if (status != MonteCarloStatus::kCompleted) return Headline(*this) + "\n" + message + "\n";
+  return Headline(*this) + "\n" + Errors(*this);
+}
 
 bool MonteCarloOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
@@ -136,10 +146,12 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   Eigen::MatrixXd cov_sum = Eigen::MatrixXd::Zero(p, p);
   for (int trial = 0; trial < options.trials; ++trial) {
     const LinearFit fit = SolveWls(W, noisy(tau), n);
-    if (fit.rank < p) {
-      throw std::invalid_argument("montecarlo: the motion does not excite every base parameter (W has rank " +
-                                  std::to_string(fit.rank) + " of " + std::to_string(p) +
-                                  "); choose a richer `trajectory` (see compare)");
+    if (fit.rank < p) {  // no estimate from this motion: no statistics
+      report.status = MonteCarloStatus::kNotExcited;
+      report.message = "montecarlo: the motion does not excite every base parameter (W has rank " +
+                       std::to_string(fit.rank) + " of " + std::to_string(p) +
+                       "); choose a richer `trajectory` (see compare)";
+      return report;
     }
     estimates.col(trial) = fit.beta;
     sigma_sum += fit.sigma;
@@ -165,6 +177,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
 }
 
 std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report) {
+  CheckCompleted(report);
   std::string out;
   char line[512];
   out += Headline(report) + "\n\n";
@@ -185,6 +198,7 @@ std::string FormatMonteCarloTables(const MonteCarloOptions& options, const Monte
 }
 
 std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCarloReport& report) {
+  CheckCompleted(report);
   nlohmann::json j = {
       {"command", options.command_line},
       {"robot", options.robot},

@@ -164,16 +164,20 @@ enum class DesignStatus {
   kNoRoom,            // before the search: the cell's obstacles leave the arm no room at its home
   kNoMotionPossible,  // before the search: the settings admit no motion whatever the surroundings
                       // (the home pose violates a limit or the clearance to the ground)
+  kNotExcited,        // the search found a feasible motion, but within these limits it leaves
+                      // parameters unexcited (rank of W below the parameter count)
 };
-inline constexpr EnumNames<DesignStatus, 4> kDesignStatusNames{
-    "status", {"feasible", "infeasible", "no_room", "no_motion_possible"}};
+inline constexpr EnumNames<DesignStatus, 5> kDesignStatusNames{
+    "status", {"feasible", "infeasible", "no_room", "no_motion_possible", "not_excited"}};
 
 // No feasible design, explained: every violated constraint (FeasibilityCheck
 // form) and which settings to relax. before_search: the settings admit no
 // motion at all (the home pose itself violates a limit or the clearance, or no
 // pose with room was found), seen before any search ran; otherwise the search
 // ran and no start met every limit, and check is the 1 kHz check of the
-// least-violating point it reached.
+// least-violating point it reached. kNotExcited: the explanation names the
+// rank, the parameters left unexcited and the joints held still; check is the
+// design's own, advice is empty.
 struct DesignInfeasibility {
   // The summary, one line per violation and the "to relax:" lines: the
   // message a front end shows (fields named as in the options, not flags).
@@ -190,9 +194,10 @@ struct DesignResult {
   DesignInfeasibility infeasibility;  // when status is not kFeasible; empty otherwise
   FourierSeriesTrajectory trajectory;
   FourierSeriesTrajectory initial_trajectory;  // the winning start's first point
-  double initial_value = 0.0;        // criterion of the best start's initial point (NaN: not kFeasible)
-  double value = 0.0;                // criterion of the result (NaN: not kFeasible)
-  Identifiability initial, final;    // of W on the design grid
+  double initial_value = 0.0;        // criterion of the best start's initial point (NaN: no design;
+                                     // kNotExcited: the unexciting design's)
+  double value = 0.0;                // criterion of the result (NaN: no design; kNotExcited: as above)
+  Identifiability initial, final;    // of W on the design grid (kFeasible, kNotExcited)
   FeasibilityCheck check;            // of RobotTrajectory() at check_rate_hz (times from its start);
                                      // not kFeasible: infeasibility.check
   std::vector<DesignStartSummary> starts;
@@ -230,11 +235,11 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
 void CheckDesignFitsInMemory(const DesignRegressor& regressor, const DesignOptions& options);
 
 // Runs the design. Throws std::invalid_argument for invalid options or
-// limits (see above), std::runtime_error when the feasible design leaves
-// parameters unexcited. When the settings admit no motion or no start reached
-// a feasible point the result says so (status, infeasibility); its
-// trajectories are then the least-violating point the search ended at and
-// its start, or (before the search) the motionless home.
+// limits (see above). When the settings admit no motion, no start reached a
+// feasible point or the feasible design leaves parameters unexcited, the
+// result says so (status, infeasibility); its trajectories are then the
+// least-violating point the search ended at and its start, (before the
+// search) the motionless home, or (kNotExcited) the unexciting design.
 DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
                               const DesignOptions& options, const DesignControl& control = {});
 

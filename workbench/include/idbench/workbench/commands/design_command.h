@@ -65,7 +65,9 @@ struct DesignCommandOptions {
 // design (result.usable() says whether to run it); otherwise
 // result.infeasibility explains why there is none. The command line writes
 // design.json and exits 1 for kInfeasible and kNoRoom (it ran and failed),
-// and treats kNoMotionPossible as wrong input (exit 2, nothing written).
+// exits 1 writing nothing for kNotExcited (a motion within the limits that
+// leaves parameters unexcited), and treats kNoMotionPossible as wrong input
+// (exit 2, nothing written).
 struct DesignCommandReport {
   std::vector<JointLimits> limits;   // as used
   DesignResult result;
@@ -105,8 +107,9 @@ ActuatorLimits DesignActuatorLimits(const RobotModel& model, const DesignCommand
 // limits file's joint and actuator limits (DesignLimits, DesignActuatorLimits;
 // from_urdf: the robot URDF's transmission); progress lines on stderr unless quiet; `stop` ends it
 // early with the best feasible design so far. Throws std::invalid_argument for
-// bad limits or files; when nothing feasible was found the report says so
-// (status(), result.infeasibility) and nothing of the starts is printed.
+// bad limits or files; when nothing feasible was found, or the design leaves
+// parameters unexcited, the report says so (status(), result.infeasibility)
+// and nothing of the starts is printed.
 DesignCommandReport RunDesign(const RobotModel& model, const DesignCommandOptions& options,
                               const std::atomic<bool>* stop,
                               const std::optional<Transmission>& from_urdf = std::nullopt);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/trajectory.h"
 #include "idbench/ident/joint_torque_identifier.h"
 
@@ -29,9 +30,17 @@ struct MonteCarloOptions {
   bool IsValid(std::string* why) const;
 };
 
-// One outcome: a motion that does not excite every base parameter throws
-// (RunMonteCarlo), so a report always holds the trials' statistics.
+// What RunMonteCarlo came to: the trials ran (kCompleted), or the motion
+// does not excite every base parameter (W rank-deficient), so no trial has
+// an estimate (kNotExcited; message says so, and the statistics are empty).
+enum class MonteCarloStatus { kCompleted, kNotExcited };
+inline constexpr EnumNames<MonteCarloStatus, 2> kMonteCarloStatusNames{"status", {"completed", "not_excited"}};
+
 struct MonteCarloReport {
+  MonteCarloStatus status = MonteCarloStatus::kCompleted;
+  // kNotExcited: "montecarlo: the motion does not excite every base parameter
+  // (W has rank 30 of 36); choose a richer `trajectory` (see compare)"; "" otherwise.
+  std::string message;
   std::string trajectory, held_out;    // the motions' names (options' trajectory and held_out)
   int trials = 0, samples = 0;         // as run
   JointLog log;                        // the noise-free identification log (Bullet-executed states)
@@ -49,7 +58,7 @@ struct MonteCarloReport {
 
   // Four lines: what ran, the mean error against the predicted one, the worst
   // σ ratio and the held-out error against the noise alone (the first and
-  // last lines of FormatMonteCarloTables).
+  // last lines of FormatMonteCarloTables); kNotExcited: what ran and message.
   std::string BriefReport() const;
 };
 
@@ -63,9 +72,13 @@ constexpr int kMaxTrials = 100000;
 // (idbench/engine/resource_limits.h).
 void CheckRegressorSamples(const std::string& option, double samples, int n_dof);
 
+// Throws std::invalid_argument naming a bad option or motion file; a motion
+// that does not excite every base parameter is the report's status.
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options);
 // The same along `motion` (options.trajectory then only names it).
 MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions& options, const Trajectory& motion);
+// The tables and montecarlo.json of a report with status kCompleted
+// (std::logic_error otherwise: there are no statistics to format).
 std::string FormatMonteCarloTables(const MonteCarloOptions& options, const MonteCarloReport& report);
 std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCarloReport& report);
 
