@@ -1,0 +1,144 @@
+// The report as library calls: a run's report content holds the run's numbers,
+// formatted exactly (checked against the RunReport's fields printed here), and
+// FormatReportFiles gives report.html, report.pdf, figure.png and three files
+// a plot, each named relatively in the HTML and none empty.
+#include "idbench/workbench/reports/report_command.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <set>
+#include <string>
+
+#include "idbench/engine/paper6r.h"
+
+namespace idbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Printf(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+TEST(ReportCommandTest, RunReportContentHoldsTheRunsNumbers) {
+  const RobotModel model = MakePaper6r();
+  RunOptions options;
+  options.command_line = "idbench run --report --out x";
+  const RunReport report = RunExperiment(model, options);
+  const PerBodyIdentificationResult& r = report.identification;
+  const ReportContent content = MakeRunReportContent(model, options, report, "png bytes");
+
+  EXPECT_EQ(content.title, "idbench run: paper6r, paper motion, per-body quaternion method");
+  EXPECT_EQ(content.command, "idbench run --report --out x");
+  EXPECT_EQ(content.pose_figure_png, "png bytes");
+  ASSERT_EQ(content.experiment.size(), 5u);
+  EXPECT_EQ(content.experiment[0], (std::pair<std::string, std::string>{"robot", "paper6r"}));
+  EXPECT_EQ(content.experiment[1].second, "paper: hinges 1 and 2 accelerate at 30 deg/s², others locked");
+  EXPECT_EQ(content.experiment[2].second, "2 s, 0.001 s (Bullet, joint feedback)");
+  EXPECT_EQ(content.experiment[3].second, "5 (0.3, 0.6, 0.9, 1.2, 1.5 s)");
+  EXPECT_EQ(content.experiment[4].second,
+            Printf("%.3e", r.max_rel_error) + " (" + r.max_rel_error_at + "); the paper's: 3.1e-04");
+  EXPECT_FALSE(r.max_rel_error_at.empty());
+
+  // One row a parameter (6 bodies × 7), as the identification has it.
+  ASSERT_EQ(content.tables.size(), 2u);
+  const ReportTable& parameters = content.tables[0];
+  ASSERT_EQ(parameters.header.size(), 7u);
+  ASSERT_EQ(parameters.rows.size(), 42u);
+  size_t row = 0;
+  int n_identifiable = 0;
+  for (const BodyResult& body : r.bodies) {
+    for (const ParameterResult& p : body.parameters) {
+      const std::vector<std::string>& cells = parameters.rows[row++];
+      ASSERT_EQ(cells.size(), 7u);
+      EXPECT_EQ(cells[0], body.name);
+      EXPECT_EQ(cells[1], p.name);
+      EXPECT_EQ(cells[2], Printf("%.6f", p.true_value)) << p.name;
+      EXPECT_EQ(cells[3], p.identifiable ? Printf("%.12g", p.identified) : "-") << p.name;
+      // An unidentifiable parameter has no error (NaN): a dash, not "nan".
+      EXPECT_EQ(cells[4], p.identifiable ? Printf("%.3e", p.abs_error) : "-") << p.name;
+      EXPECT_EQ(cells[5], p.identifiable ? Printf("%.2e", p.rel_error) : "-") << p.name;
+      EXPECT_EQ(cells[6], p.identifiable ? "ok" : "NOT IDENTIFIABLE: " + p.reason) << p.name;
+      n_identifiable += p.identifiable;
+    }
+  }
+  // B1 turns about its own axis: 4 of its 7 parameters can never be identified.
+  EXPECT_LE(n_identifiable, 38);
+  EXPECT_EQ(parameters.rows[0][0], "B1");
+  const ReportTable& blocks = content.tables[1];
+  ASSERT_EQ(blocks.rows.size(), 6u);
+  for (size_t b = 0; b < 6; ++b) {
+    const BodyResult& body = r.bodies[b];
+    EXPECT_EQ(blocks.rows[b][1], std::to_string(body.newton.rank) + "/" + std::to_string(body.newton.n_unknowns));
+    EXPECT_EQ(blocks.rows[b][3], std::to_string(body.euler.rank) + "/" + std::to_string(body.euler.n_unknowns));
+    EXPECT_EQ(blocks.rows[b][4], Printf("%.3g", body.euler.cond));
+  }
+  ASSERT_EQ(content.plots.size(), 4u);
+  EXPECT_EQ(content.plots[0].stem, "joints");
+  EXPECT_EQ(content.plots[1].stem, "parameters");
+  EXPECT_EQ(content.plots[2].stem, "spectrum");
+  EXPECT_EQ(content.plots[3].stem, "motions");
+  EXPECT_NE(content.plots[3].caption.find("The paper motion against the general motion"), std::string::npos);
+}
+
+// A small content: a table, one plot, a pose figure.
+ReportContent SmallContent() {
+  ReportContent content;
+  content.title = "a < b & c";
+  content.command = "idbench run --motion \"x\"";
+  content.experiment = {{"robot", "paper6r"}, {"duration", "2 s"}};
+  content.pose_figure_png = "\x89PNG not really";
+  content.pose_caption = "poses";
+  content.tables = {{"Errors", {"body", "value"}, {{"B1", "1.25e-04"}, {"B2", "-"}}}};
+  PlotAxes axes;
+  axes.title = "line";
+  axes.series = {{"y = 2x", {0.0, 1.0, 2.0}, {0.0, 2.0, 4.0}, {}, PlotSeries::Style::kLine}};
+  content.plots = {{"line", "A line.", PlotFigure{{axes}, 1, 200.0, 150.0}}};
+  return content;
+}
+
+TEST(ReportCommandTest, FilesAreTheHtmlPdfFigureAndEachPlotInThreeFormats) {
+  const fs::path dir = "some/dir";
+  const auto files = FormatReportFiles(SmallContent(), dir);
+  std::vector<std::string> names;
+  for (const auto& [path, bytes] : files) {
+    EXPECT_EQ(path.parent_path(), dir) << path;
+    names.push_back(path.filename().string());
+    EXPECT_GT(bytes.size(), 0u) << path;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"report.html", "report.pdf", "figure.png", "plot_line.png", "plot_line.svg",
+                                             "plot_line.pdf"}));
+  EXPECT_EQ(files[2].second, "\x89PNG not really");  // the figure as given
+  EXPECT_EQ(files[1].second.substr(0, 5), "%PDF-");
+  EXPECT_EQ(files[3].second.substr(0, 8), "\x89PNG\r\n\x1a\n");
+  EXPECT_NE(files[4].second.find("<svg"), std::string::npos);
+  EXPECT_EQ(files[5].second.substr(0, 5), "%PDF-");
+  // The HTML names the others relatively.
+  const std::string& html = files[0].second;
+  for (const char* name : {"\"report.pdf\"", "\"figure.png\"", "\"plot_line.svg\"", "\"plot_line.png\"", "\"plot_line.pdf\""}) {
+    EXPECT_NE(html.find(name), std::string::npos) << name;
+  }
+  EXPECT_EQ(html.find("some/dir"), std::string::npos);
+
+  // Without a pose figure and plots: the two reports alone, and no figure named.
+  ReportContent bare = SmallContent();
+  bare.pose_figure_png.clear();
+  bare.plots.clear();
+  const auto two = FormatReportFiles(bare, dir);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0].first, dir / "report.html");
+  EXPECT_EQ(two[1].first, dir / "report.pdf");
+  EXPECT_EQ(two[0].second.find("figure.png"), std::string::npos);
+}
+
+TEST(ReportCommandTest, EscapeHtmlEscapesTheFourCharacters) {
+  EXPECT_EQ(EscapeHtml("a < b & c > \"d\""), "a &lt; b &amp; c &gt; &quot;d&quot;");
+  EXPECT_EQ(EscapeHtml("J22 [kg m²]"), "J22 [kg m²]");
+  EXPECT_EQ(EscapeHtml(""), "");
+}
+
+}  // namespace
+}  // namespace idbench
