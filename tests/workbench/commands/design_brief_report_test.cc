@@ -18,38 +18,23 @@
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/workbench/commands/design_command.h"
+#include "workbench/commands/quick_design_options.h"
+#include "workbench/printf_test_util.h"
 
 namespace idbench {
 namespace {
 
-std::string Printf(const char* format, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, value);
-  return buf;
-}
+using testing::Printf;
+using testing::QuickDesignOptions;
 
 // "; 40 evaluations in 0.12 s": the run's count and time as the report rounds them.
 std::string EvaluationsAndTime(const DesignResult& r) {
   return "; " + std::to_string(r.evaluations) + " evaluations in " + Printf("%.2f", r.wall_seconds) + " s";
 }
 
-DesignCommandOptions QuickOptions(const std::string& robot) {
-  DesignCommandOptions options;
-  options.robot = robot;
-  options.friction = {"viscous", "coulomb"};
-  options.design.harmonics = 3;
-  options.design.f0 = 0.2;
-  options.design.samples = 60;
-  options.design.starts = 2;
-  options.design.threads = 1;
-  options.design.clearance = -1.0;
-  options.quiet = true;
-  return options;
-}
-
 TEST(DesignBriefReportTest, AFeasibleDesignReportsItsCriterionVerdictAndTime) {
   const RobotModel model = MakePuma560();
-  DesignCommandOptions options = QuickOptions("puma560");
+  DesignCommandOptions options = QuickDesignOptions("puma560");
   options.design.max_evaluations = 40;
   const DesignCommandReport report = RunDesign(model, options, testing::DesignLimits(model, 1.5, 4.0), {});
   ASSERT_EQ(report.status(), DesignStatus::kFeasible);
@@ -64,7 +49,7 @@ TEST(DesignBriefReportTest, AFeasibleDesignReportsItsCriterionVerdictAndTime) {
 
 TEST(DesignBriefReportTest, NoFeasibleStartReportsTheSearchThatFailed) {
   const RobotModel model = MakePuma560();
-  DesignCommandOptions options = QuickOptions("puma560");
+  DesignCommandOptions options = QuickDesignOptions("puma560");
   options.design.max_evaluations = 10;
   options.home = {0.0, 0.6, -0.4, 0.0, 0.5, 0.0};
   std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
@@ -90,7 +75,7 @@ TEST(DesignBriefReportTest, NoFeasibleStartReportsTheSearchThatFailed) {
 // then write nothing), naming the rank of W and the parameters.
 TEST(DesignBriefReportTest, AJointHeldStillLeavesParametersUnexcited) {
   const RobotModel model = MakePuma560();
-  DesignCommandOptions options = QuickOptions("puma560");
+  DesignCommandOptions options = QuickDesignOptions("puma560");
   options.design.starts = 1;
   options.design.max_evaluations = 5;
   std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
@@ -117,7 +102,7 @@ TEST(DesignBriefReportTest, AJointHeldStillLeavesParametersUnexcited) {
 
 TEST(DesignBriefReportTest, AHomeOutsideTheRangeAdmitsNoMotion) {
   const RobotModel model = MakePaper6r();
-  DesignCommandOptions options = QuickOptions("paper6r");
+  DesignCommandOptions options = QuickDesignOptions("paper6r");
   std::vector<JointLimits> limits = testing::DesignLimits(model, 1.5, 4.0);
   limits[0].q_min = -2.5, limits[0].q_max = 2.5;
   options.home = {2.5, 0.0, 0.0, 0.0, 0.0, 0.0};  // on the range, outside it tightened by the margin

@@ -6,22 +6,17 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <set>
 #include <string>
 
 #include "idbench/engine/paper6r.h"
+#include "workbench/printf_test_util.h"
 
 namespace idbench {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Printf(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
+using testing::Printf;
 
 TEST(ReportCommandTest, RunReportContentHoldsTheRunsNumbers) {
   const RobotModel model = MakePaper6r();
