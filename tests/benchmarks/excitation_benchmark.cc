@@ -101,14 +101,17 @@ void BM_ClearanceConstraintsUr10eLike(benchmark::State& state) { BenchmarkUrLike
 BENCHMARK(BM_ClearanceConstraintsUr10eLike)->Unit(benchmark::kMillisecond);
 void BM_ClearanceConstraintsGradientUr10eLike(benchmark::State& state) { BenchmarkUrLikeConstraints(state, true); }
 BENCHMARK(BM_ClearanceConstraintsGradientUr10eLike)->Unit(benchmark::kMillisecond);
-void BM_DesignCriterionGradientUr10eLike(benchmark::State& state) {
-  const UrLikeCase c;
+// One criterion evaluation with its gradient at a case's first start point.
+template <typename Case>
+void BenchmarkCriterionGradient(benchmark::State& state) {
+  const Case c;
   const DesignProblem problem(c.regressor, c.limits, c.options);
   DesignProblem::Workspace ws(problem);
   const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
   Eigen::VectorXd grad(problem.n_unknowns());
   for (auto _ : state) benchmark::DoNotOptimize(problem.Criterion(theta.data(), grad.data(), &ws));
 }
+void BM_DesignCriterionGradientUr10eLike(benchmark::State& state) { BenchmarkCriterionGradient<UrLikeCase>(state); }
 BENCHMARK(BM_DesignCriterionGradientUr10eLike)->Unit(benchmark::kMillisecond);
 
 // tests/data/panda_like (8 mesh links, 21 clearance pairs at 1 cm) with
@@ -150,14 +153,7 @@ void BM_ClearanceConstraintsGradientPandaLikeWalk(benchmark::State& state) {
   state.counters["rows"] = static_cast<double>(m);  // torque limits and clearance pairs
 }
 BENCHMARK(BM_ClearanceConstraintsGradientPandaLikeWalk)->Unit(benchmark::kMillisecond);
-void BM_DesignCriterionGradientPandaLike(benchmark::State& state) {
-  const PandaLikeCase c;
-  const DesignProblem problem(c.regressor, c.limits, c.options);
-  DesignProblem::Workspace ws(problem);
-  const Eigen::VectorXd theta = problem.StartPoint(1, &ws);
-  Eigen::VectorXd grad(problem.n_unknowns());
-  for (auto _ : state) benchmark::DoNotOptimize(problem.Criterion(theta.data(), grad.data(), &ws));
-}
+void BM_DesignCriterionGradientPandaLike(benchmark::State& state) { BenchmarkCriterionGradient<PandaLikeCase>(state); }
 BENCHMARK(BM_DesignCriterionGradientPandaLike)->Unit(benchmark::kMillisecond);
 
 }  // namespace
