@@ -10,7 +10,7 @@
 
 namespace idbench {
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kClearanceScale = 0.1;  // [m]: a clearance constraint value of 1 is 10 cm
 
 }  // namespace
@@ -134,7 +134,7 @@ double DesignProblem::LinearValue(const LinearRow& row, const double* theta) con
 }
 
 double DesignProblem::MaxLinearViolation(const double* theta) const {
-  double worst = -kInf;
+  double worst = -kInfinity;
   for (const LinearRow& row : rows_) worst = std::max(worst, LinearValue(row, theta));
   return worst;
 }
@@ -206,7 +206,7 @@ void DesignProblem::NonlinearConstraints(const double* theta, double* result, do
   Eigen::MatrixXd& rows = ws->torque_rows;
   rows.resize(n_, tr.n_parameters());
   const int m = n_torque_constraints();
-  Eigen::VectorXd worst = Eigen::VectorXd::Constant(m, -kInf), sign = Eigen::VectorXd::Ones(m);
+  Eigen::VectorXd worst = Eigen::VectorXd::Constant(m, -kInfinity), sign = Eigen::VectorXd::Ones(m);
   std::vector<size_t> at(static_cast<size_t>(m), 0);
   for (size_t k = 0; k < times_.size(); ++k) {
     tr.Rows(ws->x[k], &ws->regressor, rows);
@@ -339,7 +339,7 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
       const double ba = bounds[a * n_pairs + i], bb = bounds[b * n_pairs + i];
       return ba < bb || (ba == bb && a < b);
     });
-    double best = kInf;
+    double best = kInfinity;
     const std::vector<double>& reach = clearance_->pairs()[i].reach;
     ws->clearance_done.clear();
     ws->clearance_done_distance.clear();
@@ -348,7 +348,7 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
       const double bound = bounds[s * n_pairs + i];
       if (beaten(bound, s)) break;
       // The bound from the instants already measured (their joint motion to s).
-      double moved_bound = -kInf;
+      double moved_bound = -kInfinity;
       for (size_t e = 0; e < ws->clearance_done.size(); ++e) {
         double d = ws->clearance_done_distance[e] - kGjkTolerance;
         const size_t se = ws->clearance_done[e];
@@ -360,7 +360,7 @@ void DesignProblem::ClearanceConstraints(const double* theta, double* result, do
       }
       if (beaten(moved_bound, s)) continue;
       const Clearance c = clearance_->ComputePair(ws->clearance_poses[s], static_cast<int>(i),
-                                                  std::isfinite(best) ? std::nextafter(best, kInf) : kInf);
+                                                  std::isfinite(best) ? std::nextafter(best, kInfinity) : kInfinity);
       if (c.distance < best || (c.distance == best && s < at[i])) best = c.distance, at[i] = s, witness[i] = c;
       // Exact, or (pruned) a lower bound of the distance at s: either bounds the others.
       ws->clearance_done.push_back(s);
@@ -413,7 +413,7 @@ void DesignProblem::RefineClearanceMinimum(const double* theta, int i, double t,
     basis = FourierSeriesTrajectory::BasisAt(ts, f0_, H_, duration_, rest_to_rest_);
     const JointState x = StateAt(basis, theta);
     ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &trial);
-    const Clearance c = clearance_->ComputePair(trial, i, std::nextafter(*distance, kInf));
+    const Clearance c = clearance_->ComputePair(trial, i, std::nextafter(*distance, kInfinity));
     if (!(c.distance < *distance)) return false;
     *distance = c.distance, *witness = c;
     std::swap(pose, trial);
@@ -439,7 +439,7 @@ Eigen::VectorXd DesignProblem::StartPoint(unsigned seed, Workspace* ws, std::vec
   }
   // Each joint's rows are affine in the scale s_j of its coefficients:
   // s_j (c·coef) + c₀ q0 ≤ rhs; every joint goes to 90 % of its tightest row.
-  std::vector<double> scale(static_cast<size_t>(n_), kInf);
+  std::vector<double> scale(static_cast<size_t>(n_), kInfinity);
   for (const LinearRow& row : rows_) {
     if (row.span(block_) != 1) continue;
     const Eigen::VectorXd block = theta.segment(row.joint * block_, block_);

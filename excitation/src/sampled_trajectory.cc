@@ -10,7 +10,7 @@
 namespace idbench {
 namespace {
 
-std::string Shape(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
+std::string SizeText(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
 // Second derivatives M (n_dof × N) of the natural cubic spline through q at
 // times t: for each interior knot i (h_i = t_{i+1} − t_i)
@@ -42,12 +42,12 @@ SampledTrajectory::SampledTrajectory(Eigen::VectorXd t, Eigen::MatrixXd q, Eigen
   if (N < 2) throw std::invalid_argument("sampled trajectory: expected at least 2 samples, got " + std::to_string(N));
   if (q_.cols() != N || q_.rows() < 1) {
     throw std::invalid_argument("sampled trajectory: expected q of size n_dof x " + std::to_string(N) + ", got " +
-                                Shape(q_));
+                                SizeText(q_));
   }
   const bool derivatives = qd_.size() > 0 || qdd_.size() > 0;
   if (derivatives && (qd_.rows() != q_.rows() || qd_.cols() != N || qdd_.rows() != q_.rows() || qdd_.cols() != N)) {
-    throw std::invalid_argument("sampled trajectory: expected qd and qdd of size " + Shape(q_) + " or both empty, got " +
-                                Shape(qd_) + " and " + Shape(qdd_));
+    throw std::invalid_argument("sampled trajectory: expected qd and qdd of size " + SizeText(q_) + " or both empty, got " +
+                                SizeText(qd_) + " and " + SizeText(qdd_));
   }
   for (int i = 0; i < N; ++i) {
     if (!std::isfinite(t_[i]) || (i > 0 && !(t_[i] > t_[i - 1]))) {

@@ -15,7 +15,6 @@
 namespace idbench {
 namespace {
 
-constexpr int kP = kInertialParametersPerLink;  // 10
 using Matrix10 = Eigen::Matrix<double, 10, 10>;
 using Vector10 = Eigen::Matrix<double, 10, 1>;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -81,7 +80,7 @@ InertialParameters ProjectOntoConsistent(const InertialParameters& phi_ls, const
   problem.z = problem.R * phi_ls;
   internal::LmiBlock block;
   block.C = Eigen::Matrix4d::Zero();
-  for (int i = 0; i < kP; ++i) {
+  for (int i = 0; i < kInertialParametersPerLink; ++i) {
     block.variables.push_back(i);
     block.B.push_back(PseudoInertia(Vector10::Unit(i)));
   }
@@ -227,18 +226,18 @@ PayloadEquations StackPayloadEquations(const RobotModel& model, const TorqueLog&
         internal::StackLinkEquations(model, options.friction, &base, link, loaded.motion,
                                      StackedTorques(model, loaded, false, "loaded"), loaded.parallel_filter, "loaded");
     eq.loaded_first = U.rows();
-    eq.A = Eigen::MatrixXd::Zero(U.rows() + L.rows(), n_base + kP);
+    eq.A = Eigen::MatrixXd::Zero(U.rows() + L.rows(), n_base + kInertialParametersPerLink);
     eq.A.topLeftCorner(U.rows(), n_base) = U.leftCols(n_base);
-    eq.A.bottomRows(L.rows()) = L.leftCols(n_base + kP);
+    eq.A.bottomRows(L.rows()) = L.leftCols(n_base + kInertialParametersPerLink);
     eq.b.resize(eq.A.rows());
-    eq.b << U.col(n_base + kP), L.col(n_base + kP);
+    eq.b << U.col(n_base + kInertialParametersPerLink), L.col(n_base + kInertialParametersPerLink);
     eq.names = base.names;
   } else {
     const Eigen::MatrixXd L = internal::StackLinkEquations(model, options.friction, nullptr, link, loaded.motion,
                                                            StackedTorques(model, loaded, true, "loaded"),
                                                            loaded.parallel_filter, "loaded");
-    eq.A = L.leftCols(kP);
-    eq.b = L.col(kP) - L.col(kP + 1);
+    eq.A = L.leftCols(kInertialParametersPerLink);
+    eq.b = L.col(kInertialParametersPerLink) - L.col(kInertialParametersPerLink + 1);
   }
   for (const std::string& name : PayloadInertialParameterNames()) eq.names.push_back("payload " + name);
   return eq;
@@ -253,11 +252,11 @@ void ClassifyPayloadQuantities(const std::vector<std::string>& parameter_reason,
   InertialParameters generic;
   generic << 1.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 0.0, 0.0, 1.0;
   const Matrix10 structure = PayloadQuantityJacobian(generic);
-  out->identifiable.assign(kP, true);
-  out->not_identifiable_reason.assign(kP, "");
-  for (int k = 0; k < kP; ++k) {
+  out->identifiable.assign(kInertialParametersPerLink, true);
+  out->not_identifiable_reason.assign(kInertialParametersPerLink, "");
+  for (int k = 0; k < kInertialParametersPerLink; ++k) {
     std::vector<std::string> missing, reasons;
-    for (int i = 0; i < kP; ++i) {
+    for (int i = 0; i < kInertialParametersPerLink; ++i) {
       if (structure(k, i) == 0.0 || out->parameter_identifiable[i]) continue;
       missing.push_back(PayloadInertialParameterNames()[i]);
       if (reasons.empty()) reasons.push_back(parameter_reason[i]);
@@ -276,7 +275,7 @@ void JudgePayload(const PayloadEstimatorOptions& options, const std::string& lin
   char text[512];
   if (!all_identifiable) {
     std::vector<std::string> missing;
-    for (int k = 0; k < kP; ++k) {
+    for (int k = 0; k < kInertialParametersPerLink; ++k) {
       if (!out->identifiable[k]) missing.push_back(PayloadQuantityNames()[k]);
     }
     out->status = PayloadStatus::kNotIdentifiable;
@@ -326,7 +325,7 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   const Eigen::VectorXd& b = equations.b;
   const std::vector<std::string>& names = equations.names;
   const Eigen::Index loaded_first = equations.loaded_first;
-  const Eigen::Index p = A.cols(), first = p - kP;
+  const Eigen::Index p = A.cols(), first = p - kInertialParametersPerLink;
   out.n_equations = A.rows();
   if (out.n_equations <= p) {
     throw std::invalid_argument("payload: " + std::to_string(out.n_equations) + " equations for " + std::to_string(p) +
@@ -338,15 +337,15 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   out.rank = solution.ls.rank;
   const double sigma2 = solution.residual2 / static_cast<double>(out.n_equations - out.rank);
   out.residual_rms = std::sqrt(solution.residual2 / static_cast<double>(out.n_equations));
-  const Eigen::MatrixXd F = solution.pseudo_inverse_factor.bottomRows(kP);
+  const Eigen::MatrixXd F = solution.pseudo_inverse_factor.bottomRows(kInertialParametersPerLink);
   const Matrix10 M = F * F.transpose();  // covariance / σ²
-  out.parameter_identifiable.assign(kP, false);
-  std::vector<std::string> parameter_reason(kP);
-  InertialParameters phi_filled = solution.x.tail(kP);  // every entry finite
+  out.parameter_identifiable.assign(kInertialParametersPerLink, false);
+  std::vector<std::string> parameter_reason(kInertialParametersPerLink);
+  InertialParameters phi_filled = solution.x.tail(kInertialParametersPerLink);  // every entry finite
   out.phi = phi_filled;
   out.covariance = sigma2 * M;
   bool all_identifiable = true;
-  for (int i = 0; i < kP; ++i) {
+  for (int i = 0; i < kInertialParametersPerLink; ++i) {
     out.parameter_identifiable[i] = solution.ls.identifiable[static_cast<size_t>(first + i)];
     parameter_reason[i] = solution.ls.reason[static_cast<size_t>(first + i)];
     if (out.parameter_identifiable[i]) continue;
@@ -355,7 +354,7 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
     out.covariance.row(i).setConstant(kNaN);
     out.covariance.col(i).setConstant(kNaN);
   }
-  const Eigen::VectorXd payload_torque = A.bottomRows(A.rows() - loaded_first).rightCols(kP) * phi_filled;
+  const Eigen::VectorXd payload_torque = A.bottomRows(A.rows() - loaded_first).rightCols(kInertialParametersPerLink) * phi_filled;
   const Eigen::VectorXd residual = A * solution.x - b;
   out.payload_signal_to_noise = payload_torque.norm() / residual.tail(A.rows() - loaded_first).norm();
 
@@ -379,7 +378,7 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
     const Matrix10 J = PayloadQuantityJacobian(phi_filled);
     out.sigma = (J * (sigma2 * M) * J.transpose()).diagonal().cwiseSqrt();
     Vector10 q = PayloadQuantities(out.body);
-    for (int k = 0; k < kP; ++k) {
+    for (int k = 0; k < kInertialParametersPerLink; ++k) {
       if (out.identifiable[k]) continue;
       q[k] = kNaN;
       out.sigma[k] = kNaN;

@@ -12,7 +12,6 @@
 namespace idbench {
 namespace {
 
-constexpr int kP = kInertialParametersPerLink;
 // Entries of π within a link's 10: m, then h = m c (x, y, z).
 constexpr int kMass = 0;
 constexpr int kFirstMoment = 1;
@@ -68,7 +67,7 @@ bool PlausibleFitOptions::IsValid(int n_links, int n_standard, std::string* why)
   if (!(total_mass_min >= 0.0) || !(total_mass_max >= total_mass_min) || std::isnan(total_mass_max))
     return fail("total mass bounds must satisfy 0 <= min <= max, got [" + Number(total_mass_min) + ", " + Number(total_mass_max) + "]");
   for (int k : nonnegative)
-    if (k < kP * n_links || k >= n_standard) return fail("nonnegative index " + std::to_string(k) + " is not a friction entry");
+    if (k < kInertialParametersPerLink * n_links || k >= n_standard) return fail("nonnegative index " + std::to_string(k) + " is not a friction entry");
   if (scale.size() != n_standard || !scale.allFinite() || !(scale.minCoeff() > 0.0))
     return fail("expected " + std::to_string(n_standard) + " positive finite parameter scales");
   if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) return fail("prior weight must be finite and >= 0");
@@ -90,7 +89,7 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
   const int n = static_cast<int>(C.cols());
   if (factor.rows() != p + 1 || factor.cols() != p + 1 || !factor.allFinite())
     throw std::invalid_argument("plausible fit: expected a finite " + std::to_string(p + 1) + "x" + std::to_string(p + 1) + " factor");
-  if (n < kP * n_links || pi_prior.size() != n || !pi_prior.allFinite())
+  if (n < kInertialParametersPerLink * n_links || pi_prior.size() != n || !pi_prior.allFinite())
     throw std::invalid_argument("plausible fit: expected a finite prior of " + std::to_string(n) + " parameters for " +
                                 std::to_string(n_links) + " links");
   std::string why;
@@ -143,12 +142,12 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
 
   // Per link: J(π_prior + D u) − ε diag(D_I, D_I, D_I, D_m) ⪰ 0, J linear in π.
   for (int l = 0; l < n_links; ++l) {
-    const int o = kP * l;
+    const int o = kInertialParametersPerLink * l;
     const double inertia_scale = options.scale.segment(o + 4, 6).maxCoeff();
     const Eigen::Vector4d margin(inertia_scale, inertia_scale, inertia_scale, options.scale[o + kMass]);
     LmiBlock block;
-    block.C = PseudoInertia(pi_prior.segment(o, kP)) - Eigen::Matrix4d(options.pseudo_inertia_margin * margin.asDiagonal());
-    for (int k = 0; k < kP; ++k) {
+    block.C = PseudoInertia(pi_prior.segment(o, kInertialParametersPerLink)) - Eigen::Matrix4d(options.pseudo_inertia_margin * margin.asDiagonal());
+    for (int k = 0; k < kInertialParametersPerLink; ++k) {
       block.variables.push_back(o + k);
       block.B.push_back(D[o + k] * UnitPseudoInertia(k));
     }
@@ -159,11 +158,11 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
     program.sdp.rows.push_back(LinearInequality{c, std::move(a)});
   };
   auto mass_term = [&](int l, double factor_of_mass) {
-    return std::make_pair(kP * l + kMass, factor_of_mass * D[kP * l + kMass]);
+    return std::make_pair(kInertialParametersPerLink * l + kMass, factor_of_mass * D[kInertialParametersPerLink * l + kMass]);
   };
   for (size_t l = 0; l < options.links.size(); ++l) {
     const LinkPlausibilityBounds& bounds = options.links[l];
-    const int o = kP * static_cast<int>(l);
+    const int o = kInertialParametersPerLink * static_cast<int>(l);
     const double m0 = pi_prior[o + kMass];
     const auto [mass_min, mass_max] = WithInterior(bounds.mass_min, bounds.mass_max);
     if (std::isfinite(mass_max)) add_row(mass_max - m0, {mass_term(static_cast<int>(l), -1.0)});
@@ -180,7 +179,7 @@ PlausibleProgram MakePlausibleProgram(const Eigen::MatrixXd& factor, const BaseP
   double total0 = 0.0;
   std::vector<std::pair<int, double>> total_up, total_down;
   for (int l = 0; l < n_links; ++l) {
-    total0 += pi_prior[kP * l + kMass];
+    total0 += pi_prior[kInertialParametersPerLink * l + kMass];
     total_up.push_back(mass_term(l, -1.0));
     total_down.push_back(mass_term(l, 1.0));
   }
@@ -224,11 +223,11 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   for (int l = 0; l < n_links; ++l) {
     Eigen::VectorXd snapped = u;
     for (int k : base.unexcited)
-      if (k / kP == l) snapped[k] = 0.0;
+      if (k / kInertialParametersPerLink == l) snapped[k] = 0.0;
     if (snapped != u && internal::IsStrictlyFeasible(program.sdp, snapped)) u = snapped;
   }
   for (int k : base.unexcited) {  // friction terms no data reach
-    if (k < kP * n_links) continue;
+    if (k < kInertialParametersPerLink * n_links) continue;
     Eigen::VectorXd snapped = u;
     snapped[k] = program.start[k];
     if (internal::IsStrictlyFeasible(program.sdp, snapped)) u = snapped;
@@ -274,13 +273,13 @@ PhysicallyConsistentFit SolvePlausibleFit(const Eigen::MatrixXd& factor, const B
   };
   double total = 0.0, total_file = 0.0;
   for (int l = 0; l < n_links; ++l) {
-    total += fit.pi[kP * l + kMass];
-    total_file += pi_prior[kP * l + kMass];
+    total += fit.pi[kInertialParametersPerLink * l + kMass];
+    total_file += pi_prior[kInertialParametersPerLink * l + kMass];
   }
   for (size_t l = 0; l < options.links.size(); ++l) {
     const LinkPlausibilityBounds& bounds = options.links[l];
     const int li = static_cast<int>(l);
-    const int o = kP * li;
+    const int o = kInertialParametersPerLink * li;
     const double m = fit.pi[o + kMass], m0 = pi_prior[o + kMass];
     const double tolerance = 1e-6 * options.scale[o + kMass];
     if (std::isfinite(bounds.mass_max) && m >= bounds.mass_max - tolerance)

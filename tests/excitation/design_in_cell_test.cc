@@ -26,7 +26,7 @@ std::vector<JointLimits> UrLikeLimits(const RobotModel& model) {
   return limits;
 }
 
-DesignOptions QuickOptions() {
+DesignOptions CellDesignOptions() {
   DesignOptions o;
   o.harmonics = 3;
   o.f0 = 0.2;
@@ -87,7 +87,7 @@ std::vector<double> SampledClearance(const RobotModel& model, const BasePose& ba
 TEST(DesignInCellTest, TableAndWallKeepTheirClearanceAtEveryMillisecond) {
   const BasePose base{{0, 0, 0.8, 0, 0, 0}};
   const RobotModel model = MountRobot(LoadUrdfFile(kUrLike).model, base);
-  DesignOptions o = QuickOptions();
+  DesignOptions o = CellDesignOptions();
   o.base_pose = base;
   const Obstacle table = Box("table", {4.0, 4.0, 0.05}, {0, 0, 0.775});
   const Obstacle wall = Box("wall", {0.1, 4.0, 4.0}, {0.55, 0, 1.0});
@@ -115,7 +115,7 @@ TEST(DesignInCellTest, TableAndWallKeepTheirClearanceAtEveryMillisecond) {
 TEST(DesignInCellTest, CeilingMountedDesignIsFeasible) {
   const BasePose ceiling{{0, 0, 2.5, std::numbers::pi, 0, 0}};
   const RobotModel model = MountRobot(LoadUrdfFile(kUrLike).model, ceiling);
-  DesignOptions o = QuickOptions();
+  DesignOptions o = CellDesignOptions();
   o.base_pose = ceiling;
   o.scene.obstacles = {Box("ceiling", {4.0, 4.0, 0.1}, {0, 0, 2.55})};
   const DesignResult r =
@@ -136,7 +136,7 @@ TEST(DesignInCellTest, CeilingMountedDesignIsFeasible) {
 // explained per obstacle before any search.
 TEST(DesignInCellTest, ACellWithoutRoomIsExplainedPerObstacle) {
   const RobotModel model = LoadUrdfFile(kUrLike).model;
-  DesignOptions o = QuickOptions();
+  DesignOptions o = CellDesignOptions();
   Obstacle pillar;
   pillar.name = "pillar";
   pillar.shape.kind = Shape::Kind::kCylinder;

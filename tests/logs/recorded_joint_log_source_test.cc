@@ -71,7 +71,7 @@ TEST(RecordedJointLogSourceTest, NextStopsAtTheEnd) {
 // OpenJointLog on a CSV file gives what the whole-file reader gives.
 TEST(RecordedJointLogSourceTest, OpenJointLogReadsACsvFileAsTheReaderDoes) {
   const RobotModel puma = MakePuma560();
-  const std::string path = testing::TempDir() + "/open_joint_log.csv";
+  const std::string path = ::testing::TempDir() + "/open_joint_log.csv";
   {
     std::ofstream file(path);
     file << "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n";

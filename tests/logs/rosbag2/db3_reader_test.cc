@@ -7,11 +7,12 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include "logs/rosbag2/bag_fixtures.h"
 
 namespace idbench::internal {
 namespace {
 
-const std::filesystem::path kBags = std::filesystem::path(IDBENCH_SOURCE_DIR) / "tests" / "data" / "bags";
+using testing::kBags;
 
 TEST(Db3ReaderTest, ReadsTopicsAndOneTopicsMessagesInTimeOrder) {
   Db3Reader reader((kBags / "bag_db3" / "bag_db3_0.db3").string());

@@ -19,7 +19,7 @@ using testing::PutDouble;
 
 // stamp (7, 250000000), frame_id "w", names {"j2", "j1"}, position {0.5,
 // -0.25} (or 1 entry when ragged), velocity {}, effort {3, 4}.
-std::vector<std::uint8_t> Message(bool ragged) {
+std::vector<std::uint8_t> JointStateBytes(bool ragged) {
   std::vector<std::uint8_t> m = {0x00, 0x01, 0x00, 0x00};
   Put(m, 7, 4);
   Put(m, 250000000, 4);
@@ -41,7 +41,7 @@ std::vector<std::uint8_t> Message(bool ragged) {
 }
 
 TEST(JointStateMessageTest, DecodesEveryField) {
-  const std::vector<std::uint8_t> bytes = Message(false);
+  const std::vector<std::uint8_t> bytes = JointStateBytes(false);
   JointStateMessage message;
   DecodeJointState(bytes.data(), bytes.size(), &message);
   EXPECT_EQ(message.stamp_sec, 7);
@@ -54,7 +54,7 @@ TEST(JointStateMessageTest, DecodesEveryField) {
 }
 
 TEST(JointStateMessageTest, RefusesArraysOfAnotherLengthThanTheNames) {
-  const std::vector<std::uint8_t> bytes = Message(true);
+  const std::vector<std::uint8_t> bytes = JointStateBytes(true);
   JointStateMessage message;
   try {
     DecodeJointState(bytes.data(), bytes.size(), &message);

@@ -9,11 +9,12 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include "logs/rosbag2/bag_fixtures.h"
 
 namespace idbench::internal {
 namespace {
 
-const std::filesystem::path kBags = std::filesystem::path(IDBENCH_SOURCE_DIR) / "tests" / "data" / "bags";
+using testing::kBags;
 
 // The /joint_states messages' count and their log times in ns (first, last).
 struct Count {

@@ -16,11 +16,12 @@
 #include "idbench/logs/open_joint_log.h"
 #include "idbench/logs/recorded_joint_log_source.h"
 #include "idbench/logs/rosbag2_joint_log.h"
+#include "logs/rosbag2/bag_fixtures.h"
 
 namespace idbench {
 namespace {
 
-const std::filesystem::path kBags = std::filesystem::path(IDBENCH_SOURCE_DIR) / "tests" / "data" / "bags";
+using testing::kBags;
 
 std::string Bag(const std::string& name) { return (kBags / name).string(); }
 

@@ -18,26 +18,12 @@
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/workbench/commands/design_command.h"
+#include "workbench/commands/tx40_wrist.h"
 
 namespace idbench {
 namespace {
 
-constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
-
-// θ̇m = A·q̇ for the TX40's A, written out.
-Eigen::VectorXd MotorRates(const Eigen::VectorXd& qd) {
-  Eigen::VectorXd out(6);
-  for (int j = 0; j < 5; ++j) out[j] = kN[j] * qd[j];
-  out[5] = kN[5] * (qd[4] + qd[5]);
-  return out;
-}
-// τm = A⁻ᵀ·τ, written out: τm6 = τ6/N6, τm5 = (τ5 − τ6)/N5.
-Eigen::VectorXd MotorTorques(const Eigen::VectorXd& tau) {
-  Eigen::VectorXd out(6);
-  for (int j = 0; j < 6; ++j) out[j] = tau[j] / kN[j];
-  out[4] = (tau[4] - tau[5]) / kN[4];
-  return out;
-}
+using testing::kTx40Ratio;
 
 // Per row of trajectory.csv (t, q.*, qd.*, qdd.*): the peak |θ̇m| and |τm| of every motor.
 struct MotorPeaks {
@@ -59,8 +45,8 @@ MotorPeaks SampleMotors(const RobotModel& model, const std::string& csv) {
     const Eigen::Map<const Eigen::VectorXd> q(v.data() + 1, 6), qd(v.data() + 7, 6), qdd(v.data() + 13, 6);
     Eigen::VectorXd tau = InverseDynamics(model, q, qd, qdd, &data);
     AddJointDynamicsTorque(model, qd, qdd, &tau);
-    peaks.qd = peaks.qd.cwiseMax(MotorRates(qd).cwiseAbs());
-    peaks.tau = peaks.tau.cwiseMax(MotorTorques(tau).cwiseAbs());
+    peaks.qd = peaks.qd.cwiseMax(testing::Tx40MotorRates(qd).cwiseAbs());
+    peaks.tau = peaks.tau.cwiseMax(testing::Tx40MotorFromJointTorques(tau).cwiseAbs());
     ++peaks.rows;
   }
   return peaks;
@@ -193,8 +179,8 @@ TEST_F(DesignActuatorLimitsTest, AViolationNamesTheMotor) {
   const MotorPeaks free_peaks = SampleMotors(model_, FormatDesignTrajectoryCsv(model_, options_, free));
   ActuatorLimits actuators;
   actuators.transmission.actuator_from_joint = Eigen::MatrixXd::Zero(6, 6);
-  for (int j = 0; j < 6; ++j) actuators.transmission.actuator_from_joint(j, j) = kN[j];
-  actuators.transmission.actuator_from_joint(5, 4) = kN[5];
+  for (int j = 0; j < 6; ++j) actuators.transmission.actuator_from_joint(j, j) = kTx40Ratio[j];
+  actuators.transmission.actuator_from_joint(5, 4) = kTx40Ratio[5];
   actuators.motors.resize(6);
   actuators.motors[5].qd_max = 0.5 * free_peaks.qd[5];
   const FeasibilityCheck check = CheckTrajectoryLimits(model_, free.limits, free.result.RobotTrajectory(), 1000.0,
@@ -216,7 +202,7 @@ TEST_F(DesignActuatorLimitsTest, AMotorTorqueLimitBelowTheHomeHoldingTorqueIsExp
   RobotData data(model_);
   Eigen::VectorXd tau = InverseDynamics(model_, home, zero, zero, &data);
   AddJointDynamicsTorque(model_, zero, zero, &tau);
-  const double holding = std::abs(MotorTorques(tau)[1]);
+  const double holding = std::abs(testing::Tx40MotorFromJointTorques(tau)[1]);
   ASSERT_GT(holding, 0.1) << "the shoulder's gravity load at this home";
   const double limit = 0.5 * holding;
   options_.home = {home.data(), home.data() + home.size()};

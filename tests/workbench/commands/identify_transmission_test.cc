@@ -22,6 +22,7 @@
 #include "idbench/workbench/commands/identify_command.h"
 #include "idbench/workbench/commands/simulate_command.h"
 #include "ident/synthetic_log.h"
+#include "workbench/commands/tx40_wrist.h"
 
 namespace idbench {
 namespace {
@@ -44,34 +45,13 @@ std::string JointElement(const std::string& xml, const std::string& name) {
   return xml.substr(at, (xml.compare(line_end - 2, 2, "/>") == 0 ? line_end : end) - at);
 }
 
-constexpr double kN[6] = {32, 32, 45, -48, 45, 32};
 const double kOffset[6] = {0.0, -M_PI / 2, M_PI / 2, 0.0, 0.0, 0.0};  // q = A⁻¹θm + q0
 // Per motor: rotor inertia [kg m²], viscous [N m s/rad], Coulomb [N m], on θm.
 constexpr double kIa[6] = {3e-4, 2.5e-4, 1.2e-4, 4e-5, 3.5e-5, 3e-5};
 constexpr double kFv[6] = {1.5e-3, 2e-3, 1e-3, 4e-4, 3e-4, 2.5e-4};
 constexpr double kFc[6] = {0.05, 0.08, 0.04, 0.02, 0.015, 0.012};
 
-// θ̇m = A·q̇ for the TX40's A (motor 6 with joint 5).
-Eigen::VectorXd MotorRates(const Eigen::VectorXd& qd) {
-  Eigen::VectorXd out(6);
-  for (int j = 0; j < 5; ++j) out[j] = kN[j] * qd[j];
-  out[5] = kN[5] * (qd[4] + qd[5]);
-  return out;
-}
-// τ = Aᵀ·τm, written out: τ5 = N5·τm5 + N6·τm6.
-Eigen::VectorXd JointFromMotorTorques(const Eigen::VectorXd& tau_m) {
-  Eigen::VectorXd out(6);
-  for (int j = 0; j < 6; ++j) out[j] = kN[j] * tau_m[j];
-  out[4] += kN[5] * tau_m[5];
-  return out;
-}
-// τm = A⁻ᵀ·τ, written out: τm6 = τ6/N6, τm5 = (τ5 − τ6)/N5.
-Eigen::VectorXd MotorFromJointTorques(const Eigen::VectorXd& tau) {
-  Eigen::VectorXd out(6);
-  for (int j = 0; j < 6; ++j) out[j] = tau[j] / kN[j];
-  out[4] = (tau[4] - tau[5]) / kN[4];
-  return out;
-}
+using testing::kTx40Ratio;
 
 class IdentifyTransmissionTest : public ::testing::Test {
  protected:
@@ -85,13 +65,13 @@ class IdentifyTransmissionTest : public ::testing::Test {
     const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 20.0});
     log_ = testing::SyntheticJointLog(*model_, *motion, Eigen::VectorXd::LinSpaced(4001, 0.0, 20.0));
     for (Eigen::Index s = 0; s < log_.n_samples(); ++s) {
-      const Eigen::VectorXd thd = MotorRates(log_.qd.row(s).transpose());
-      const Eigen::VectorXd thdd = MotorRates(log_.qdd.row(s).transpose());
+      const Eigen::VectorXd thd = testing::Tx40MotorRates(log_.qd.row(s).transpose());
+      const Eigen::VectorXd thdd = testing::Tx40MotorRates(log_.qdd.row(s).transpose());
       Eigen::VectorXd tau_m(6);
       for (int k = 0; k < 6; ++k) {
         tau_m[k] = kIa[k] * thdd[k] + kFv[k] * thd[k] + kFc[k] * ((thd[k] > 0) - (thd[k] < 0));
       }
-      log_.tau.row(s) += JointFromMotorTorques(tau_m).transpose();
+      log_.tau.row(s) += testing::Tx40JointFromMotorTorques(tau_m).transpose();
     }
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -104,8 +84,8 @@ class IdentifyTransmissionTest : public ::testing::Test {
     for (Eigen::Index s = 0; s < log_.n_samples(); ++s) {
       Eigen::VectorXd q_minus_offset(6);
       for (int j = 0; j < 6; ++j) q_minus_offset[j] = log_.q(s, j) - kOffset[j];
-      const Eigen::VectorXd qm = MotorRates(q_minus_offset), qdm = MotorRates(log_.qd.row(s).transpose());
-      const Eigen::VectorXd taum = MotorFromJointTorques(log_.tau.row(s).transpose());
+      const Eigen::VectorXd qm = testing::Tx40MotorRates(q_minus_offset), qdm = testing::Tx40MotorRates(log_.qd.row(s).transpose());
+      const Eigen::VectorXd taum = testing::Tx40MotorFromJointTorques(log_.tau.row(s).transpose());
       std::fprintf(f, "%.17g", log_.t[s]);
       for (const Eigen::VectorXd* v : {&qm, &qdm}) {
         for (int j = 0; j < 6; ++j) std::fprintf(f, ",%.17g", (*v)[j]);
@@ -246,8 +226,8 @@ TEST_F(IdentifyTransmissionTest, MotorSideLogIdentifiesToTheTruthAndFitsAsTheJoi
   // identified.json: joint-side equivalents for joints 1-4, null for the coupled wrist.
   const nlohmann::json out = nlohmann::json::parse(FormatIdentifiedJson(*model_, motor, from_motor));
   for (int j = 0; j < 4; ++j) {
-    EXPECT_NEAR(out["joint_side"]["Fv"][j].get<double>(), kFv[j] * kN[j] * kN[j], 1e-3 * kFv[j] * kN[j] * kN[j]);
-    EXPECT_NEAR(out["joint_side"]["Fc"][j].get<double>(), kFc[j] * std::abs(kN[j]), 1e-3 * kFc[j] * std::abs(kN[j]));
+    EXPECT_NEAR(out["joint_side"]["Fv"][j].get<double>(), kFv[j] * kTx40Ratio[j] * kTx40Ratio[j], 1e-3 * kFv[j] * kTx40Ratio[j] * kTx40Ratio[j]);
+    EXPECT_NEAR(out["joint_side"]["Fc"][j].get<double>(), kFc[j] * std::abs(kTx40Ratio[j]), 1e-3 * kFc[j] * std::abs(kTx40Ratio[j]));
   }
   for (int j = 4; j < 6; ++j) {
     for (const char* key : {"Ia", "Fv", "Fc"}) EXPECT_TRUE(out["joint_side"][key][j].is_null()) << key << j;
@@ -297,9 +277,9 @@ TEST_F(IdentifyTransmissionTest, SimulatedMotorSideLogKeepsVirtualWorkAndIdentif
     const Eigen::VectorXd qd = joint.qd.row(s).transpose(), tau = joint.tau.row(s).transpose();
     Eigen::VectorXd q_minus_offset(6);
     for (int j = 0; j < 6; ++j) q_minus_offset[j] = joint.q(s, j) - kOffset[j];
-    worst_rates = std::max({worst_rates, (qdm - MotorRates(qd)).norm() / MotorRates(qd).norm(),
-                            (qm - MotorRates(q_minus_offset)).norm() / MotorRates(q_minus_offset).norm()});
-    worst_torque = std::max(worst_torque, (JointFromMotorTorques(taum) - tau).norm() / tau.norm());
+    worst_rates = std::max({worst_rates, (qdm - testing::Tx40MotorRates(qd)).norm() / testing::Tx40MotorRates(qd).norm(),
+                            (qm - testing::Tx40MotorRates(q_minus_offset)).norm() / testing::Tx40MotorRates(q_minus_offset).norm()});
+    worst_torque = std::max(worst_torque, (testing::Tx40JointFromMotorTorques(taum) - tau).norm() / tau.norm());
     worst_work = std::max(worst_work, std::abs(tau.dot(qd) - taum.dot(qdm)) / (tau.norm() * qd.norm()));
   }
   EXPECT_EQ(s, joint.n_samples());

@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) { return gui::TempDir("design_tab_test", name); }
+fs::path DesignTabDir(const std::string& name) { return gui::TempDir("design_tab_test", name); }
 
 // Pixels of the viewport in the obstacles' sand (0.74, 0.69, 0.60) lit: red
 // above green above blue, not grey, not a link colour (the test of
@@ -52,7 +52,7 @@ void WriteLimitsFile(const fs::path& path, const std::string& joint, const std::
 }
 
 TEST(DesignTabTest, SceneIsDrawnAndItsErrorsNamed) {
-  const fs::path out = TempDir("draw");
+  const fs::path out = DesignTabDir("draw");
   const fs::path scene = out / "cell.json";
   std::ofstream(scene) << R"({"obstacles": [{"name": "pillar", "type": "box", "size": [0.6, 0.6, 1.2],
                               "pose": [-0.8, -0.8, 0.6, 0, 0, 0]}]})";
@@ -88,7 +88,7 @@ TEST(DesignTabTest, SceneIsDrawnAndItsErrorsNamed) {
 // the GUI's job equals RunDesign on the same options and limits, keeps the
 // clearance to the pillar, and compare gets the same cell and mounting.
 TEST(DesignTabTest, DesignInTheCellEqualsRunDesign) {
-  const fs::path out = TempDir("design");
+  const fs::path out = DesignTabDir("design");
   const fs::path scene = out / "cell.json";
   std::ofstream(scene) << R"({"obstacles": [{"name": "pillar", "type": "box", "size": [0.4, 0.4, 1.5],
                               "pose": [-1.0, -1.0, 0.75, 0, 0, 0]}]})";
@@ -123,7 +123,7 @@ TEST(DesignTabTest, DesignInTheCellEqualsRunDesign) {
 // says "design failed: " and RunDesign's explanation, word for word, and
 // keeps no design.
 TEST(DesignTabTest, ACellWithoutRoomIsExplainedAsRunDesignExplainsIt) {
-  const fs::path out = TempDir("no_room");
+  const fs::path out = DesignTabDir("no_room");
   const fs::path scene = out / "cell.json";
   std::ofstream(scene) << R"({"obstacles": [{"name": "pillar", "type": "cylinder", "radius": 0.4, "length": 2,
                               "pose": [0, 0, 1, 0, 0, 0]}]})";
@@ -146,7 +146,7 @@ TEST(DesignTabTest, ACellWithoutRoomIsExplainedAsRunDesignExplainsIt) {
 // RunDesign's on the same options (the command line's call, which reads the
 // file itself), and its check holds the motor within its limit.
 TEST(DesignTabTest, AMotorLimitThroughTheTransmissionEqualsRunDesign) {
-  const fs::path out = TempDir("motor");
+  const fs::path out = DesignTabDir("motor");
   const fs::path transmission = out / "tx40.json";
   std::ofstream(transmission) << "{\"actuator_from_joint\": [[32,0,0,0,0,0], [0,32,0,0,0,0], [0,0,45,0,0,0], "
                                  "[0,0,0,-48,0,0], [0,0,0,0,45,0], [0,0,0,0,32,32]]}";
@@ -212,7 +212,7 @@ TEST(DesignTabTest, AMotorLimitThroughTheTransmissionEqualsRunDesign) {
 // reduction of 50 on each of paper6r's joints, added to its URDF) carry the
 // limits file's motor limit, as `idbench design --transmission urdf` does.
 TEST(DesignTabTest, AMotorLimitThroughTheUrdfTransmissionEqualsRunDesign) {
-  const fs::path out = TempDir("urdf_motor");
+  const fs::path out = DesignTabDir("urdf_motor");
   std::string urdf = ReadFile(fs::path(IDBENCH_SOURCE_DIR) / "engine" / "robots" / "paper6r.urdf");
   std::string transmissions;
   for (int j = 1; j <= 6; ++j) {

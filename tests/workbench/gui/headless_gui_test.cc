@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) { return gui::TempDir("gui_test", name); }
+fs::path HeadlessGuiDir(const std::string& name) { return gui::TempDir("gui_test", name); }
 
 // Pixels inside a widget's rectangle whose colour is saturated (robot links,
 // plot lines and bars; the GUI's chrome is grey and white).
@@ -39,7 +39,7 @@ long long SaturatedPixels(const Image& image, const WidgetRect& r) {
 // A small design on paper6r, simulated, identified, compared with the
 // paper's motion and exported: the done-when path.
 TEST(HeadlessGuiTest, DesignSimulateIdentifyCompareExport) {
-  const fs::path out = TempDir("flow");
+  const fs::path out = HeadlessGuiDir("flow");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   ASSERT_EQ(session.model().name(), "paper6r");
@@ -213,7 +213,7 @@ wait report 120
 // the same options (the command line's call), the torque plots are drawn,
 // and a bad value is refused naming it, the option unchanged.
 TEST(HeadlessGuiTest, LogTabIdentifiesAFileAsTheLibrary) {
-  const fs::path out = TempDir("log");
+  const fs::path out = HeadlessGuiDir("log");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   RunScript(gui, "click tab.experiment\nset experiment.duration 4\nclick experiment.simulate\nwait simulate 120\n");
@@ -281,7 +281,7 @@ std::string WriteSyntheticLog(const Session& session, const fs::path& path, doub
 // else is a message naming it; the recent files of log.data list them, newest
 // first, and nothing is written to an imgui.ini.
 TEST(HeadlessGuiTest, DroppedFilesFillTheLogTab) {
-  const fs::path out = TempDir("drop");
+  const fs::path out = HeadlessGuiDir("drop");
   const bool ini_before = fs::exists("imgui.ini");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
   Session& session = gui.session();
@@ -324,7 +324,7 @@ TEST(HeadlessGuiTest, DroppedKukaUrdfAndLogFillTheLogTab) {
   if (!fs::exists(data / "logs" / "measurements_1.csv"))
     GTEST_SKIP() << "real-robot data not found at " << data.string()
                  << " (../shared/data/kuka_lwr4 beside the checkout; not part of the project)";
-  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = TempDir("kuka").string()}});
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = HeadlessGuiDir("kuka").string()}});
   Session& session = gui.session();
   const std::string urdf = (data / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string();
   const std::string fit = (data / "logs" / "measurements_1.csv").string();
@@ -345,7 +345,7 @@ TEST(HeadlessGuiTest, DroppedKukaUrdfAndLogFillTheLogTab) {
 // window at 20 % and 70 % of the log's span, draws it shaded, and identifies
 // as the same window typed into log.time_window.
 TEST(HeadlessGuiTest, DragOnTheLogPlotChoosesTheTimeWindow) {
-  const fs::path out = TempDir("drag");
+  const fs::path out = HeadlessGuiDir("drag");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   const std::string log = WriteSyntheticLog(session, out / "run.csv", 4.0);  // t from 0 to 4 s
@@ -402,7 +402,7 @@ TEST(HeadlessGuiTest, DragOnTheLogPlotChoosesTheTimeWindow) {
 // in a column of the plot, the band covers the plotted height (±0.5 rad,
 // the log's range), where a line would cover a pixel or two.
 TEST(HeadlessGuiTest, LogPlotShowsTheSwingOfAMotionFasterThanItsBuckets) {
-  const fs::path out = TempDir("envelope");
+  const fs::path out = HeadlessGuiDir("envelope");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   const Eigen::Index n = 40001;
   JointLog log;
@@ -433,7 +433,7 @@ TEST(HeadlessGuiTest, LogPlotShowsTheSwingOfAMotionFasterThanItsBuckets) {
 // Identify on a long log shows its progress while frames keep coming, and
 // Cancel (log.cancel) ends it: a message says so and nothing is identified.
 TEST(HeadlessGuiTest, LogTabIdentifyShowsProgressAndCancels) {
-  const fs::path out = TempDir("cancel");
+  const fs::path out = HeadlessGuiDir("cancel");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   // 100 s at 1 kHz: 13 streaming blocks per pass.
@@ -462,7 +462,7 @@ TEST(HeadlessGuiTest, LogTabIdentifyShowsProgressAndCancels) {
 // A long design runs while frames keep coming, shows progress, and stops on
 // the Stop button with the best feasible design so far.
 TEST(HeadlessGuiTest, DesignRunsInTheBackgroundAndStops) {
-  const fs::path out = TempDir("stop");
+  const fs::path out = HeadlessGuiDir("stop");
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   RunScript(gui, "click limits.fill\nset design.harmonics 2\nset design.samples 40\n"
@@ -484,7 +484,7 @@ TEST(HeadlessGuiTest, DesignRunsInTheBackgroundAndStops) {
 
 // The viewport follows the timeline and draws the markers asked for.
 TEST(HeadlessGuiTest, ViewportFollowsTheTimelineAndShowsFrames) {
-  HeadlessGui gui({.width = 960, .height = 600, .session = {.robot = "paper6r", .out_dir = TempDir("view").string()}});
+  HeadlessGui gui({.width = 960, .height = 600, .session = {.robot = "paper6r", .out_dir = HeadlessGuiDir("view").string()}});
   RunScript(gui, "click tab.experiment\nset experiment.motion general\nset timeline.time 0\nframes 1\n");
   const WidgetRect r = gui.widgets().Find("viewport")->rect;
   const int x = static_cast<int>(r.x0), y = static_cast<int>(r.y0), w = static_cast<int>(r.width()),
@@ -517,7 +517,7 @@ TEST(HeadlessGuiTest, ViewportFollowsTheTimelineAndShowsFrames) {
 // no start improves on where it began) is never exported as a motion a robot
 // would run; `idbench design` writes only design.json for it too.
 TEST(HeadlessGuiTest, UnusableDesignIsNotExported) {
-  const fs::path out = TempDir("unusable");
+  const fs::path out = HeadlessGuiDir("unusable");
   HeadlessGui gui({.width = 800, .height = 600, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
   RunScript(gui, "click limits.fill\nset design.harmonics 2\nset design.f0 0.5\nset design.samples 40\n"
@@ -534,7 +534,7 @@ TEST(HeadlessGuiTest, UnusableDesignIsNotExported) {
 }
 
 TEST(HeadlessGuiTest, BadInputShowsAMessageAndKeepsTheSession) {
-  const fs::path out = TempDir("bad");
+  const fs::path out = HeadlessGuiDir("bad");
   const fs::path garbage = out / "broken.urdf";
   std::ofstream(garbage) << "<robot name='x'><link name=";
   HeadlessGui gui({.width = 800, .height = 600, .session = {.robot = "paper6r", .out_dir = out.string()}});

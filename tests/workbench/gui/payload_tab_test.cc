@@ -25,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path TempDir(const std::string& name) { return gui::TempDir("payload_tab_test", name); }
+fs::path PayloadTabDir(const std::string& name) { return gui::TempDir("payload_tab_test", name); }
 
 // The payload the logs are simulated with, on the PUMA's last link.
 constexpr double kMass = 2.5;  // [kg]
@@ -44,7 +44,7 @@ std::string WriteLoadedLog(const fs::path& dir, const std::string& name, const T
 }
 
 TEST(PayloadTabTest, EstimatesAsTheLibraryAndRecoversTheTruth) {
-  const fs::path out = TempDir("good");
+  const fs::path out = PayloadTabDir("good");
   const std::string log = WriteLoadedLog(out, "loaded.csv", *MakeBuiltinMotion("general", 6, {.duration = 10.0}));
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
   Session& session = gui.session();
@@ -106,7 +106,7 @@ TEST(PayloadTabTest, EstimatesAsTheLibraryAndRecoversTheTruth) {
 // payload's inertia; the tab says so instead of numbers, and the export
 // writes payload.json only, with an error saying why.
 TEST(PayloadTabTest, UnidentifiableQuantitiesShowAsText) {
-  const fs::path out = TempDir("unseen");
+  const fs::path out = PayloadTabDir("unseen");
   const std::string log = WriteLoadedLog(
       out, "wrist.csv", testing::SingleJointMotion((Eigen::VectorXd(6) << 0.3, -0.6, 0.4, 0.5, 0.7, 0.0).finished(), 5, 10.0));
   HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});

@@ -8,6 +8,7 @@
 
 #include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
+#include "formats/json_number.h"
 
 namespace idbench {
 namespace {
@@ -22,7 +23,6 @@ CurrentLog ToCurrentLog(PreparedLog prepared) {
 }
 
 // JSON number, or null where not finite (not determined).
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // "Drive gains of <robot> from <data> (unloaded, N samples) and ...: U unknowns, rank R".
 std::string Headline(const GainsReport& report) {

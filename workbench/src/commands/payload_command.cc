@@ -8,6 +8,7 @@
 #include "idbench/engine/urdf.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
+#include "formats/json_number.h"
 
 namespace idbench {
 namespace {
@@ -21,7 +22,6 @@ TorqueLog ToTorqueLog(PreparedLog prepared) {
 }
 
 // JSON number, or null where not finite (not determined).
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 nlohmann::json NumbersOrNull(const Eigen::VectorXd& v) {
   nlohmann::json out = nlohmann::json::array();
   for (Eigen::Index k = 0; k < v.size(); ++k) out.push_back(NumberOrNull(v[k]));

@@ -12,13 +12,13 @@
 #include "idbench/excitation/builtin_motions.h"
 #include "number_format.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "formats/json_number.h"
 
 namespace idbench {
 namespace {
 
 constexpr double kPaperMaxRelError = 3.1e-4;  // the paper's Table 3: 0.031 %
 
-nlohmann::json NumberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 // "idbench run: paper6r, paper motion, ..." without its newline.
 std::string Headline(const RunReport& report) {
