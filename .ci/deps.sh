@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs idbench's build and test dependencies from Debian 12 packages.
 set -euo pipefail
-packages=(build-essential cmake pkg-config
+packages=(build-essential cmake ninja-build pkg-config
           libbullet-dev libeigen3-dev nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
           liburdfdom-dev libtinyxml-dev libassimp-dev libnlopt-cxx-dev
           libosmesa6-dev libgl-dev libcairo2-dev libpng-dev fonts-dejavu-core

@@ -4,7 +4,13 @@
 #include "idbench/logs/joint_log_description.h"
 #include "idbench/logs/rosbag2_joint_log.h"
 
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
+
+#include "column_names.h"
+#include "idbench/engine/input_file.h"
 
 namespace idbench {
 
@@ -19,6 +25,49 @@ std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const Robo
   }
   // A CSV file, streamed.
   return OpenJointLogCsv(path, model, format, torques);
+}
+
+namespace {
+
+// A header field that names a torque or current column, joint or motor side:
+// tau3, i3, taum3, im3, tau.<joint>, i.<joint>, ... (quotes and spaces around it ignored).
+bool IsTorqueOrCurrentColumn(std::string field) {
+  const size_t begin = field.find_first_not_of(" \t\"\r"), end = field.find_last_not_of(" \t\"\r");
+  if (begin == std::string::npos) return false;
+  field = field.substr(begin, end - begin + 1);
+  const std::string prefix = field.substr(0, field.find('.'));
+  if (prefix != field) return prefix == "tau" || prefix == "i" || prefix == "taum" || prefix == "im";
+  internal::ColumnTarget target{};
+  if (internal::ParseColumnName(field, &target) || internal::ParseActuatorColumnName(field, &target)) {
+    return target.kind == 4 || target.kind == 5;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool IsRecordedJointLogPath(const std::string& path) {
+  if (IsRosbag2Path(path)) return true;
+  if (path.ends_with(".yaml") || path.ends_with(".yml")) return true;
+  try {
+    if (path.ends_with(".json")) {
+      const nlohmann::json j = nlohmann::json::parse(ReadInputFile(path), nullptr, /*allow_exceptions=*/false);
+      return j.is_object() && j.contains("files");
+    }
+    if (!path.ends_with(".csv")) return false;
+    CheckInputFile(path);  // a regular file within bounds: a FIFO would block
+    std::ifstream in(path);
+    std::string line(MaxLineBytes(), '\0');
+    in.getline(line.data(), static_cast<std::streamsize>(line.size()));
+    line.resize(static_cast<size_t>(std::max<std::streamsize>(in.gcount() - (in.eof() ? 0 : 1), 0)));
+    for (size_t at = 0; at <= line.size();) {
+      const size_t comma = std::min(line.find(',', at), line.size());
+      if (IsTorqueOrCurrentColumn(line.substr(at, comma - at))) return true;
+      at = comma + 1;
+    }
+  } catch (const std::invalid_argument&) {
+  }
+  return false;
 }
 
 }  // namespace idbench

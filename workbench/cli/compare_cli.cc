@@ -65,8 +65,10 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
   AddFrictionFlag(command, &compare.friction, "Friction terms of the torque model");
   command->add_option("--duration", compare.duration, "Length of built-in motions [s]")->capture_default_str();
   command->add_option("--samples", compare.samples, "Samples per motion")->capture_default_str();
-  command->add_option("--tau-noise,--noise", compare.tau_noise, "Torque noise sigma per joint [N m] (torque model)")
-      ->delimiter(',')->capture_default_str();
+  command->add_option("--tau-noise,--noise", compare.tau_noise,
+                      "Torque noise sigma per joint, or one for all [N m] (torque model); default: 0.5 on joints 1-3, "
+                      "0.05 on the others")
+      ->delimiter(',');
   command->add_option("--wrench-noise", compare.wrench_noise, "Hinge force, moment noise sigma [N, N m] (per-body)")
       ->delimiter(',')->capture_default_str();
   AddSceneFlag(command, &compare.scene);

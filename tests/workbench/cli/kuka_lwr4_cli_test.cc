@@ -114,4 +114,28 @@ TEST_F(KukaLwr4CliTest, CompareRanksTheRecordedLogs) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(by_cond[static_cast<size_t>(i)].second, i + 1);
 }
 
+// Issue 33: the KUKA's three logs compared with the defaults (no --tau-noise:
+// the default σ is sized for its 7 joints: 0.5 N m on joints 1-3, 0.05 on 4-7),
+// two of them given where motions go (recognised as recorded logs by their
+// torque columns) and one with --log; the same table as all three with --log.
+TEST_F(KukaLwr4CliTest, CompareTakesRecordedLogsWithDefaultNoise) {
+  auto log = [](int k) { return (kData / "logs" / ("measurements_" + std::to_string(k) + ".csv")).string(); };
+  const std::string robot = " --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string();
+  const Result positional = Run("compare " + log(1) + " " + log(2) + robot + " --log " + log(3) +
+                                " --friction viscous,coulomb,offset --out " + (dir_ / "p").string());
+  ASSERT_EQ(positional.exit_code, 0) << positional.err;
+  const Result flagged = Run("compare" + robot + " --log " + log(1) + " --log " + log(2) + " --log " + log(3) +
+                             " --friction viscous,coulomb,offset --out " + (dir_ / "f").string());
+  ASSERT_EQ(flagged.exit_code, 0) << flagged.err;
+  const nlohmann::json p = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "p" / "compare.json"));
+  const nlohmann::json f = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "f" / "compare.json"));
+  EXPECT_EQ(p["noise"]["tau"], nlohmann::json({0.5, 0.5, 0.5, 0.05, 0.05, 0.05, 0.05}));
+  ASSERT_EQ(p["motions"].size(), 3u);
+  for (size_t m = 0; m < 3; ++m) {
+    EXPECT_TRUE(p["motions"][m]["recorded"].get<bool>());
+    EXPECT_EQ(p["motions"][m]["designed"]["cond"], f["motions"][m]["designed"]["cond"]);
+    EXPECT_EQ(p["motions"][m]["mean_relative_error"], f["motions"][m]["mean_relative_error"]);
+  }
+}
+
 }  // namespace

@@ -4,6 +4,7 @@
 // identify's zero-phase filter; a recorded log is ranked with the designed
 // motions and not simulated.
 #include "idbench/workbench/commands/compare_command.h"
+#include "idbench/workbench/commands/montecarlo_command.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -149,8 +150,9 @@ TEST_F(CompareCommandTest, ShortLogIsNotSimulated) {
   std::vector<double> times;
   for (int k = 0; k < options_.samples; ++k) times.push_back(k * 1.9 / options_.samples);
   Eigen::MatrixXd W = regressor.Stack(*motion, times);
-  for (Eigen::Index r = 0; r < W.rows(); ++r) W.row(r) /= options_.tau_noise[static_cast<size_t>(r % 6)];
+  for (Eigen::Index r = 0; r < W.rows(); ++r) W.row(r) /= report.tau_noise[static_cast<size_t>(r % 6)];
   const Eigen::MatrixXd covariance = (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(W.cols(), W.cols()));
+  ASSERT_EQ(report.tau_noise, DefaultTorqueNoise(6));  // none given: the default, as run
   ASSERT_EQ(m.predicted_sigma.size(), W.cols());
   for (Eigen::Index k = 0; k < W.cols(); ++k) {
     EXPECT_NEAR(m.predicted_sigma[k] / std::sqrt(covariance(k, k)), 1.0, 1e-6) << report.parameter_names[k];

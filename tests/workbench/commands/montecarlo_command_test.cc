@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/puma560.h"
 #include "idbench/ident/joint_torque_identifier.h"
@@ -16,6 +17,32 @@
 
 namespace idbench {
 namespace {
+
+// The default torque noise fits any robot: 0.5 N m on the first three joints,
+// 0.05 N m on the rest (the 6-joint default of earlier versions is its n = 6
+// case); a given σ is kept, and a count that is neither 1 nor n_dof is named.
+TEST(MonteCarloCommandTest, DefaultTorqueNoiseFitsAnyJointCount) {
+  EXPECT_EQ(DefaultTorqueNoise(6), (std::vector<double>{0.5, 0.5, 0.5, 0.05, 0.05, 0.05}));
+  EXPECT_EQ(DefaultTorqueNoise(7), (std::vector<double>{0.5, 0.5, 0.5, 0.05, 0.05, 0.05, 0.05}));
+  EXPECT_EQ(DefaultTorqueNoise(2), (std::vector<double>{0.5, 0.5}));
+  EXPECT_EQ(TorqueNoiseOrDefault({}, 7), DefaultTorqueNoise(7));
+  EXPECT_EQ(TorqueNoiseOrDefault({0.1}, 7), std::vector<double>{0.1});
+  try {
+    TorqueNoiseOrDefault({0.5, 0.5, 0.5, 0.05, 0.05, 0.05}, 7);
+    ADD_FAILURE() << "6 values for 7 joints accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "tau_noise: expected 1 or 7 values (one per joint), got 6");
+  }
+  // The run records the σ it used: the puma560's 6 joints take the default.
+  MonteCarloOptions options;
+  options.duration = 2.0;
+  options.samples = 200;
+  options.trials = 2;
+  const MonteCarloReport report = RunMonteCarlo(MakePuma560(), options);
+  EXPECT_EQ(report.tau_noise, DefaultTorqueNoise(6));
+  EXPECT_EQ(nlohmann::json::parse(FormatMonteCarloJson(options, report))["tau_noise"],
+            nlohmann::json(DefaultTorqueNoise(6)));
+}
 
 TEST(MonteCarloCommandTest, BriefReportAgreesWithTheJson) {
   const RobotModel model = MakePuma560();

@@ -20,6 +20,7 @@
 #include "idbench/workbench/commands/montecarlo_command.h"
 #include "number_format.h"
 #include "idbench/workbench/formats/trajectory_file.h"
+#include "idbench/logs/open_joint_log.h"
 
 namespace idbench {
 namespace {
@@ -260,7 +261,26 @@ bool CompareOptions::IsValid(std::string* why) const {
   return true;
 }
 
-CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options) {
+namespace {
+
+// The options with every recorded log among the motions moved to `logs`: a
+// CSV with torque or current columns, a bag or a log description given where
+// a motion is expected is compared as what it is (IsRecordedJointLogPath).
+CompareOptions WithRecordedLogsAsLogs(const CompareOptions& given) {
+  CompareOptions options = given;
+  options.trajectories.clear();
+  options.logs.clear();
+  for (const std::string& name : given.trajectories) {
+    (IsRecordedJointLogPath(name) ? options.logs : options.trajectories).push_back(name);
+  }
+  options.logs.insert(options.logs.end(), given.logs.begin(), given.logs.end());
+  return options;
+}
+
+}  // namespace
+
+CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) {
+  const CompareOptions options = WithRecordedLogsAsLogs(given);
   const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
   CheckRegressorSamples("samples", options.samples, model.n_dof());
   const bool per_body = options.model == IdentificationModel::kPerBody;
@@ -282,11 +302,7 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
   // Every motion read and checked before any work: a designed motion's
   // duration fits one simulation, and its samples fall on whole simulation
   // steps; a recorded log is read whole (not simulated).
-  const size_t n_noise = options.tau_noise.size();
-  if (!per_body && n_noise != 1 && n_noise != static_cast<size_t>(model.n_dof())) {
-    throw std::invalid_argument("tau_noise: expected 1 or " + std::to_string(model.n_dof()) +
-                                " values (one per joint), got " + std::to_string(n_noise));
-  }
+  if (!per_body) report.tau_noise = TorqueNoiseOrDefault(options.tau_noise, model.n_dof());
   std::vector<std::string> names = options.trajectories;
   std::vector<std::unique_ptr<Trajectory>> motions;
   for (const std::string& name : options.trajectories) {
@@ -333,7 +349,7 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
       // Not simulated: no realised states, no Monte-Carlo error; %σ from the
       // recorded states with the torque noise (torque model).
       row.realised.cond = row.mean_relative_error = nan;
-      if (!per_body) SetPredictedSigma(KnownNoiseSigma(W, options.tau_noise, model.n_dof()), report.true_parameters, &row);
+      if (!per_body) SetPredictedSigma(KnownNoiseSigma(W, report.tau_noise, model.n_dof()), report.true_parameters, &row);
     } else if (per_body) {
       PerBodyMonteCarlo(model, *motion, options, regressor, &row);
     } else {
@@ -342,7 +358,7 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& options
       mc.duration = options.duration;
       mc.dt = options.dt;
       mc.samples = options.samples;
-      mc.tau_noise = options.tau_noise;
+      mc.tau_noise = report.tau_noise;
       mc.friction = options.friction;
       mc.trials = options.trials;
       mc.seed = options.seed;
@@ -508,7 +524,7 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
                     {"seed", options.seed},
                     {"scene", options.scene.empty() ? json(nullptr) : json(options.scene)},
                     {"base_pose", options.base_pose.xyz_rpy},
-                    {"noise", options.model == IdentificationModel::kJointTorque ? json{{"tau", options.tau_noise}}
+                    {"noise", options.model == IdentificationModel::kJointTorque ? json{{"tau", report.tau_noise}}
                                                         : json{{"force", options.wrench_noise[0]},
                                                                {"moment", options.wrench_noise[1]}}},
                     {"parameters", report.parameter_names},

@@ -1,5 +1,6 @@
 #include "idbench/workbench/commands/montecarlo_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -60,6 +61,21 @@ std::string MonteCarloReport::BriefReport() const {
   return Headline(*this) + "\n" + Errors(*this);
 }
 
+std::vector<double> DefaultTorqueNoise(int n_dof) {
+  std::vector<double> sigma(static_cast<size_t>(std::max(n_dof, 0)), 0.05);
+  for (size_t j = 0; j < sigma.size() && j < 3; ++j) sigma[j] = 0.5;
+  return sigma;
+}
+
+std::vector<double> TorqueNoiseOrDefault(const std::vector<double>& tau_noise, int n_dof) {
+  if (tau_noise.empty()) return DefaultTorqueNoise(n_dof);
+  if (tau_noise.size() != 1 && tau_noise.size() != static_cast<size_t>(n_dof)) {
+    throw std::invalid_argument("tau_noise: expected 1 or " + std::to_string(n_dof) + " values (one per joint), got " +
+                                std::to_string(tau_noise.size()));
+  }
+  return tau_noise;
+}
+
 bool MonteCarloOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {
     if (why) *why = message;
@@ -70,7 +86,6 @@ bool MonteCarloOptions::IsValid(std::string* why) const {
   }
   if (samples < 2) return fail("samples: must be >= 2, got " + std::to_string(samples));
   if (!(duration > 0.0) || !std::isfinite(duration)) return fail("duration: must be > 0 s");
-  if (tau_noise.empty()) return fail("tau_noise: give one value or one per joint");
   for (double s : tau_noise) {
     if (!(s > 0.0) || !std::isfinite(s)) return fail("tau_noise: every value must be > 0 N m");
   }
@@ -99,7 +114,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   const std::unique_ptr<Trajectory> held_motion = LoadTrajectoryArg(options.held_out, model, builtin);
   SensorOptions sensors;
   sensors.rate_hz = options.samples / motion.duration();
-  sensors.tau_noise = options.tau_noise;
+  sensors.tau_noise = TorqueNoiseOrDefault(options.tau_noise, n);
   std::string why;
   // The log rate samples/duration must divide the simulation rate: name
   // --samples (not --tau-noise) and the steps it must divide.
@@ -121,6 +136,7 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   report.held_out = options.held_out;
   report.trials = options.trials;
   report.samples = options.samples;
+  report.tau_noise = sensors.tau_noise;
   report.log = log;
   report.base = ComputeBaseParameters(model, friction);
   report.beta_true = report.base.combination * StandardParameters(model, friction);
@@ -135,8 +151,8 @@ MonteCarloReport RunMonteCarlo(const RobotModel& model, const MonteCarloOptions&
   auto noisy = [&](const Eigen::VectorXd& clean) {
     Eigen::VectorXd out = clean;
     for (Eigen::Index r = 0; r < out.size(); ++r) {
-      const double sigma = options.tau_noise.size() == 1 ? options.tau_noise[0]
-                                                         : options.tau_noise[static_cast<size_t>(r % n)];
+      const double sigma = report.tau_noise.size() == 1 ? report.tau_noise[0]
+                                                        : report.tau_noise[static_cast<size_t>(r % n)];
       out[r] += sigma * normal(rng);
     }
     return out;
@@ -205,7 +221,7 @@ std::string FormatMonteCarloJson(const MonteCarloOptions& options, const MonteCa
       {"trials", options.trials},
       {"samples", options.samples},
       {"seed", options.seed},
-      {"tau_noise", options.tau_noise},
+      {"tau_noise", report.tau_noise},
       {"base_parameter_names", report.base.names},
       {"beta_true", ToStdVector(report.beta_true)},
       {"predicted_sigma", ToStdVector(report.predicted_sigma)},

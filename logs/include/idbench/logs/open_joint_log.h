@@ -17,4 +17,12 @@ namespace idbench {
 std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const RobotModel& model,
                                              const JointLogFormat& format, TorqueColumns torques);
 
+// Whether `path` is what a robot recorded rather than a motion to follow: a
+// ROS 2 bag, a log description (.yaml, .yml, or a .json object with "files"),
+// or a CSV file whose header names torque or current columns (tau<j>, i<j>,
+// taum<j>, im<j>, or tau.<joint> ...). Reads at most a .json file (within
+// MaxInputFileBytes) or a CSV file's first line; false for anything it cannot
+// read (the reader that opens it then says why).
+bool IsRecordedJointLogPath(const std::string& path);
+
 }  // namespace idbench

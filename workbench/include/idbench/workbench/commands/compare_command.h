@@ -35,7 +35,7 @@ struct CompareOptions {
   double duration = 10.0;                  // [s] of built-in motions; files bring their own
   int samples = 250;                       // samples per motion (grid and simulated log)
   double dt = 1e-3;                        // Bullet step [s]
-  std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // torque model [N m]
+  std::vector<double> tau_noise;           // torque model: σ per joint or one for all [N m]; empty: DefaultTorqueNoise
   std::vector<double> wrench_noise{0.5, 0.05};  // per-body model: force [N], moment [N m] per axis
   double clearance = 0.01;                 // [m] in the limits check; negative: not checked
   std::string scene;                       // scene JSON (scene_file.h; optional): obstacles, floor
@@ -82,6 +82,7 @@ struct CompareReport {
   CompareStatus status = CompareStatus::kCompared;
   IdentificationModel model = IdentificationModel::kJointTorque;
   int samples = 0, trials = 0;  // per motion, as run
+  std::vector<double> tau_noise;  // torque model: σ per joint (or one for all) [N m], as run
   std::vector<std::string> parameter_names;
   Eigen::VectorXd true_parameters;
   std::vector<MotionComparison> motions;

@@ -13,6 +13,15 @@
 
 namespace idbench {
 
+// The torque noise of a simulated experiment when none is given, for a robot
+// of any number of joints: σ = 0.5 N m on the first three joints (the arm's,
+// which carry the load), 0.05 N m on the others (the wrist's).
+std::vector<double> DefaultTorqueNoise(int n_dof);
+// `tau_noise` as given (one σ for all joints, or one per joint), or
+// DefaultTorqueNoise(n_dof) when empty. Throws std::invalid_argument naming
+// `tau_noise` when it has neither 1 nor n_dof values.
+std::vector<double> TorqueNoiseOrDefault(const std::vector<double>& tau_noise, int n_dof);
+
 struct MonteCarloOptions {
   std::string robot = "puma560";
   std::string trajectory = "general";          // identification motion: built-in or .json/.csv file
@@ -20,7 +29,7 @@ struct MonteCarloOptions {
   double duration = 10.0;                      // [s] of built-in motions; a file brings its own
   double dt = 1e-3;                            // simulation step [s]
   int samples = 1000;                          // samples over the identification motion's duration
-  std::vector<double> tau_noise{0.5, 0.5, 0.5, 0.05, 0.05, 0.05};  // σ per joint (or one for all) [N m]
+  std::vector<double> tau_noise;               // σ per joint (or one for all) [N m]; empty: DefaultTorqueNoise
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   int trials = 100;
   unsigned seed = 1;
@@ -43,6 +52,7 @@ struct MonteCarloReport {
   std::string message;
   std::string trajectory, held_out;    // the motions' names (options' trajectory and held_out)
   int trials = 0, samples = 0;         // as run
+  std::vector<double> tau_noise;       // σ per joint (or one for all) [N m], as run
   JointLog log;                        // the noise-free identification log (Bullet-executed states)
   BaseParameters base;
   Eigen::VectorXd beta_true;           // C·π of the robot file (n_base)
