@@ -292,6 +292,8 @@ def compare(expected_text, expected_line, actual_text, options):
         return None
     if p > furthest[0]:
         furthest = (p, pattern[p], None)
+    if furthest[0] > 0 and pattern[furthest[0] - 1] is WILD:
+        return furthest[1], None  # nothing after the … matched: no actual item to name
     return furthest[1:]
 
 
@@ -303,7 +305,8 @@ def describe(difference, block, actual_text, options, what):
         where = f"{block.page}:{block.line + len(page_lines) - 1}"
         head = f"{where}: the page's block ends, {what} goes on with '{actual.text}'"
     elif actual is None:
-        head = f"{block.page}:{expected.line}: expected '{expected.text}', {what} ended"
+        head = (f"{block.page}:{expected.line}: expected '{expected.text}' (after …, on the line below), not found "
+                f"in {what} where the lines above it match")
     elif expected.number is not None and actual.number is not None:
         head = (f"{block.page}:{expected.line}: expected {expected.text}, got {actual.text} (difference "
                 f"{abs(actual.number - expected.number):.3g}, allowed {allowed(expected, actual, options):.3g})")
