@@ -365,7 +365,7 @@ def lay_out(top, source, binary, module_dir):
         work = top / "pages" / slug
         work.mkdir()
         for entry in source.iterdir():
-            if entry.name.startswith(".") or entry.name.startswith("build") or entry.name == "out":
+            if not is_tree_folder(entry) or entry.name == "build":
                 continue
             (work / entry.name).symlink_to(entry.resolve())
         (work / "build" / "workbench").mkdir(parents=True)
@@ -444,11 +444,18 @@ def comparison_options(options):
             "roundoff": set(filter(None, options.get("roundoff", "").split(",")))}
 
 
+def is_tree_folder(entry):
+    """Whether a top-level entry of the source is the project's: not hidden, not a build tree, not out/."""
+    return not (entry.name.startswith(".") or entry.name == "out" or (entry / "CMakeCache.txt").exists())
+
+
 def snapshot(source):
+    """(mtime, size) of every file of the tree (__pycache__, which tests running beside this one write, left out)."""
     state = {}
     for folder, dirs, files in os.walk(source):
         if folder == str(source):
-            dirs[:] = [d for d in dirs if not d.startswith(".") and not d.startswith("build") and d != "out"]
+            dirs[:] = [d for d in dirs if is_tree_folder(source / d)]
+        dirs[:] = [d for d in dirs if d != "__pycache__"]
         for name in files:
             path = os.path.join(folder, name)
             try:
@@ -531,8 +538,9 @@ def main():
     finally:
         shutil.rmtree(top, ignore_errors=True)
     failures = [r for r in results if r[2] == "FAIL"]
-    changed = sorted(path for path, state in snapshot(source).items() if before.get(path) != state)
-    changed += sorted(set(before) - set(snapshot(source)))
+    after = snapshot(source)
+    changed = sorted(os.path.relpath(path, source) for path in set(before) | set(after)
+                     if before.get(path) != after.get(path))
     for where, _, _, message in failures:
         print(f"\nFAILED {where}\n{message}")
     if unmarked:
