@@ -5,7 +5,7 @@ Usage: doc_examples_test.py [--idbench BIN] [--source DIR] [--python-module DIR]
        doc_examples_test.py --check-output PAGE NAME FILE
 BIN, DIR default to the environment's IDBENCH, IDBENCH_SOURCE_DIR and IDBENCH_PYTHON_MODULE_DIR (the folder of
 the built Python module; without it the Python examples are skipped with a message). NAME runs only those
-examples. --check-output compares FILE with the output block NAME of PAGE (install_test.sh: the library
+examples (an example that reads another's files needs that one named too). --check-output compares FILE with the output block NAME of PAGE (install_test.sh: the library
 example's program, which this test cannot build). Exit 1 naming page:line, what the page says and what was
 printed, on any difference.
 
@@ -22,9 +22,13 @@ Markers, HTML comment lines (invisible on GitHub) right before the block they go
 
 Options: exit=N (expected exit status, default 0), tol=R (relative tolerance of numbers), floor=A (absolute:
 round-off-level numbers), roundoff=X,Y (those numbers of the page match any number: ratios of round-off),
-timeout=S (default 120), external=TEST (run and compared by TEST, through --check-output),
-source=PATH (the block is the file PATH of the tree, character for character), needs=shared (skipped with a message when ../shared/data is absent; implied by a
-command naming ../shared), needs=python. Options of an output marker override its example's.
+timeout=S (default 120), needs=shared (skipped with a message when ../shared/data is absent; implied by a
+command naming ../shared), needs=python (implied by ```python), external=TEST (not run here: TEST runs it
+and compares through --check-output), source=PATH (the block must be the tree's file PATH, character for
+character). Options of an output marker override its example's.
+
+A fenced block of sh, bash, console or python, or any block whose first line is a command (idbench …,
+./build/workbench/idbench …, cmake, ctest, bash, sudo, python3), must carry an example or a not-run marker.
 
 Comparison: both texts are cut into words at whitespace (line wraps do not matter), words into numbers and
 the text between them. Text must be equal; a number must agree within the larger of tol·|page|, floor and
