@@ -21,7 +21,10 @@ if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=c
 cmake -S "$source/tests/package/consumer" -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$work/prefix" "${launcher[@]}" > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
-"$work/consumer/consumer"
+"$work/consumer/consumer" | tee "$work/consumer.txt"
+# The line README.md quotes for this program (its "consumer" example).
+/usr/bin/python3 "$source/tests/docs/doc_examples_test.py" --source "$source" \
+  --check-output README.md consumer "$work/consumer.txt"
 # The Python module from the installed prefix.
 PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
   "import idbench; print('python module', idbench.__version__, 'from', idbench.__file__)" | tee "$work/python.txt"
