@@ -19,6 +19,7 @@ Markers, HTML comment lines (invisible on GitHub) right before the block they go
                                          or with file=PATH the file it wrote
   <!-- file: NAME PATH -->               a block written to PATH before NAME runs
   <!-- not run: REASON -->               a command block that is not run; the page says why in its text
+  <!-- run by: PATH -->                  a command block that the script PATH runs, each line verbatim
 
 Options: exit=N (expected exit status, default 0), tol=R (relative tolerance of numbers), floor=A (absolute:
 round-off-level numbers), roundoff=X,Y (those numbers of the page match any number: ratios of round-off),
@@ -54,7 +55,7 @@ import sys
 import tempfile
 import time
 
-MARKER = re.compile(r"^<!--\s*(example|output|file|not run)\s*:\s*(.*?)\s*-->\s*$")
+MARKER = re.compile(r"^<!--\s*(example|output|file|not run|run by)\s*:\s*(.*?)\s*-->\s*$")
 COMMAND_LIKE = re.compile(r"^\s*(\$ )?(\./build/workbench/)?(idbench|cmake|ctest|bash|sudo|python3|PYTHONPATH=\S*|K=\S*)(?=\s|$)")
 NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 PIECE = re.compile(r"(?<![\w.])(" + NUMBER + r")(?![\w]|\.\d)")
@@ -152,6 +153,13 @@ def parse_page(root, page):
         if kind == "not run":
             if not rest:
                 raise Failure(f"{where}: 'not run' needs its reason")
+            continue
+        if kind == "run by":  # a command another script runs verbatim (README's two commands: .ci/run)
+            script = root / rest
+            script_lines = script.read_text(encoding="utf-8").splitlines() if script.is_file() else []
+            for command in (line.strip() for line in text.splitlines()):
+                if command and not any(command == line.strip() for line in script_lines):
+                    raise Failure(f"{where}: {rest} does not run this command verbatim: {command}")
             continue
         name, _, tail = rest.partition(" ")
         block = Block(rel, content_line, text, info)
