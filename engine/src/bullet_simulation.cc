@@ -206,6 +206,16 @@ void BulletSimulation::Step(const Eigen::VectorXd& tau, double dt) {
   }
 }
 
+void BulletSimulation::Accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
+                                     double dt, Eigen::VectorXd* qdd) {
+  SetState(q, qd);
+  Step(tau, dt);
+  // Semi-implicit Euler: qd_after = qd + dt·qdd(q, qd, tau), so the step's
+  // velocity change is Bullet's acceleration at the state.
+  GetState(&q_after_, &qd_after_);
+  *qdd = (qd_after_ - qd) / dt;
+}
+
 Eigen::Isometry3d BulletSimulation::LinkPose(int i) const {
   impl_->world->forwardKinematics();  // refresh the cached link transforms
 
