@@ -121,15 +121,15 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
     q2 = q + 0.5 * dt * qd;
     qd2 = qd + 0.5 * dt * qdd1;
     control(step.t + 0.5 * dt, q2, qd2, &tau);
-    sim.Accelerations(q2, qd2, tau, dt, &qdd2);
+    sim.Accelerations(q2, qd2, tau, dt, &qdd2, /*feedback=*/false);
     q3 = q + 0.5 * dt * qd2;
     qd3 = qd + 0.5 * dt * qdd2;
     control(step.t + 0.5 * dt, q3, qd3, &tau);
-    sim.Accelerations(q3, qd3, tau, dt, &qdd3);
+    sim.Accelerations(q3, qd3, tau, dt, &qdd3, /*feedback=*/false);
     q4 = q + dt * qd3;
     qd4 = qd + dt * qdd3;
     control(step.t + dt, q4, qd4, &tau);
-    sim.Accelerations(q4, qd4, tau, dt, &qdd4);
+    sim.Accelerations(q4, qd4, tau, dt, &qdd4, /*feedback=*/false);
     q += dt / 6.0 * (qd + 2.0 * qd2 + 2.0 * qd3 + qd4);
     qd += dt / 6.0 * (qdd1 + 2.0 * qdd2 + 2.0 * qdd3 + qdd4);
   }

@@ -58,7 +58,9 @@ TEST_P(BulletSimulationTest, RealisesTheCommandedAcceleration) {
 
 // Accelerations evaluates Bullet at the state it is given, whatever Bullet
 // held before (the Runge–Kutta stages of Simulate): it inverts our RNEA there,
-// and its feedback is the RNEA's hinge wrenches at that state.
+// and its feedback is the RNEA's hinge wrenches at that state. Without the
+// feedback pass the accelerations are the same to the last bit and the
+// feedback is left as it was.
 TEST_P(BulletSimulationTest, AccelerationsAreTheForwardDynamicsAtTheGivenState) {
   BulletSimulation sim(model_);
   RobotData d(model_);
@@ -75,6 +77,15 @@ TEST_P(BulletSimulationTest, AccelerationsAreTheForwardDynamicsAtTheGivenState) 
       const HingeWrench& fb = sim.joint_feedback()[static_cast<size_t>(i)];
       EXPECT_LT(testing::RelativeError(fb.f_W, d.f_PB_W[static_cast<size_t>(i)]), 1e-10) << "link " << i;
       EXPECT_LT(testing::RelativeError(fb.m_Bo_W, d.m_PB_Bo_W[static_cast<size_t>(i)]), 1e-10) << "link " << i;
+    }
+    const std::vector<HingeWrench> feedback = sim.joint_feedback();
+    Eigen::VectorXd without_feedback;
+    sim.Accelerations(q, qd, InverseDynamics(model_, q, qd, qdd, &d), 1e-3, &without_feedback, /*feedback=*/false);
+    EXPECT_EQ(without_feedback, realised);
+    sim.Accelerations(RandomVector(n, 3.0, &rng), qd, Eigen::VectorXd::Zero(n), 1e-3, &without_feedback, false);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(sim.joint_feedback()[static_cast<size_t>(i)].f_W, feedback[static_cast<size_t>(i)].f_W);
+      EXPECT_EQ(sim.joint_feedback()[static_cast<size_t>(i)].m_Bo_W, feedback[static_cast<size_t>(i)].m_Bo_W);
     }
   }
 }
