@@ -38,7 +38,7 @@ Eigen::Matrix3d FromBt(const btMatrix3x3& m) {
 // and the (already updated) joint velocities. Running it with both zeroed
 // leaves exactly the response to the constraint forces. The pass changes no
 // velocity (a constraint pass applies no Δv of its own), so a step that only
-// wants the accelerations skips it (feedback_pass = false): ~40 % of a step.
+// wants the accelerations skips it (feedback_pass = false): ~30 % of a step.
 class FeedbackWorld : public btMultiBodyDynamicsWorld {
  public:
   FeedbackWorld(JointFeedbackMode mode, btDispatcher* dispatcher, btBroadphaseInterface* broadphase,

@@ -44,7 +44,7 @@ class BulletSimulation {
   // dt) and writes the acceleration it integrated, qdd = (qd_after − qd)/dt
   // [rad/s²] (rounding ~ε·|qd|/dt). The state is then the step's end. With
   // `feedback`, joint_feedback() is the wrenches at (q, qd) under tau; without,
-  // it is left as it was and the step skips the feedback pass (~40 % of its
+  // it is left as it was and the step skips the feedback pass (~30 % of its
   // time). A higher-order integrator evaluates its stages with it (Simulate).
   // Throws std::invalid_argument as SetState and Step.
   void Accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& tau, double dt,

@@ -40,8 +40,9 @@ struct SimulationOptions {
 // identification that differentiates q). Each logged step holds the first
 // stage: q, qd, the torque, Bullet's acceleration under it and its joint
 // feedback, so that τ = RNEA(q, qd, qdd) + AddJointDynamicsTorque and the hinge
-// wrenches hold at that instant to rounding. Throws std::invalid_argument if
-// the options are invalid or the reference does not match the model.
+// wrenches hold at that instant (to Bullet's agreement with the RNEA, ~1e-10).
+// Throws std::invalid_argument if the options are invalid or the reference
+// does not match the model.
 SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
                        const SimulationOptions& options);
 
