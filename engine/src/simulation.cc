@@ -49,6 +49,9 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
   const int n_steps = static_cast<int>(std::lround(options.duration / options.dt));
   const double kp = options.tracking_bandwidth * options.tracking_bandwidth;
   const double kd = 2.0 * options.tracking_bandwidth;
+  Eigen::VectorXd q(n_dof), qd(n_dof), tau(n_dof), qdd_cmd(n_dof), qdd1(n_dof);
+  Eigen::VectorXd q2(n_dof), qd2(n_dof), qdd2(n_dof), q3(n_dof), qd3(n_dof), qdd3(n_dof), q4(n_dof), qd4(n_dof),
+      qdd4(n_dof);
 
   // Preallocate the whole log; the loop below does not allocate.
   SimulationLog log;
@@ -64,31 +67,37 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
     step.hinge.resize(static_cast<size_t>(n_dof));
   }
 
+  // The motor torque at a state: computed torque along the reference, from
+  // the project's own RNEA, evaluated at every stage (a continuous-time law).
   BulletSimulation sim(model, options.feedback);
   RobotData data(model);
   JointState ref(n_dof);
+  auto control = [&](double t_s, const Eigen::VectorXd& q_s, const Eigen::VectorXd& qd_s, Eigen::VectorXd* tau_s) {
+    reference.Evaluate(t_s, &ref);
+    qdd_cmd = ref.qdd + kd * (ref.qd - qd_s) + kp * (ref.q - q_s);
+    *tau_s = InverseDynamics(model, q_s, qd_s, qdd_cmd, &data);
+  };
   reference.Evaluate(0.0, &ref);
   sim.SetState(ref.q, ref.qd);
-  Eigen::VectorXd q(n_dof), qd(n_dof), qd_next(n_dof), q_next(n_dof), qdd_cmd(n_dof);
   sim.GetState(&q, &qd);
 
+  const double dt = options.dt;
   for (int n = 0; n < n_steps; ++n) {
     LogStep& step = log.steps[static_cast<size_t>(n)];
-    step.t = n * options.dt;
-    // Computed torque along the reference, from the project's own RNEA.
-    reference.Evaluate(step.t, &ref);
-    qdd_cmd = ref.qdd + kd * (ref.qd - qd) + kp * (ref.q - q);
-    step.tau = InverseDynamics(model, q, qd, qdd_cmd, &data);
-    sim.Step(step.tau, options.dt);
-    sim.GetState(&q_next, &qd_next);
-
-    // Record the state at the start of the step; the realised acceleration
-    // is the one Bullet integrated. Link kinematics are analytic at it.
+    step.t = n * dt;
+    // Stage 1, at the step's start, is what the log records: the state, the
+    // torque, Bullet's acceleration under it and the hinge wrenches, all of
+    // this one instant.
+    control(step.t, q, qd, &tau);
+    sim.Accelerations(q, qd, tau, dt, &qdd1);
     step.q = q;
     step.qd = qd;
-    step.qdd = (qd_next - qd) / options.dt;
+    step.qdd = qdd1;
+    step.tau = tau;
+    step.hinge = sim.joint_feedback();
     // The motor also supplies what joint friction and the rotor consume.
     AddJointDynamicsTorque(model, step.qd, step.qdd, &step.tau);
+    // Link kinematics are analytic at the recorded state.
     ComputeKinematics(model, step.q, step.qd, step.qdd, &data);
     for (int i = 0; i < n_dof; ++i) {
       BodySample& body = step.body[static_cast<size_t>(i)];
@@ -104,9 +113,25 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
         body.quaternion.lambda_dd = -body.quaternion.lambda_dd;
       }
     }
-    step.hinge = sim.joint_feedback();
-    q = q_next;
-    qd = qd_next;
+    if (n + 1 == n_steps) break;  // the state after the last step is not logged
+
+    // Stages 2–4 of the classical Runge–Kutta step (Hairer, Nørsett & Wanner,
+    // Solving ODEs I, §II.1) on x = (q, qd), ẋ = (qd, qdd(q, qd, τ)), the
+    // torque recomputed at each stage's time and state.
+    q2 = q + 0.5 * dt * qd;
+    qd2 = qd + 0.5 * dt * qdd1;
+    control(step.t + 0.5 * dt, q2, qd2, &tau);
+    sim.Accelerations(q2, qd2, tau, dt, &qdd2, /*feedback=*/false);
+    q3 = q + 0.5 * dt * qd2;
+    qd3 = qd + 0.5 * dt * qdd2;
+    control(step.t + 0.5 * dt, q3, qd3, &tau);
+    sim.Accelerations(q3, qd3, tau, dt, &qdd3, /*feedback=*/false);
+    q4 = q + dt * qd3;
+    qd4 = qd + dt * qdd3;
+    control(step.t + dt, q4, qd4, &tau);
+    sim.Accelerations(q4, qd4, tau, dt, &qdd4, /*feedback=*/false);
+    q += dt / 6.0 * (qd + 2.0 * qd2 + 2.0 * qd3 + qd4);
+    qd += dt / 6.0 * (qdd1 + 2.0 * qdd2 + 2.0 * qdd3 + qdd4);
   }
   if (!log.steps.back().q.allFinite() || !log.steps.back().tau.allFinite()) {
     throw std::runtime_error("simulation diverged (non-finite state); reduce dt or the motion's accelerations");

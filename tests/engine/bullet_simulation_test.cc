@@ -56,6 +56,40 @@ TEST_P(BulletSimulationTest, RealisesTheCommandedAcceleration) {
   }
 }
 
+// Accelerations evaluates Bullet at the state it is given, whatever Bullet
+// held before (the Runge–Kutta stages of Simulate): it inverts our RNEA there,
+// and its feedback is the RNEA's hinge wrenches at that state. Without the
+// feedback pass the accelerations are the same to the last bit and the
+// feedback is left as it was.
+TEST_P(BulletSimulationTest, AccelerationsAreTheForwardDynamicsAtTheGivenState) {
+  BulletSimulation sim(model_);
+  RobotData d(model_);
+  std::mt19937 rng(25);
+  const int n = model_.n_dof();
+  for (int trial = 0; trial < 5; ++trial) {
+    sim.SetState(RandomVector(n, 3.0, &rng), RandomVector(n, 1.5, &rng));  // elsewhere
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 1.5, &rng),
+                          qdd = RandomVector(n, 4.0, &rng);
+    Eigen::VectorXd realised;
+    sim.Accelerations(q, qd, InverseDynamics(model_, q, qd, qdd, &d), 1e-3, &realised);
+    EXPECT_LT(testing::RelativeError(realised, qdd), 1e-10) << "trial " << trial;
+    for (int i = 0; i < n; ++i) {
+      const HingeWrench& fb = sim.joint_feedback()[static_cast<size_t>(i)];
+      EXPECT_LT(testing::RelativeError(fb.f_W, d.f_PB_W[static_cast<size_t>(i)]), 1e-10) << "link " << i;
+      EXPECT_LT(testing::RelativeError(fb.m_Bo_W, d.m_PB_Bo_W[static_cast<size_t>(i)]), 1e-10) << "link " << i;
+    }
+    const std::vector<HingeWrench> feedback = sim.joint_feedback();
+    Eigen::VectorXd without_feedback;
+    sim.Accelerations(q, qd, InverseDynamics(model_, q, qd, qdd, &d), 1e-3, &without_feedback, /*feedback=*/false);
+    EXPECT_EQ(without_feedback, realised);
+    sim.Accelerations(RandomVector(n, 3.0, &rng), qd, Eigen::VectorXd::Zero(n), 1e-3, &without_feedback, false);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(sim.joint_feedback()[static_cast<size_t>(i)].f_W, feedback[static_cast<size_t>(i)].f_W);
+      EXPECT_EQ(sim.joint_feedback()[static_cast<size_t>(i)].m_Bo_W, feedback[static_cast<size_t>(i)].m_Bo_W);
+    }
+  }
+}
+
 // The wrench of every hinge, Bullet's corrected feedback versus our RNEA at
 // the state at the start of the step.
 double FeedbackError(const RobotModel& model, JointFeedbackMode mode, int seed) {

@@ -57,8 +57,13 @@ class CompareCommandTest : public ::testing::Test {
 
 // At 1 kHz the compare instants (every 40 ms over 10 s) are recorded samples:
 // the log's cond, log det and σ_min equal the motion's to 1e-6 (measured:
-// 4156.94182086 both; realised cond 4169.86624736 and Monte-Carlo error
-// 0.049663504 both).
+// 4156.94182086 both). Bullet replays the log as it runs the motion, but the
+// simulation's Runge–Kutta stages also ask for the reference between steps,
+// where the log is interpolated linearly (up to dt²/8·|qdd| ≈ 5e-7 rad off the
+// motion): realised cond 4156.9418246 for the motion and 4156.9892871 for the
+// log (1.1e-5), Monte-Carlo error 0.0491116 and 0.0491072 (9.0e-5), %σ within
+// 5.0e-5. (With one Euler step per step the controller never looked between
+// steps, and the two agreed to 1e-6.)
 TEST_F(CompareCommandTest, NoiseFreeLogHasTheConditionOfItsMotion) {
   options_.trajectories = {"general"};
   options_.logs = {WriteLog("general.csv", Eigen::VectorXd::LinSpaced(10001, 0.0, 10.0), {"t", "q", "qd", "qdd", "tau"})};
@@ -72,16 +77,18 @@ TEST_F(CompareCommandTest, NoiseFreeLogHasTheConditionOfItsMotion) {
   EXPECT_NEAR(recorded.designed.cond / designed.designed.cond, 1.0, 1e-6);
   EXPECT_NEAR(recorded.designed.log_det, designed.designed.log_det, 1e-6);
   EXPECT_NEAR(recorded.designed.sigma_min / designed.designed.sigma_min, 1.0, 1e-6);
-  // Bullet replays the log (linear between its samples, which fall on the
-  // simulation's steps) as it runs the motion: the same realised states, the
-  // same seeded noise, the same Monte-Carlo error and %σ.
+  // Bullet replays the log (linear between its samples) as it runs the
+  // motion: the same realised states to the interpolation's error, the same
+  // seeded noise, the same Monte-Carlo error and %σ to 2e-4.
   EXPECT_TRUE(recorded.simulated);
-  EXPECT_NEAR(recorded.realised.cond / designed.realised.cond, 1.0, 1e-6);
-  EXPECT_NEAR(recorded.mean_relative_error / designed.mean_relative_error, 1.0, 1e-6);
+  EXPECT_NEAR(recorded.realised.cond / designed.realised.cond, 1.0, 2e-4);
+  EXPECT_NEAR(recorded.mean_relative_error / designed.mean_relative_error, 1.0, 2e-4);
   ASSERT_EQ(recorded.predicted_sigma.size(), designed.predicted_sigma.size());
   for (Eigen::Index k = 0; k < recorded.predicted_sigma.size(); ++k) {
-    EXPECT_NEAR(recorded.predicted_sigma[k] / designed.predicted_sigma[k], 1.0, 1e-6) << report.parameter_names[k];
+    EXPECT_NEAR(recorded.predicted_sigma[k] / designed.predicted_sigma[k], 1.0, 2e-4) << report.parameter_names[k];
   }
+  // The simulation tracks the motion itself to the integrator's error.
+  EXPECT_NEAR(designed.realised.cond / designed.designed.cond, 1.0, 1e-6);
   // Equal cond: both ranked, 1 and 2.
   EXPECT_EQ(designed.rank + recorded.rank, 3);
   EXPECT_GE(std::min(designed.rank, recorded.rank), 1);

@@ -40,6 +40,16 @@ class BulletSimulation {
   // if tau has the wrong size or dt is too small for Bullet to step.
   void Step(const Eigen::VectorXd& tau, double dt);
 
+  // Bullet's forward dynamics at a state: sets (q, qd), takes one Step(tau,
+  // dt) and writes the acceleration it integrated, qdd = (qd_after − qd)/dt
+  // [rad/s²] (rounding ~ε·|qd|/dt). The state is then the step's end. With
+  // `feedback`, joint_feedback() is the wrenches at (q, qd) under tau; without,
+  // it is left as it was and the step skips the feedback pass (~30 % of its
+  // time). A higher-order integrator evaluates its stages with it (Simulate).
+  // Throws std::invalid_argument as SetState and Step.
+  void Accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& tau, double dt,
+                     Eigen::VectorXd* qdd, bool feedback = true);
+
   // Joint feedback of the last Step, describing the state at its start.
   const std::vector<HingeWrench>& joint_feedback() const { return feedback_; }
 
@@ -51,6 +61,8 @@ class BulletSimulation {
   RobotModel model_;  // a copy: the simulation outlives temporaries
   std::unique_ptr<Impl> impl_;
   std::vector<HingeWrench> feedback_;
+
+  void StepWith(const Eigen::VectorXd& tau, double dt, bool feedback);
 };
 
 }  // namespace idbench

@@ -23,15 +23,16 @@ struct BodySample {
   Eigen::Vector3d a_WBcm_W = Eigen::Vector3d::Zero();   // centroid acceleration [m/s²]
 };
 
-// State at the start of step n (t = n·dt) and what happened during the step.
+// The experiment at the start of step n (t = n·dt): every field of that one
+// instant (Simulate).
 struct LogStep {
   double t = 0.0;        // [s]
   Eigen::VectorXd q;     // [rad]
   Eigen::VectorXd qd;    // [rad/s]
-  Eigen::VectorXd qdd;   // (qd_{n+1} − qd_n)/dt [rad/s²]
+  Eigen::VectorXd qdd;   // Bullet's forward dynamics at (q, qd) under the applied torque [rad/s²]
   Eigen::VectorXd tau;   // motor torques [N m]: rigid-body torque applied in Bullet + AddJointDynamicsTorque
   std::vector<BodySample> body;    // per link, from kinematics at (q, qd, qdd)
-  std::vector<HingeWrench> hinge;  // per link, the joint feedback
+  std::vector<HingeWrench> hinge;  // per link, the joint feedback at (q, qd) under the applied torque
 };
 
 struct SimulationLog {
