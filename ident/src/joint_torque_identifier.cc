@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "idbench/engine/link_bounding_box.h"
+#include "idbench/ident/residual_covariance.h"
 
 namespace idbench {
 
@@ -399,8 +400,16 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
   const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
-  return IdentifyJointTorque(model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter),
-                             options);
+  JointTorqueIdentification out = IdentifyJointTorque(
+      model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter), options);
+  if (options.covariance == CovarianceMethod::kBatchMeans) {
+    // The scores at β̂: a second pass over the equations.
+    Eigen::MatrixXd W;
+    Eigen::VectorXd tau;
+    StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
+    ApplyStackedScoreCovariance(W, tau, model.n_dof(), &out.linear);
+  }
+  return out;
 }
 
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,

@@ -110,11 +110,17 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
   }
   fit.covariance = gram_inverse * s2;
   fit.sigma = fit.covariance.diagonal().cwiseSqrt();
+  fit.gram_inverse = gram_inverse;
+  fit.row_weights = weights;
+  fit.covariance_method.method = CovarianceMethod::kWhite;
+  fit.covariance_method.n_samples = factors.n_samples();
+  fit.covariance_method.n_effective = static_cast<double>(factors.n_samples());
   // (WᵀW)⁻¹_kk ‖W_k‖² with ‖W_k‖ = ‖R_k‖ (W = Q R).
   fit.variance_inflation = gram_inverse.diagonal().cwiseProduct(norms.cwiseAbs2());
   for (int k = 0; k < p; ++k) {
     if (!fit.identifiable[static_cast<size_t>(k)]) fit.sigma[k] = fit.variance_inflation[k] = kInfinity;
   }
+  fit.sigma_white = fit.sigma;
   fit.rel_sigma_percent = 100.0 * fit.sigma.cwiseQuotient(fit.beta.cwiseAbs());
   // Unweighted residual RMS per joint (the same for every least-squares β).
   fit.joint_rms = JointResidualNorms(factors, fit.beta) / std::sqrt(static_cast<double>(factors.n_samples()));
@@ -122,6 +128,14 @@ LinearFit Fit(const StackedFactors& factors, const Eigen::VectorXd& weights) {
 }
 
 }  // namespace
+
+const char* ToString(CovarianceMethod method) {
+  return method == CovarianceMethod::kBatchMeans ? "batch means" : "white";
+}
+
+const char* ToKey(CovarianceMethod method) {
+  return method == CovarianceMethod::kBatchMeans ? "batch_means" : "white";
+}
 
 ParameterStatus ClassifyParameter(double beta, double sigma) {
   if (!std::isfinite(beta) || !std::isfinite(sigma)) return ParameterStatus::kNotIdentifiable;

@@ -49,6 +49,16 @@ StreamedJointEquations::StreamedJointEquations(const RobotModel& model, const Fr
     n_kept = (n - 2 * trim_ + pf.filter.decimation - 1) / pf.filter.decimation;
     rows_.emplace(n, width_ + 1, FiltFiltSettlingSamples(sos_), settings_.block);
   }
+  if (settings_.score_fit) {
+    const LinearFit& fit = *settings_.score_fit;
+    if (fit.beta.size() != base.n_base() || fit.row_weights.size() != n_dof_) {
+      throw std::invalid_argument("streamed equations: expected a score fit of " + std::to_string(base.n_base()) +
+                                  " parameters and " + std::to_string(n_dof_) + " joint weights, got " +
+                                  std::to_string(fit.beta.size()) + " and " + std::to_string(fit.row_weights.size()));
+    }
+    scores_.emplace(base.n_base(), n_kept, settings_.score_block_samples);
+    score_.resize(base.n_base());
+  }
   if (settings_.series_beta.size() > 0) {
     if (settings_.series_beta.size() != base.n_base() || settings_.series_stride < 1) {
       throw std::invalid_argument("streamed equations: expected series_beta of " + std::to_string(base.n_base()) +
@@ -166,6 +176,23 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
     }
     n_series_kept_ += m;
   }
+  // The scores s_t = Σ_j w_j² W_tjᵀ e_tj at the given fit, sample by sample.
+  if (scores_) {
+    const LinearFit& fit = *settings_.score_fit;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      score_.setZero();
+      for (int j = 0; j < n_dof_; ++j) {
+        const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
+        const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(columns.size());
+        double e = rows(i, o + c);
+        for (Eigen::Index k = 0; k < c; ++k) e -= rows(i, o + k) * fit.beta[columns[static_cast<size_t>(k)]];
+        const double w2e = fit.row_weights[j] * fit.row_weights[j] * e;
+        for (Eigen::Index k = 0; k < c; ++k) score_[columns[static_cast<size_t>(k)]] += w2e * rows(i, o + k);
+      }
+      scores_->Push(score_);
+    }
+  }
+  if (!settings_.fold) return;
   // Each joint's factor on its own, the joints dealt round the threads.
   auto fold = [&](int first) {
     for (int j = first; j < n_dof_; j += settings_.n_threads) {

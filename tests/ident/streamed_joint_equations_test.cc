@@ -137,6 +137,48 @@ TEST_F(StreamedJointEquationsTest, WithoutFilterFoldsEverySampleAndKeepsBoundedS
   EXPECT_EQ(series.measured.row(428), log.tau.row(7 * 428));
 }
 
+// The second pass for σ (score_fit, no fold): the batch-means covariance of
+// the streamed scores equals that of the scores of the whole parallel-filtered
+// W (PushStackedScores) to 1e-9, for WLS (weighted scores), blocks of the
+// stream smaller than the filter's margin.
+TEST_F(StreamedJointEquationsTest, SecondPassScoresEqualTheWholeLogScores) {
+  LinearFit streamed = SolveWls(Streamed(recorded_, 1000, 4000));
+  // The whole-log W, as WholeLogOls builds it.
+  LogFilterOptions derivatives = filter_.filter;
+  derivatives.decimation = 1;
+  derivatives.trim_s = 0.0;
+  derivatives.filter_tau = false;
+  const JointLog prepared = ProcessJointLog(recorded_, derivatives);
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  StackEquations(model_, friction_, base_, prepared, filter_, &W, &tau);
+  LinearFit whole = SolveWls(W, tau, 6);
+  ApplyStackedScoreCovariance(W, tau, 6, &whole);
+
+  const Eigen::Index n = recorded_.n_samples();
+  StreamedLogFilter prepare(filter_.filter, filter_.sample_rate_hz, true, false, 6, n, 1000);
+  StreamedEquationsSettings settings = Settings(filter_, n);
+  settings.block = 1000;
+  settings.score_fit = &streamed;
+  settings.fold = false;
+  StreamedJointEquations equations(model_, friction_, base_, settings);
+  for (Eigen::Index s = 0; s < n; s += 4000) {
+    prepare.Push(Rows(recorded_, s, std::min<Eigen::Index>(4000, n - s)),
+                 [&](const JointLog& samples, Eigen::Index) { equations.Push(samples); });
+  }
+  ASSERT_NE(equations.scores(), nullptr);
+  EXPECT_TRUE(equations.scores()->done());
+  EXPECT_EQ(equations.factors().n_samples(), 0);  // not folded
+  ApplyScoreCovariance(*equations.scores(), &streamed);
+  EXPECT_EQ(streamed.covariance_method.n_blocks, whole.covariance_method.n_blocks);
+  EXPECT_LT((streamed.sigma - whole.sigma).cwiseQuotient(whole.sigma).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(streamed.covariance_method.n_effective, whole.covariance_method.n_effective,
+              1e-9 * whole.covariance_method.n_effective);
+  // The filtered equations' residual is coloured: σ above the white one.
+  EXPECT_GT(streamed.covariance_method.n_effective, 0.0);
+  EXPECT_LT(streamed.covariance_method.n_effective, 0.9 * static_cast<double>(streamed.covariance_method.n_samples));
+}
+
 TEST_F(StreamedJointEquationsTest, RejectsTooManySamplesAndTooShortLogs) {
   StreamedJointEquations equations(model_, friction_, base_, Settings(filter_, 2000));
   JointLog prepared = Rows(recorded_, 0, 2001);

@@ -27,6 +27,8 @@ FrictionModel FrictionFor(const std::vector<std::string>& terms, double coulomb_
 struct IdentifyResult {
   std::vector<std::string> base_names;
   Eigen::VectorXd beta, sigma, rel_sigma_percent, beta_model;
+  Eigen::VectorXd sigma_white;  // σ as if the residual were white
+  std::string sigma_method;     // how sigma was computed, with n_eff (SigmaMethodText)
   std::vector<std::string> status;
   std::vector<std::string> standard_names;
   Eigen::VectorXd standard;  // physically consistent π
@@ -66,6 +68,8 @@ IdentifyResult ToIdentifyResult(const RobotModel& model, const IdentifyOptions& 
   r.base_names = id.base.names;
   r.beta = id.beta;
   r.sigma = id.linear.sigma;
+  r.sigma_white = id.linear.sigma_white;
+  r.sigma_method = SigmaMethodText(id.linear);
   r.rel_sigma_percent = id.linear.rel_sigma_percent;
   for (int k = 0; k < id.base.n_base(); ++k) r.rel_sigma_percent[k] = RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]);
   r.beta_model = id.beta_model;
@@ -181,7 +185,10 @@ void BindIdentifyResult(py::module_& m) {
   py::class_<IdentifyResult>(m, "IdentifyResult")
       .def_readonly("base_names", &IdentifyResult::base_names)
       .def_readonly("beta", &IdentifyResult::beta, "Base parameters; NaN where not identifiable")
-      .def_readonly("sigma", &IdentifyResult::sigma, "Standard deviations; inf where not identifiable")
+      .def_readonly("sigma", &IdentifyResult::sigma,
+                    "Standard deviations from the residual as it is (batch means); inf where not identifiable")
+      .def_readonly("sigma_white", &IdentifyResult::sigma_white, "Standard deviations as if the residual were white")
+      .def_readonly("sigma_method", &IdentifyResult::sigma_method, "How sigma was computed, with n_eff")
       .def_readonly("rel_sigma_percent", &IdentifyResult::rel_sigma_percent)
       .def_readonly("status", &IdentifyResult::status,
                     "Per base parameter: determined, poor, indistinguishable from zero, not identifiable")

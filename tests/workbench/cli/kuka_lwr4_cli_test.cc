@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -136,6 +139,50 @@ TEST_F(KukaLwr4CliTest, CompareTakesRecordedLogsWithDefaultNoise) {
     EXPECT_EQ(p["motions"][m]["designed"]["cond"], f["motions"][m]["designed"]["cond"]);
     EXPECT_EQ(p["motions"][m]["mean_relative_error"], f["motions"][m]["mean_relative_error"]);
   }
+}
+
+// Issue 34: σ is a claim to test. measurements_1 and measurements_2 record
+// the same excitation twice; each identified alone (OLS), the two estimates
+// of a base parameter should differ by at most 1.96 combined σ,
+// √(σ₁² + σ₂²), in about 95 % of cases if σ were honest. With σ as if the
+// residual were white (sigma_white): 27 % of the 64 (median difference
+// 4.5 σ). With the batch-means σ from the residual as it is, at least 80 %
+// (docs/commands/identify.md states the figure).
+TEST_F(KukaLwr4CliTest, TwoRecordingsOfOneMotionAgreeWithinTheirSigma) {
+  nlohmann::json runs[2];
+  for (int k = 1; k <= 2; ++k) {
+    const std::string out = "repeat" + std::to_string(k);
+    const Result r = Run("identify --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() +
+                         " --data " + (kData / "logs" / ("measurements_" + std::to_string(k) + ".csv")).string() +
+                         " --friction viscous,coulomb,offset --estimator ols --out " + (dir_ / out).string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    runs[k - 1] = Json(out);
+    EXPECT_EQ(runs[k - 1]["sigma_method"]["method"], "batch_means");
+  }
+  const auto& a = runs[0]["base_parameters"];
+  const auto& b = runs[1]["base_parameters"];
+  ASSERT_EQ(a.size(), 64u);
+  ASSERT_EQ(b.size(), 64u);
+  int within = 0, within_white = 0;
+  std::vector<double> z;
+  for (size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k]["name"], b[k]["name"]);
+    const double d = std::abs(a[k]["value"].get<double>() - b[k]["value"].get<double>());
+    const double s = std::hypot(a[k]["sigma"].get<double>(), b[k]["sigma"].get<double>());
+    const double s_white = std::hypot(a[k]["sigma_white"].get<double>(), b[k]["sigma_white"].get<double>());
+    within += d <= 1.96 * s;
+    within_white += d <= 1.96 * s_white;
+    z.push_back(d / s);
+  }
+  std::sort(z.begin(), z.end());
+  const double fraction = within / 64.0, fraction_white = within_white / 64.0;
+  std::printf("measurements_1 vs measurements_2 (OLS): %d of 64 base parameters (%.1f %%) differ by <= 1.96 combined "
+              "sigma (batch means; median difference %.2f sigma, largest %.2f); with the white-residual sigma %d "
+              "(%.1f %%); n_eff %.0f and %.0f of 5027\n",
+              within, 100.0 * fraction, 0.5 * (z[31] + z[32]), z.back(), within_white, 100.0 * fraction_white,
+              runs[0]["sigma_method"]["n_effective"].get<double>(), runs[1]["sigma_method"]["n_effective"].get<double>());
+  EXPECT_GE(fraction, 0.8);
+  EXPECT_LT(fraction_white, 0.5);  // 27 %: what the white formula claimed
 }
 
 }  // namespace

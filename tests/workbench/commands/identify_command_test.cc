@@ -26,7 +26,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // A puma560 log of 30 s at 1 kHz (t, q, qd, qdd, τ): ~4 streaming blocks per
-// pass, held out on itself, so a run has 5 stages (2 reads, 2 folds, the solve).
+// pass, held out on itself, so a run has 6 stages (2 reads, 2 folds, the
+// solve, the second pass for σ).
 class IdentifyCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -59,9 +60,9 @@ TEST_F(IdentifyCommandTest, ProgressIsMonotoneAndReachesOne) {
   EXPECT_GE(reports.front().fraction, 0.0);
   EXPECT_EQ(reports.back().fraction, 1.0);
   EXPECT_EQ(reports.back().stage, "done");
-  // Reported within the passes too: every stage start (k/5) and blocks between.
+  // Reported within the passes too: every stage start (k/6) and blocks between.
   int inside = 0;
-  for (const IdentifyProgress& p : reports) inside += p.fraction > 0.0 && p.fraction < 1.0 && p.fraction * 5 != std::round(p.fraction * 5);
+  for (const IdentifyProgress& p : reports) inside += p.fraction > 0.0 && p.fraction < 1.0 && p.fraction * 6 != std::round(p.fraction * 6);
   EXPECT_GE(inside, 8);
   // The same numbers as a run without a control.
   const IdentifyReport plain = RunIdentify(model_, options_);

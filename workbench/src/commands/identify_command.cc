@@ -147,6 +147,9 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     report.n_samples = factors.n_samples();  // what the fold kept
     stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
     report.identification = IdentifyJointTorque(model, base, factors, id_options);
+    // σ from the residual as it is: the log streamed again for the scores at β̂.
+    ApplyPreparedLogScoreCovariance(data, model, id_options.friction, base, &report.identification.linear,
+                                    stages->Next("sigma from the residual of " + options.data));
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     throw std::invalid_argument(what.rfind(options.data + ":", 0) == 0 ? what : options.data + ": " + what);
@@ -182,9 +185,10 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
     throw std::invalid_argument("base_pose: the model's gravity is not the world's -z seen from this base; mount the "
                                 "model (MountRobot)");
   }
-  // Stages: each log read, then folded, and the solve.
+  // Stages: each log read, then folded, the solve, and the identification
+  // log's second pass (the scores of its σ).
   const int n_logs = 1 + int(!options.validate.empty()) + int(!options.validate.empty() && !options.validate_window.empty());
-  IdentifyStages stages(&control, 2 * n_logs + 1);
+  IdentifyStages stages(&control, 2 * n_logs + 2);
   try {
     PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true),
                                        stages.Next("reading " + options.data));

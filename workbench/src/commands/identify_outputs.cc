@@ -127,6 +127,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
     base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
                     {"value", identifiable ? json(id.beta[k]) : nothing},
                     {"sigma", identifiable ? json(id.linear.sigma[k]) : nothing},
+                    {"sigma_white", identifiable ? json(id.linear.sigma_white[k]) : nothing},
                     {"rel_sigma_percent", identifiable && std::isfinite(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
                                               ? json(RelativeSigmaPercent(id.beta[k], id.linear.sigma[k]))
                                               : nothing},
@@ -204,6 +205,13 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"friction", options.friction},
       {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
       {"rank", id.linear.rank},
+      {"sigma_method",
+       {{"method", ToKey(id.linear.covariance_method.method)},
+        {"n_samples", id.linear.covariance_method.n_samples},
+        {"block_samples", id.linear.covariance_method.block_samples},
+        {"n_blocks", id.linear.covariance_method.n_blocks},
+        {"n_effective", id.linear.covariance_method.n_effective},
+        {"text", SigmaMethodText(id.linear)}}},
       {"base_parameters", base},
       {"unexcited_standard_parameters", unexcited},
       {"fit", {{"joint_rms", ToStdVector(report.identification.fit.joint_rms)}, {"relative_error", report.identification.fit.relative_error}}},

@@ -408,4 +408,24 @@ StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, 
   }
 }
 
+void ApplyPreparedLogScoreCovariance(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
+                                     const BaseParameters& base, LinearFit* fit, const StreamObserver* observer) {
+  StreamedEquationsSettings settings;
+  settings.filter = log.parallel_filter;
+  settings.n_samples = log.n_samples;
+  settings.score_fit = fit;
+  settings.fold = false;
+  try {
+    StreamedJointEquations equations(model, friction, base, settings);
+    ProgressLine progress(log.path + ": sigma from the residual", log.n_raw > kStreamBlockSamples, observer);
+    StreamPreparedSamples(log, [&](const JointLog& prepared, Eigen::Index) { equations.Push(prepared); }, &progress);
+    if (!equations.done() || !equations.scores()->done()) throw std::logic_error(log.path + ": the log ended early");
+    ApplyScoreCovariance(*equations.scores(), fit);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    if (what.rfind(log.path + ":", 0) == 0) throw;
+    throw std::invalid_argument(log.path + ": " + what);
+  }
+}
+
 }  // namespace idbench

@@ -66,6 +66,11 @@ struct JointTorqueOptions {
   FrictionModel friction{.viscous = true, .coulomb = true};
   std::optional<ParallelFilter> parallel_filter;
   TorqueEstimator estimator = TorqueEstimator::kOls;
+  // σ of the least-squares estimate: kBatchMeans from the residual as it is
+  // (residual_covariance.h), kWhite as if it were white. Used by the
+  // identification from a log; from factors, σ is white (the scores need a
+  // second pass over the rows: StreamedEquationsSettings::score_fit).
+  CovarianceMethod covariance = CovarianceMethod::kBatchMeans;
   BaseParameterOptions base;
   PlausibilitySettings plausibility;
 };
@@ -176,7 +181,8 @@ std::vector<Eigen::Index> StackedSamples(const JointLog& log, const std::optiona
 
 // Identifies the base parameters from the log; also fits the physically
 // consistent standard parameters (from the linear estimate, with the model's
-// parameters as the prior for the unidentifiable directions). Throws std::invalid_argument
+// parameters as the prior for the unidentifiable directions). σ as
+// options.covariance says (batch means: a second pass over W, held whole). Throws std::invalid_argument
 // when the log does not fit the robot, lacks qd/qdd, or has fewer equations
 // than base parameters + 1.
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
@@ -184,7 +190,8 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 
 // The same from the log's folded equations for `base` (FactorStackedEquations,
 // StreamedJointEquations: a streamed log); options.parallel_filter is not
-// used (the factors are filtered or not). Throws std::invalid_argument for
+// used (the factors are filtered or not), nor options.covariance: σ is the
+// white-residual one until ApplyScoreCovariance replaces it. Throws std::invalid_argument for
 // factors of another size or too few equations.
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
                                               const StackedFactors& factors, const JointTorqueOptions& options);

@@ -2,6 +2,9 @@
 // τ = W β + e, with parameter standard deviations (Gautier & Khalil):
 //   OLS: β̂ = argmin ‖W β − τ‖, σ² = ‖r‖²/(N − p), cov = σ² (WᵀW)⁻¹;
 //   WLS: rows of joint j weighted by 1/σ_j, σ_j² from joint j's OLS residuals.
+// That covariance holds for a white residual; residual_covariance.h replaces
+// it by one from the residual as it is (coloured, per joint), which needs a
+// second pass over the rows.
 // Rows are ordered sample by sample, joints within a sample (row = s·n_dof + j).
 // Solved by Householder QR; normal equations are never formed.
 //
@@ -16,6 +19,27 @@
 
 namespace idbench {
 
+// How a LinearFit's covariance was computed (residual_covariance.h).
+enum class CovarianceMethod {
+  kWhite,       // s² (WᵀW)⁻¹: as if the residual were white and of one variance
+  kBatchMeans,  // the sandwich (WᵀW)⁻¹ Ω (WᵀW)⁻¹, Ω from the scores summed over time blocks
+};
+// "white", "batch means".
+const char* ToString(CovarianceMethod method);
+// "white", "batch_means" (identified.json).
+const char* ToKey(CovarianceMethod method);
+
+struct CovarianceSummary {
+  CovarianceMethod method = CovarianceMethod::kWhite;
+  Eigen::Index n_samples = 0;      // time instants of the fit (n_dof equations each)
+  Eigen::Index block_samples = 0;  // kBatchMeans: samples per block (the last block may be shorter)
+  Eigen::Index n_blocks = 0;       // kBatchMeans: blocks
+  // Effective number of independent samples: n · median over the
+  // identifiable parameters of (σ_white,k / σ_k)² (n for kWhite): for a
+  // constant regressor and AR(1) noise of coefficient ρ, n (1 − ρ)/(1 + ρ).
+  double n_effective = 0.0;
+};
+
 // A least-squares estimate. When the data do not determine every parameter
 // (W rank deficient: the motion does not excite some combination), beta is
 // the least-squares solution of minimum norm, the parameters with a component
@@ -24,6 +48,13 @@ struct LinearFit {
   Eigen::VectorXd beta;            // estimate (p); unique only where identifiable
   Eigen::MatrixXd covariance;      // (p × p); rank deficient: of the minimum-norm estimator
   Eigen::VectorXd sigma;           // standard deviations (p); ∞ where not identifiable
+  // σ of the white-residual formula s² (W̃ᵀW̃)⁻¹ (p), whatever `covariance` is.
+  Eigen::VectorXd sigma_white;
+  CovarianceSummary covariance_method;  // how `covariance` and `sigma` were computed
+  // (W̃ᵀW̃)⁻¹ of the weighted rows W̃ (p × p; rank deficient: the g-inverse of
+  // the minimum-norm estimator), so that β̂ = (W̃ᵀW̃)⁻¹ W̃ᵀ τ̃: the sandwich's bread.
+  Eigen::MatrixXd gram_inverse;
+  Eigen::VectorXd row_weights;     // weight of joint j's rows (n_dof): 1 (OLS), 1/σ_j (WLS)
   Eigen::VectorXd rel_sigma_percent;  // 100 σ/|β| (p)
   // (WᵀW)⁻¹_kk ‖W_k‖² ≥ 1 (p): how much the other columns inflate σ_k² over
   // what column k alone would give; 1/sin² of the angle between column k and

@@ -19,6 +19,7 @@
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/overlap_windows.h"
+#include "idbench/ident/residual_covariance.h"
 #include "idbench/ident/signal_filter.h"
 #include "idbench/ident/streamed_log_filter.h"
 
@@ -36,6 +37,14 @@ struct StreamedEquationsSettings {
   Eigen::VectorXd series_beta;  // empty: no series
   Eigen::Index series_stride = 1;
   Eigen::Index series_max_points = 0;  // > 0: the stride raised to keep at most this many
+  // Optional, O(n_base²): with score_fit (a fit to these equations, e.g. of
+  // the factors of a first pass), every kept sample's score
+  // s_t = Σ_j w_j² W_tjᵀ (τ_tj − W_tj β̂) summed over blocks of
+  // score_block_samples (0: ⌈√n_kept⌉) for its batch-means covariance
+  // (residual_covariance.h).
+  const LinearFit* score_fit = nullptr;
+  Eigen::Index score_block_samples = 0;
+  bool fold = true;  // false: the factors are left empty (a pass for the scores or the series only)
 };
 
 class StreamedJointEquations {
@@ -54,6 +63,8 @@ class StreamedJointEquations {
   // The folded equations; complete once done().
   const StackedFactors& factors() const { return factors_; }
   const TorqueSeries& series() const { return series_; }
+  // The scores' block sums (settings.score_fit); nullptr without score_fit.
+  const ScoreBatchMeans* scores() const { return scores_ ? &*scores_ : nullptr; }
 
  private:
   void Equations(const JointLog& prepared);
@@ -77,6 +88,8 @@ class StreamedJointEquations {
   StackedFactors factors_;
   Eigen::Index n_series_kept_ = 0;
   TorqueSeries series_;
+  std::optional<ScoreBatchMeans> scores_;
+  Eigen::VectorXd score_;  // workspace (n_base)
 };
 
 }  // namespace idbench

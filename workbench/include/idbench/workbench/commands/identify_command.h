@@ -146,6 +146,11 @@ bool WritesRobotModel(const IdentifyOptions& options, const IdentifyReport& repo
 // fit to load.
 std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyReport& report);
 
+// The line identify prints under its table: how σ was computed (batch
+// means: blocks, samples per block), n_eff, and the factor to the
+// white-residual σ.
+std::string SigmaMethodText(const LinearFit& fit);
+
 // %σ of a value as printed: 100 σ/|value|, or NaN where |value| ≤ 3σ (the
 // value is indistinguishable from zero, and a ratio to it means nothing:
 // σ itself, absolute, is what is known) or σ is not finite.

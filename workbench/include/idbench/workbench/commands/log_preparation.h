@@ -126,4 +126,14 @@ StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, 
                                Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples,
                                const StreamObserver* observer = nullptr);
 
+// σ from the residual as it is: the prepared log's equations streamed again
+// (as FoldPreparedLog, without folding them), each kept sample's score at
+// the fit's β̂ summed over blocks (StreamedEquationsSettings::score_fit),
+// then fit's covariance replaced by the batch-means sandwich
+// (ApplyScoreCovariance). Memory O(n_base²) beside the stream's blocks.
+// Progress and errors as FoldPreparedLog.
+void ApplyPreparedLogScoreCovariance(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
+                                     const BaseParameters& base, LinearFit* fit,
+                                     const StreamObserver* observer = nullptr);
+
 }  // namespace idbench

@@ -1,0 +1,81 @@
+// σ from the residual as it is (issue 34): a covariance of the least-squares
+// estimate that holds when the residual is coloured (filtered signals,
+// unmodelled dynamics) and of a different size on every joint, where
+// s² (WᵀW)⁻¹ assumes it white and of one variance.
+//
+// The estimate is β̂ = G W̃ᵀ τ̃ with W̃, τ̃ the rows weighted per joint (w_j:
+// 1 for OLS, 1/σ_j for WLS) and G = (W̃ᵀW̃)⁻¹, so β̂ − β = G Σ_t s_t with the
+// per-sample score
+//   s_t = Σ_j w_j² W_tjᵀ e_tj   (p),
+// all joints of instant t summed, so that their correlation at one instant
+// is kept. Its covariance is the sandwich
+//   cov = G Ω G,   Ω = Var(Σ_t s_t).
+// Ω by non-overlapping batch means (Conway 1963; Flegal & Jones 2010, Ann.
+// Statist. 38(2)): the n samples cut into blocks of L = ⌈√n⌉ consecutive
+// samples, S_b = Σ_{t∈b} s_t at the fitted β̂ (the residual e = τ − W β̂), and
+//   Ω = B/(B − 1) Σ_b S_b S_bᵀ     (B blocks).
+// Correlation within a block is counted in full, across blocks only at their
+// boundaries: consistent when the residual's correlation time is short
+// against L, and L = ⌈√n⌉ grows with the log. Its expectation weights lag ℓ
+// by (1 − ℓ/L), Newey–West's Bartlett kernel with bandwidth L; B/(B − 1)
+// undoes the shrinkage of Σ_b S_b S_bᵀ by the fitted β̂ (Σ_t s_t = 0 at β̂:
+// for white noise and similar blocks, E Σ_b S_b S_bᵀ = (1 − 1/B) σ² W̃ᵀW̃).
+// It needs only the running block sum and a p × p accumulator: memory
+// O(p²), whatever the log's length.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "idbench/ident/linear_estimator.h"
+
+namespace idbench {
+
+// ⌈√n⌉, at least 1: the samples per block of batch means for n samples.
+Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples);
+
+// The scores of a fit's samples, pushed in time order, summed over blocks.
+class ScoreBatchMeans {
+ public:
+  // p parameters, n_samples that will be pushed, block_samples per block
+  // (0: BatchMeansBlockSamples(n_samples)). Throws std::invalid_argument for
+  // p < 1, n_samples < 1 or block_samples < 0.
+  ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples = 0);
+
+  // The next sample's score s_t (p). Throws std::invalid_argument on a size
+  // mismatch or more samples than announced.
+  void Push(const Eigen::Ref<const Eigen::VectorXd>& score);
+
+  bool done() const { return n_pushed_ == n_samples_; }
+  Eigen::Index n_samples() const { return n_samples_; }
+  Eigen::Index block_samples() const { return block_; }
+  // Blocks (the last may be shorter); complete once done().
+  Eigen::Index n_blocks() const { return n_blocks_ + (in_block_ > 0 ? 1 : 0); }
+  // B/(B − 1) Σ_b S_b S_bᵀ (p × p); requires done() and at least 2 blocks.
+  Eigen::MatrixXd Omega() const;
+
+ private:
+  Eigen::Index n_samples_, block_;
+  Eigen::Index n_pushed_ = 0, in_block_ = 0, n_blocks_ = 0;
+  Eigen::VectorXd block_sum_;  // S_b of the block being filled (p)
+  Eigen::MatrixXd sum_;        // Σ_b S_b S_bᵀ over the completed blocks (p × p)
+};
+
+// Adds the scores of dense stacked rows (rows interleaved by joint,
+// row = sample·n_dof + joint), one per sample, in order, at fit.beta with
+// fit.row_weights. Throws std::invalid_argument on a size mismatch.
+void PushStackedScores(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, const LinearFit& fit,
+                       ScoreBatchMeans* scores);
+
+// Replaces fit's covariance, sigma and rel_sigma_percent by the batch-means
+// sandwich G Ω G (sigma_white keeps the white-residual σ; not identifiable
+// parameters keep σ = ∞) and fills covariance_method. Scores of fewer than
+// 2 blocks (n ≤ 2 samples) leave the fit as it is. Throws
+// std::invalid_argument unless the scores are complete and of fit's size.
+void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit);
+
+// The batch-means covariance of a fit to dense stacked rows (the rows the
+// fit was solved from): PushStackedScores, then ApplyScoreCovariance.
+void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,
+                                 Eigen::Index block_samples = 0);
+
+}  // namespace idbench

@@ -1,0 +1,131 @@
+#include "idbench/ident/residual_covariance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace idbench {
+
+Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples) {
+  if (n_samples <= 1) return 1;
+  auto block = static_cast<Eigen::Index>(std::ceil(std::sqrt(static_cast<double>(n_samples))));
+  while (block > 1 && (block - 1) * (block - 1) >= n_samples) --block;  // rounding of sqrt
+  return block;
+}
+
+ScoreBatchMeans::ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples)
+    : n_samples_(n_samples), block_(block_samples == 0 ? BatchMeansBlockSamples(n_samples) : block_samples) {
+  if (n_parameters < 1 || n_samples < 1 || block_samples < 0) {
+    throw std::invalid_argument("batch means: expected n_parameters >= 1, n_samples >= 1 and block_samples >= 0, got " +
+                                std::to_string(n_parameters) + ", " + std::to_string(n_samples) + ", " +
+                                std::to_string(block_samples));
+  }
+  block_sum_ = Eigen::VectorXd::Zero(n_parameters);
+  sum_ = Eigen::MatrixXd::Zero(n_parameters, n_parameters);
+}
+
+void ScoreBatchMeans::Push(const Eigen::Ref<const Eigen::VectorXd>& score) {
+  if (score.size() != block_sum_.size() || n_pushed_ >= n_samples_) {
+    throw std::invalid_argument("batch means: expected a score of " + std::to_string(block_sum_.size()) +
+                                " entries and at most " + std::to_string(n_samples_) + " samples, got " +
+                                std::to_string(score.size()) + " entries for sample " + std::to_string(n_pushed_ + 1));
+  }
+  block_sum_ += score;
+  ++n_pushed_;
+  // A block complete: its sum's outer product into the total.
+  if (++in_block_ == block_) {
+    sum_.selfadjointView<Eigen::Lower>().rankUpdate(block_sum_);
+    block_sum_.setZero();
+    in_block_ = 0;
+    ++n_blocks_;
+  }
+}
+
+Eigen::MatrixXd ScoreBatchMeans::Omega() const {
+  const Eigen::Index B = n_blocks();
+  if (!done() || B < 2) {
+    throw std::invalid_argument("batch means: expected " + std::to_string(n_samples_) + " samples in at least 2 blocks, got " +
+                                std::to_string(n_pushed_) + " samples in " + std::to_string(B));
+  }
+  Eigen::MatrixXd sum = sum_;
+  if (in_block_ > 0) sum.selfadjointView<Eigen::Lower>().rankUpdate(block_sum_);  // the shorter last block
+  Eigen::MatrixXd omega = sum.selfadjointView<Eigen::Lower>();
+  return omega * (static_cast<double>(B) / static_cast<double>(B - 1));
+}
+
+void PushStackedScores(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, const LinearFit& fit,
+                       ScoreBatchMeans* scores) {
+  if (n_dof < 1 || W.rows() != tau.size() || W.rows() % n_dof != 0 || W.cols() != fit.beta.size() ||
+      fit.row_weights.size() != n_dof) {
+    throw std::invalid_argument("stacked scores: expected W of " + std::to_string(fit.beta.size()) + " columns, tau of " +
+                                std::to_string(W.rows()) + " rows, n_dof " + std::to_string(fit.row_weights.size()) +
+                                ", got " + std::to_string(W.cols()) + ", " + std::to_string(tau.size()) + ", " +
+                                std::to_string(n_dof));
+  }
+  const Eigen::VectorXd e = tau - W * fit.beta;
+  Eigen::VectorXd score(W.cols());
+  for (Eigen::Index s = 0; s < W.rows() / n_dof; ++s) {
+    score.setZero();
+    for (int j = 0; j < n_dof; ++j) {
+      const Eigen::Index row = s * n_dof + j;
+      const double w = fit.row_weights[j];
+      score += (w * w * e[row]) * W.row(row).transpose();
+    }
+    scores->Push(score);
+  }
+}
+
+void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit) {
+  const Eigen::Index p = fit->beta.size();
+  if (fit->gram_inverse.rows() != p || fit->gram_inverse.cols() != p) {
+    throw std::invalid_argument("score covariance: the fit has no (WᵀW)⁻¹ of " + std::to_string(p) + " parameters");
+  }
+  if (scores.done() && scores.n_blocks() < 2) return;  // too few samples to say more than the white formula
+  const Eigen::MatrixXd omega = scores.Omega();
+  if (omega.rows() != p) {
+    throw std::invalid_argument("score covariance: expected scores of " + std::to_string(p) + " parameters, got " +
+                                std::to_string(omega.rows()));
+  }
+  // The sandwich G Ω G.
+  const Eigen::MatrixXd& G = fit->gram_inverse;
+  fit->covariance = G * omega * G;
+  fit->covariance = 0.5 * (fit->covariance + fit->covariance.transpose()).eval();
+  fit->sigma = fit->covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  std::vector<double> ratios;  // (σ_white,k / σ_k)² of the identifiable parameters
+  for (Eigen::Index k = 0; k < p; ++k) {
+    if (!fit->identifiable[static_cast<size_t>(k)]) {
+      fit->sigma[k] = std::numeric_limits<double>::infinity();
+    } else if (fit->sigma[k] > 0.0 && std::isfinite(fit->sigma_white[k])) {
+      ratios.push_back(fit->sigma_white[k] * fit->sigma_white[k] / (fit->sigma[k] * fit->sigma[k]));
+    }
+  }
+  fit->rel_sigma_percent = 100.0 * fit->sigma.cwiseQuotient(fit->beta.cwiseAbs());
+  CovarianceSummary& summary = fit->covariance_method;
+  summary.method = CovarianceMethod::kBatchMeans;
+  summary.n_samples = scores.n_samples();
+  summary.block_samples = scores.block_samples();
+  summary.n_blocks = scores.n_blocks();
+  double median = 1.0;
+  if (!ratios.empty()) {
+    const size_t h = ratios.size() / 2;
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(h), ratios.end());
+    median = ratios[h];
+    if (ratios.size() % 2 == 0) {
+      median = 0.5 * (median + *std::max_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(h)));
+    }
+  }
+  summary.n_effective = static_cast<double>(scores.n_samples()) * median;
+}
+
+void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,
+                                 Eigen::Index block_samples) {
+  if (n_dof < 1) throw std::invalid_argument("stacked scores: expected n_dof >= 1, got " + std::to_string(n_dof));
+  ScoreBatchMeans scores(static_cast<int>(W.cols()), W.rows() / n_dof, block_samples);
+  PushStackedScores(W, tau, n_dof, *fit, &scores);
+  ApplyScoreCovariance(scores, fit);
+}
+
+}  // namespace idbench
