@@ -53,7 +53,7 @@ std::string RatioText(const Eigen::ArrayXd& x) {
 // OLS (or WLS) on draws τ = W β + e, e per joint AR(1) of coefficient ρ with
 // stationary standard deviations 1 and sd2 (≠ 1: heteroskedastic),
 // independent between joints.
-MonteCarlo Run(double rho, bool wls, double sd2, int n_draws = 250, Eigen::Index n = 10000) {
+MonteCarlo Run(double rho, bool wls, double sd2, int n_draws = 400, Eigen::Index n = 10000) {
   const Eigen::MatrixXd W = SlowRegressor(n);
   const Eigen::Vector4d beta_true(2.0, -1.0, 0.5, 3.0);
   const Eigen::VectorXd tau0 = W * beta_true;
@@ -80,19 +80,19 @@ MonteCarlo Run(double rho, bool wls, double sd2, int n_draws = 250, Eigen::Index
     EXPECT_EQ(fit.covariance_method.block_samples, 100);
     EXPECT_EQ(fit.covariance_method.n_blocks, 100);
     betas.col(d) = fit.beta;
-    mc.mean_sigma += fit.sigma / n_draws;
-    mc.mean_white += fit.sigma_white / n_draws;
-    mc.mean_n_effective += fit.covariance_method.n_effective / n_draws;
+    mc.mean_sigma += fit.sigma / static_cast<double>(n_draws);
+    mc.mean_white += fit.sigma_white / static_cast<double>(n_draws);
+    mc.mean_n_effective += fit.covariance_method.n_effective / static_cast<double>(n_draws);
   }
   const Eigen::MatrixXd centred = betas.colwise() - betas.rowwise().mean();
-  mc.spread = (centred.rowwise().squaredNorm() / (n_draws - 1)).cwiseSqrt().transpose();
+  mc.spread = (centred.rowwise().squaredNorm() / static_cast<double>(n_draws - 1)).cwiseSqrt().transpose();
   return mc;
 }
 
 // ρ = 0.8: the white σ is √(1.8/0.2) = 3 times too small; the batch-means σ
 // within 15 % of the Monte Carlo spread (a draw's σ scatters by ~1/√(2B) =
-// 7 % over B = 100 blocks, the mean over 250 draws by far less; the spread
-// itself by ~4.5 %; the blocks' bias for ρ = 0.8 and L = 100 is −2 %). Three
+// 7 % over B = 100 blocks, the mean over 400 draws by far less; the spread
+// itself by ~3.5 %; the blocks' bias for ρ = 0.8 and L = 100 is −2 %). Three
 // cases: OLS with the same noise on both joints; OLS with joint 2's three
 // times joint 1's (the white formula pools them, so only the batch-means σ
 // is checked); WLS with that noise (weights 1/σ_j undo it, so the white σ is
@@ -112,7 +112,7 @@ TEST(ResidualCovarianceTest, Ar1NoiseBatchMeansSigmaMatchesTheMonteCarloSpread) 
                 1.0 / factor, mc.mean_n_effective, n_eff_ar1);
     for (int k = 0; k < kParameters; ++k) {
       EXPECT_NEAR(hac_ratio[k], 1.0, 0.15) << "parameter " << k << (c.wls ? " (WLS)" : " (OLS)") << " sd2 " << c.sd2;
-      // The white σ is off by the AR(1) factor (to the Monte Carlo's 4.5 %
+      // The white σ is off by the AR(1) factor (to the Monte Carlo's 3.5 %
       // and the regressors' slow variation).
       if (c.white_by_factor) EXPECT_NEAR(white_ratio[k] * factor, 1.0, 0.15) << "parameter " << k;
     }
@@ -127,7 +127,7 @@ TEST(ResidualCovarianceTest, Ar1NoiseBatchMeansSigmaMatchesTheMonteCarloSpread) 
 TEST(ResidualCovarianceTest, WhiteNoiseBatchMeansSigmaIsTheWhiteSigma) {
   struct Case { bool wls; double sd2; };
   for (const Case c : {Case{false, 1.0}, Case{true, 3.0}, Case{false, 3.0}}) {
-    const MonteCarlo mc = Run(0.0, c.wls, c.sd2, 200);
+    const MonteCarlo mc = Run(0.0, c.wls, c.sd2);
     const Eigen::ArrayXd hac_ratio = mc.mean_sigma.array() / mc.spread.array();
     const Eigen::ArrayXd to_white = mc.mean_sigma.array() / mc.mean_white.array();
     std::printf("%s, joint sd 1 and %.0f, white noise: sigma/spread batch means %s; batch means / white %s; n_eff %.0f "
@@ -135,7 +135,7 @@ TEST(ResidualCovarianceTest, WhiteNoiseBatchMeansSigmaIsTheWhiteSigma) {
                 mc.mean_n_effective);
     for (int k = 0; k < kParameters; ++k) {
       EXPECT_NEAR(hac_ratio[k], 1.0, 0.15) << "parameter " << k;
-      // The mean of 200 draws: ~0.5 % scatter, bias ≲ 1/B.
+      // The mean of 400 draws: ~0.4 % scatter, bias ≲ 1/B.
       if (c.wls || c.sd2 == 1.0) EXPECT_NEAR(to_white[k], 1.0, 0.05) << "parameter " << k;
     }
     if (c.wls || c.sd2 == 1.0) EXPECT_NEAR(mc.mean_n_effective / 10000.0, 1.0, 0.1);

@@ -52,6 +52,7 @@ ReportContent MakeIdentifyReportContent(const RobotModel& model, const IdentifyO
                                         ? "inf: rank " + std::to_string(id.linear.rank) + " of " +
                                               std::to_string(id.base.n_base()) + " (parameters not identifiable below)"
                                         : Format("%.4g", id.linear.cond)},
+                        {"σ", SigmaMethodText(id.linear).substr(7)},  // without "sigma: "
                         {"relative torque error (fit)", Format("%.4g", id.fit.relative_error)},
                         {"relative torque error (robot file)", Format("%.4g", id.model_fit.relative_error)}};
   if (report.validation) {
