@@ -53,7 +53,7 @@ std::string RatioText(const Eigen::ArrayXd& x) {
 // OLS (or WLS) on draws τ = W β + e, e per joint AR(1) of coefficient ρ with
 // stationary standard deviations 1 and sd2 (≠ 1: heteroskedastic),
 // independent between joints.
-MonteCarlo Run(double rho, bool wls, double sd2, int n_draws = 400, Eigen::Index n = 10000) {
+MonteCarlo RunMonteCarlo(double rho, bool wls, double sd2, int n_draws = 400, Eigen::Index n = 10000) {
   const Eigen::MatrixXd W = SlowRegressor(n);
   const Eigen::Vector4d beta_true(2.0, -1.0, 0.5, 3.0);
   const Eigen::VectorXd tau0 = W * beta_true;
@@ -103,7 +103,7 @@ TEST(ResidualCovarianceTest, Ar1NoiseBatchMeansSigmaMatchesTheMonteCarloSpread) 
   const double n_eff_ar1 = 10000 * (1.0 - rho) / (1.0 + rho);
   struct Case { bool wls; double sd2; bool white_by_factor; };
   for (const Case c : {Case{false, 1.0, true}, Case{false, 3.0, false}, Case{true, 3.0, true}}) {
-    const MonteCarlo mc = Run(rho, c.wls, c.sd2);
+    const MonteCarlo mc = RunMonteCarlo(rho, c.wls, c.sd2);
     const Eigen::ArrayXd hac_ratio = mc.mean_sigma.array() / mc.spread.array();
     const Eigen::ArrayXd white_ratio = mc.mean_white.array() / mc.spread.array();
     std::printf("%s, joint sd 1 and %.0f, rho %.2f: sigma/spread batch means %s, white %s (AR(1): 1/%.3g = %.3g); "
@@ -127,7 +127,7 @@ TEST(ResidualCovarianceTest, Ar1NoiseBatchMeansSigmaMatchesTheMonteCarloSpread) 
 TEST(ResidualCovarianceTest, WhiteNoiseBatchMeansSigmaIsTheWhiteSigma) {
   struct Case { bool wls; double sd2; };
   for (const Case c : {Case{false, 1.0}, Case{true, 3.0}, Case{false, 3.0}}) {
-    const MonteCarlo mc = Run(0.0, c.wls, c.sd2);
+    const MonteCarlo mc = RunMonteCarlo(0.0, c.wls, c.sd2);
     const Eigen::ArrayXd hac_ratio = mc.mean_sigma.array() / mc.spread.array();
     const Eigen::ArrayXd to_white = mc.mean_sigma.array() / mc.mean_white.array();
     std::printf("%s, joint sd 1 and %.0f, white noise: sigma/spread batch means %s; batch means / white %s; n_eff %.0f "
