@@ -147,14 +147,16 @@ TEST_F(KukaLwr4CliTest, CompareTakesRecordedLogsWithDefaultNoise) {
 // √(σ₁² + σ₂²), in about 95 % of cases if σ were honest. With σ as if the
 // residual were white (sigma_white): 27 % of the 64 (median difference
 // 4.5 σ). With the batch-means σ from the residual as it is, at least 80 %
-// (docs/commands/identify.md states the figure).
+// (docs/commands/identify.md states the figure). --write-unverified: the
+// physically consistent fit on measurements_2 costs +53 % against its OLS
+// optimum (tolerance 50 %), which would exit 1; the OLS estimate is the same.
 TEST_F(KukaLwr4CliTest, TwoRecordingsOfOneMotionAgreeWithinTheirSigma) {
   nlohmann::json runs[2];
   for (int k = 1; k <= 2; ++k) {
     const std::string out = "repeat" + std::to_string(k);
     const Result r = Run("identify --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() +
                          " --data " + (kData / "logs" / ("measurements_" + std::to_string(k) + ".csv")).string() +
-                         " --friction viscous,coulomb,offset --estimator ols --out " + (dir_ / out).string());
+                         " --friction viscous,coulomb,offset --estimator ols --write-unverified --out " + (dir_ / out).string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     runs[k - 1] = Json(out);
     EXPECT_EQ(runs[k - 1]["sigma_method"]["method"], "batch_means");
