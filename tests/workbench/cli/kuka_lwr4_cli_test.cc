@@ -122,10 +122,10 @@ TEST_F(KukaLwr4CliTest, CompareTakesRecordedLogsWithDefaultNoise) {
   auto log = [](int k) { return (kData / "logs" / ("measurements_" + std::to_string(k) + ".csv")).string(); };
   const std::string robot = " --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string();
   const Result positional = Run("compare " + log(1) + " " + log(2) + robot + " --log " + log(3) +
-                                " --friction viscous,coulomb,offset --out " + (dir_ / "p").string());
+                                " --friction viscous,coulomb,offset --trials 2 --out " + (dir_ / "p").string());
   ASSERT_EQ(positional.exit_code, 0) << positional.err;
   const Result flagged = Run("compare" + robot + " --log " + log(1) + " --log " + log(2) + " --log " + log(3) +
-                             " --friction viscous,coulomb,offset --out " + (dir_ / "f").string());
+                             " --friction viscous,coulomb,offset --trials 2 --out " + (dir_ / "f").string());
   ASSERT_EQ(flagged.exit_code, 0) << flagged.err;
   const nlohmann::json p = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "p" / "compare.json"));
   const nlohmann::json f = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "f" / "compare.json"));
