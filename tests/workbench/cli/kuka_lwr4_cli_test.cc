@@ -120,24 +120,23 @@ TEST_F(KukaLwr4CliTest, CompareRanksTheRecordedLogs) {
 // Issue 33: the KUKA's three logs compared with the defaults (no --tau-noise:
 // the default σ is sized for its 7 joints: 0.5 N m on joints 1-3, 0.05 on 4-7),
 // two of them given where motions go (recognised as recorded logs by their
-// torque columns) and one with --log; the same table as all three with --log.
+// torque columns) and one with --log. The conds are those of the three logs
+// all given with --log (docs/commands/compare.md's kuka example: 957.42,
+// 956.63, 2252.1); the noise does not enter them.
 TEST_F(KukaLwr4CliTest, CompareTakesRecordedLogsWithDefaultNoise) {
   auto log = [](int k) { return (kData / "logs" / ("measurements_" + std::to_string(k) + ".csv")).string(); };
-  const std::string robot = " --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string();
-  const Result positional = Run("compare " + log(1) + " " + log(2) + robot + " --log " + log(3) +
-                                " --friction viscous,coulomb,offset --out " + (dir_ / "p").string());
-  ASSERT_EQ(positional.exit_code, 0) << positional.err;
-  const Result flagged = Run("compare" + robot + " --log " + log(1) + " --log " + log(2) + " --log " + log(3) +
-                             " --friction viscous,coulomb,offset --out " + (dir_ / "f").string());
-  ASSERT_EQ(flagged.exit_code, 0) << flagged.err;
-  const nlohmann::json p = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "p" / "compare.json"));
-  const nlohmann::json f = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "f" / "compare.json"));
-  EXPECT_EQ(p["noise"]["tau"], nlohmann::json({0.5, 0.5, 0.5, 0.05, 0.05, 0.05, 0.05}));
-  ASSERT_EQ(p["motions"].size(), 3u);
+  const Result r = Run("compare " + log(1) + " " + log(2) + " --robot " +
+                       (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() + " --log " + log(3) +
+                       " --friction viscous,coulomb,offset --trials 2 --out " + (dir_ / "p").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json c = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "p" / "compare.json"));
+  EXPECT_EQ(c["noise"]["tau"], nlohmann::json({0.5, 0.5, 0.5, 0.05, 0.05, 0.05, 0.05}));
+  ASSERT_EQ(c["motions"].size(), 3u);
+  const double conds[3] = {957.42, 956.63, 2252.1};
   for (size_t m = 0; m < 3; ++m) {
-    EXPECT_TRUE(p["motions"][m]["recorded"].get<bool>());
-    EXPECT_EQ(p["motions"][m]["designed"]["cond"], f["motions"][m]["designed"]["cond"]);
-    EXPECT_EQ(p["motions"][m]["mean_relative_error"], f["motions"][m]["mean_relative_error"]);
+    EXPECT_TRUE(c["motions"][m]["recorded"].get<bool>());
+    EXPECT_TRUE(c["motions"][m]["simulated"].get<bool>());
+    EXPECT_NEAR(c["motions"][m]["designed"]["cond"].get<double>() / conds[m], 1.0, 1e-4);
   }
 }
 
