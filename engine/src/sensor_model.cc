@@ -1,10 +1,31 @@
 #include "idbench/engine/sensor_model.h"
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 namespace idbench {
+namespace {
+
+// 0 (white) or within (0, rate_hz/2]: a band above the Nyquist frequency
+// would be white at that rate.
+bool TorqueNoiseBandwidthIsValid(double bandwidth_hz, double rate_hz, std::string* why) {
+  if (bandwidth_hz == 0.0) return true;
+  if (!(bandwidth_hz > 0.0) || !std::isfinite(bandwidth_hz) || !(bandwidth_hz <= 0.5 * rate_hz)) {
+    if (why) {
+      char text[160];
+      std::snprintf(text, sizeof(text), "tau_noise_bandwidth_hz: expected 0 (white) or a band in (0, %.6g] Hz (half "
+                    "the sample rate), got %.6g", 0.5 * rate_hz, bandwidth_hz);
+      *why = text;
+    }
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 int SensorOptions::StepsPerSample(double dt) const {
   return static_cast<int>(std::lround(1.0 / (rate_hz * dt)));
@@ -31,7 +52,36 @@ bool SensorOptions::IsValid(int n_dof, double dt, std::string* why) const {
   for (double s : tau_noise) {
     if (!(s >= 0.0) || !std::isfinite(s)) return fail("torque noise must be >= 0 N m, got " + std::to_string(s));
   }
+  if (!TorqueNoiseBandwidthIsValid(tau_noise_bandwidth_hz, rate_hz, why)) return false;
   return true;
+}
+
+TorqueNoise::TorqueNoise(const std::vector<double>& sigma, int n_dof, double bandwidth_hz, double rate_hz) {
+  std::string why;
+  if (!TorqueNoiseBandwidthIsValid(bandwidth_hz, rate_hz, &why)) throw std::invalid_argument(why);
+  if (n_dof < 1 || (sigma.size() != 1 && sigma.size() != static_cast<size_t>(n_dof))) {
+    throw std::invalid_argument("tau_noise: expected 1 or " + std::to_string(n_dof) + " values, got " +
+                                std::to_string(sigma.size()));
+  }
+  sigma_ = sigma.size() == 1 ? std::vector<double>(static_cast<size_t>(n_dof), sigma[0]) : sigma;
+  state_.assign(sigma_.size(), 0.0);
+  started_.assign(sigma_.size(), false);
+  if (bandwidth_hz > 0.0) {
+    a_ = std::exp(-2.0 * M_PI * bandwidth_hz / rate_hz);
+    innovation_ = std::sqrt(1.0 - a_ * a_);
+  }
+}
+
+double TorqueNoise::Next(int joint, double standard_normal) {
+  const size_t j = static_cast<size_t>(joint);
+  double& x = state_.at(j);
+  if (!started_[j]) {
+    started_[j] = true;
+    x = sigma_[j] * standard_normal;
+  } else {
+    x = a_ * x + sigma_[j] * innovation_ * standard_normal;
+  }
+  return x;
 }
 
 JointLog Measure(const SimulationLog& log, const SensorOptions& options) {
@@ -53,6 +103,10 @@ JointLog Measure(const SimulationLog& log, const SensorOptions& options) {
   // One generator, drawn in a fixed order (sample, then q before τ by joint).
   std::mt19937_64 rng(options.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
+  std::optional<TorqueNoise> tau_noise;
+  if (!options.tau_noise.empty()) {
+    tau_noise.emplace(options.tau_noise, n_dof, options.tau_noise_bandwidth_hz, options.rate_hz);
+  }
   for (int s = 0; s < n_samples; ++s) {
     const LogStep& step = log.steps[static_cast<size_t>(s) * static_cast<size_t>(k)];
     out.t[s] = step.t;
@@ -66,7 +120,7 @@ JointLog Measure(const SimulationLog& log, const SensorOptions& options) {
       const double sigma = options.tau_noise.empty()      ? 0.0
                            : options.tau_noise.size() == 1 ? options.tau_noise[0]
                                                            : options.tau_noise[static_cast<size_t>(j)];
-      out.tau(s, j) = step.tau[j] + (sigma > 0.0 ? sigma * normal(rng) : 0.0);
+      out.tau(s, j) = step.tau[j] + (sigma > 0.0 ? tau_noise->Next(j, normal(rng)) : 0.0);
     }
     if (options.record_derivatives) {
       out.qd.row(s) = step.qd.transpose();

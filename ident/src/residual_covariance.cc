@@ -17,31 +17,68 @@ Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples) {
 }
 
 ScoreBatchMeans::ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples)
-    : n_samples_(n_samples), block_(block_samples == 0 ? BatchMeansBlockSamples(n_samples) : block_samples) {
+    : n_samples_(n_samples), automatic_(block_samples == 0) {
   if (n_parameters < 1 || n_samples < 1 || block_samples < 0) {
     throw std::invalid_argument("batch means: expected n_parameters >= 1, n_samples >= 1 and block_samples >= 0, got " +
                                 std::to_string(n_parameters) + ", " + std::to_string(n_samples) + ", " +
                                 std::to_string(block_samples));
   }
-  block_sum_ = Eigen::VectorXd::Zero(n_parameters);
-  sum_ = Eigen::MatrixXd::Zero(n_parameters, n_parameters);
+  auto add = [&](Eigen::Index block) {
+    Blocks blocks;
+    blocks.block = block;
+    blocks.block_sum = Eigen::VectorXd::Zero(n_parameters);
+    blocks.sum = Eigen::MatrixXd::Zero(n_parameters, n_parameters);
+    lengths_.push_back(std::move(blocks));
+  };
+  add(automatic_ ? BatchMeansBlockSamples(n_samples) : block_samples);
+  while (automatic_ && n_samples / (2 * lengths_.back().block) >= kMinAutoBlocks) add(2 * lengths_.back().block);
+  previous_ = c0_ = c1_ = Eigen::VectorXd::Zero(n_parameters);
 }
 
 void ScoreBatchMeans::Push(const Eigen::Ref<const Eigen::VectorXd>& score) {
-  if (score.size() != block_sum_.size() || n_pushed_ >= n_samples_) {
-    throw std::invalid_argument("batch means: expected a score of " + std::to_string(block_sum_.size()) +
+  if (score.size() != previous_.size() || n_pushed_ >= n_samples_) {
+    throw std::invalid_argument("batch means: expected a score of " + std::to_string(previous_.size()) +
                                 " entries and at most " + std::to_string(n_samples_) + " samples, got " +
                                 std::to_string(score.size()) + " entries for sample " + std::to_string(n_pushed_ + 1));
   }
-  block_sum_ += score;
+  if (n_pushed_ > 0) c1_ += score.cwiseProduct(previous_);
+  c0_ += score.cwiseAbs2();
+  previous_ = score;
   ++n_pushed_;
-  // A block complete: its sum's outer product into the total.
-  if (++in_block_ == block_) {
-    sum_.selfadjointView<Eigen::Lower>().rankUpdate(block_sum_);
-    block_sum_.setZero();
-    in_block_ = 0;
-    ++n_blocks_;
+  for (Blocks& blocks : lengths_) {
+    blocks.block_sum += score;
+    // A block complete: its sum's outer product into the total.
+    if (++blocks.in_block == blocks.block) {
+      blocks.sum.selfadjointView<Eigen::Lower>().rankUpdate(blocks.block_sum);
+      blocks.block_sum.setZero();
+      blocks.in_block = 0;
+      ++blocks.n_blocks;
+    }
   }
+}
+
+double ScoreBatchMeans::andrews_block_samples() const {
+  if (!automatic_ || n_pushed_ < 2) return 0.0;
+  double alpha = 0.0;
+  int counted = 0;
+  for (Eigen::Index k = 0; k < c0_.size(); ++k) {
+    if (!(c0_[k] > 0.0)) continue;  // a component that is zero throughout says nothing
+    const double rho = std::clamp(c1_[k] / c0_[k], 0.0, 1.0 - 1e-9);
+    alpha += 4.0 * rho * rho / ((1.0 - rho) * (1.0 - rho) * (1.0 + rho) * (1.0 + rho));
+    ++counted;
+  }
+  if (counted == 0) return 0.0;
+  alpha /= counted;
+  return 1.1447 * std::cbrt(alpha * static_cast<double>(n_pushed_));
+}
+
+const ScoreBatchMeans::Blocks& ScoreBatchMeans::Chosen() const {
+  if (!done() || lengths_.size() == 1) return lengths_.front();
+  const double wanted = andrews_block_samples();
+  for (const Blocks& blocks : lengths_) {
+    if (static_cast<double>(blocks.block) >= wanted) return blocks;
+  }
+  return lengths_.back();
 }
 
 Eigen::MatrixXd ScoreBatchMeans::Omega() const {
@@ -50,8 +87,9 @@ Eigen::MatrixXd ScoreBatchMeans::Omega() const {
     throw std::invalid_argument("batch means: expected " + std::to_string(n_samples_) + " samples in at least 2 blocks, got " +
                                 std::to_string(n_pushed_) + " samples in " + std::to_string(B));
   }
-  Eigen::MatrixXd sum = sum_;
-  if (in_block_ > 0) sum.selfadjointView<Eigen::Lower>().rankUpdate(block_sum_);  // the shorter last block
+  const Blocks& blocks = Chosen();
+  Eigen::MatrixXd sum = blocks.sum;
+  if (blocks.in_block > 0) sum.selfadjointView<Eigen::Lower>().rankUpdate(blocks.block_sum);  // the shorter last block
   Eigen::MatrixXd omega = sum.selfadjointView<Eigen::Lower>();
   return omega * (static_cast<double>(B) / static_cast<double>(B - 1));
 }

@@ -42,6 +42,7 @@ struct MonteCarlo {
   Eigen::VectorXd mean_sigma;  // mean over the draws of the batch-means σ
   Eigen::VectorXd mean_white;  // … of the white-residual σ
   double mean_n_effective = 0.0;
+  Eigen::Index min_block = 0, max_block = 0;  // the block lengths used, over the draws
 };
 
 std::string RatioText(const Eigen::ArrayXd& x) {
@@ -53,7 +54,9 @@ std::string RatioText(const Eigen::ArrayXd& x) {
 // OLS (or WLS) on draws τ = W β + e, e per joint AR(1) of coefficient ρ with
 // stationary standard deviations 1 and sd2 (≠ 1: heteroskedastic),
 // independent between joints.
-MonteCarlo RunMonteCarlo(double rho, bool wls, double sd2, int n_draws = 400, Eigen::Index n = 10000) {
+// block_samples: as ApplyStackedScoreCovariance's (0: chosen from the scores).
+MonteCarlo RunMonteCarlo(double rho, bool wls, double sd2, int n_draws = 400, Eigen::Index n = 10000,
+                         Eigen::Index block_samples = 0) {
   const Eigen::MatrixXd W = SlowRegressor(n);
   const Eigen::Vector4d beta_true(2.0, -1.0, 0.5, 3.0);
   const Eigen::VectorXd tau0 = W * beta_true;
@@ -75,10 +78,12 @@ MonteCarlo RunMonteCarlo(double rho, bool wls, double sd2, int n_draws = 400, Ei
       }
     }
     LinearFit fit = wls ? SolveWls(W, tau, kDof) : SolveOls(W, tau, kDof);
-    ApplyStackedScoreCovariance(W, tau, kDof, &fit);
+    ApplyStackedScoreCovariance(W, tau, kDof, &fit, block_samples);
     EXPECT_EQ(fit.covariance_method.method, CovarianceMethod::kBatchMeans);
-    EXPECT_EQ(fit.covariance_method.block_samples, 100);
-    EXPECT_EQ(fit.covariance_method.n_blocks, 100);
+    const Eigen::Index block = fit.covariance_method.block_samples;
+    EXPECT_EQ(fit.covariance_method.n_blocks, (n + block - 1) / block);
+    mc.min_block = d == 0 ? block : std::min(mc.min_block, block);
+    mc.max_block = std::max(mc.max_block, block);
     betas.col(d) = fit.beta;
     mc.mean_sigma += fit.sigma / static_cast<double>(n_draws);
     mc.mean_white += fit.sigma_white / static_cast<double>(n_draws);
@@ -117,6 +122,32 @@ TEST(ResidualCovarianceTest, Ar1NoiseBatchMeansSigmaMatchesTheMonteCarloSpread) 
       if (c.white_by_factor) EXPECT_NEAR(white_ratio[k] * factor, 1.0, 0.15) << "parameter " << k;
     }
     if (c.white_by_factor) EXPECT_NEAR(mc.mean_n_effective / n_eff_ar1, 1.0, 0.2);
+    // Andrews' length for ρ = 0.8 is 67 samples: the blocks stay at √n.
+    EXPECT_EQ(mc.min_block, 100);
+    EXPECT_EQ(mc.max_block, 100);
+  }
+}
+
+// ρ = 0.97 (a correlation time of 33 samples): blocks of √n = 100 samples
+// leave out the correlation across their boundaries, 2 Σ ℓ ρ^ℓ / L of the
+// long-run variance, σ (1 − 0.33)^½ = 0.82 of the truth; Andrews' length
+// (L_A = 1.1447 (α n)^⅓ = 253, α = 4ρ²/((1 − ρ)²(1 + ρ)²)) takes the next
+// summed length, 400 samples (25 blocks): σ within (1 − 0.08)^½ = 0.96, to
+// the σ's own scatter (~1/√(2·25) = 14 % per draw, 0.7 % over 400 draws).
+TEST(ResidualCovarianceTest, StronglyCorrelatedNoiseTakesLongerBlocks) {
+  const double rho = 0.97;
+  const MonteCarlo fixed = RunMonteCarlo(rho, false, 1.0, 400, 10000, 100);
+  const MonteCarlo chosen = RunMonteCarlo(rho, false, 1.0, 400, 10000);
+  const Eigen::ArrayXd fixed_ratio = fixed.mean_sigma.array() / fixed.spread.array();
+  const Eigen::ArrayXd chosen_ratio = chosen.mean_sigma.array() / chosen.spread.array();
+  std::printf("rho 0.97: sigma/spread with blocks of 100: %s; chosen (%ld to %ld samples): %s\n",
+              RatioText(fixed_ratio).c_str(), static_cast<long>(chosen.min_block), static_cast<long>(chosen.max_block),
+              RatioText(chosen_ratio).c_str());
+  EXPECT_EQ(chosen.min_block, 400);
+  EXPECT_EQ(chosen.max_block, 400);
+  for (int k = 0; k < kParameters; ++k) {
+    EXPECT_LT(fixed_ratio[k], 0.9) << "parameter " << k;  // the √n blocks' shortfall (0.82 expected)
+    EXPECT_NEAR(chosen_ratio[k], 0.96, 0.08) << "parameter " << k;
   }
 }
 
@@ -150,6 +181,16 @@ TEST(ResidualCovarianceTest, BlockSumsByHand) {
   EXPECT_EQ(BatchMeansBlockSamples(5), 3);
   EXPECT_EQ(BatchMeansBlockSamples(5027), 71);
   EXPECT_EQ(BatchMeansBlockSamples(10000), 100);
+  // Lengths summed: ⌈√n⌉ doubled while kMinAutoBlocks blocks remain.
+  ScoreBatchMeans automatic(1, 10000);
+  for (int t = 0; t < 10000; ++t) automatic.Push(Eigen::VectorXd::Constant(1, t % 2 ? 1.0 : -1.0));
+  EXPECT_EQ(automatic.andrews_block_samples(), 0.0);  // ρ = −1 counts as 0
+  EXPECT_EQ(automatic.block_samples(), 100);
+  ScoreBatchMeans slow(1, 10000);  // ρ → 1: the longest length, 400 (25 blocks; 800 would leave 12)
+  for (int t = 0; t < 10000; ++t) slow.Push(Eigen::VectorXd::Constant(1, t < 5000 ? 1.0 : -1.0));
+  EXPECT_GT(slow.andrews_block_samples(), 400.0);
+  EXPECT_EQ(slow.block_samples(), 400);
+  EXPECT_EQ(slow.n_blocks(), 25);
   ScoreBatchMeans scores(2, 5, 2);
   const std::vector<Eigen::Vector2d> s = {{1, 2}, {3, -1}, {0.5, 0.5}, {-2, 1}, {4, 0}};
   for (const Eigen::Vector2d& x : s) scores.Push(x);

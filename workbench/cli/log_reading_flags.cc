@@ -4,6 +4,12 @@
 
 namespace idbench::cli {
 
+void AddFilterFlags(CLI::App* command, LogFilterOptions* filter) {
+  command->add_option("--filter-cutoff", filter->cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
+      ->capture_default_str();
+  command->add_option("--filter-order", filter->order, "Butterworth order")->capture_default_str();
+}
+
 void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
                         double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s) {
   // Split here, not by CLI11 (which drops empty items: `t,q1,,q3` would read
@@ -30,9 +36,7 @@ void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<s
     command->add_option("--coulomb-smoothing", *coulomb_smoothing,
                         "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
   }
-  command->add_option("--filter-cutoff", filter->cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
-      ->capture_default_str();
-  command->add_option("--filter-order", filter->order, "Butterworth order")->capture_default_str();
+  AddFilterFlags(command, filter);
   command->add_option("--max-gap", *max_gap_s, "Longest time step resampled [s]; 0 = 10 median steps")
       ->capture_default_str();
 }

@@ -23,6 +23,9 @@ inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-uni
                                                      {"filter.order", "--filter-order"},
                                                      {"filter.decimation", "--decimate"}};
 
+// --filter-cutoff, --filter-order: the low-pass that estimates qd, qdd from q.
+void AddFilterFlags(CLI::App* command, LogFilterOptions* filter);
+
 // --columns, --topic, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
 // --filter-order, --max-gap, filling these fields of the command's options.
 // friction null (a command with its own --friction): no --friction or

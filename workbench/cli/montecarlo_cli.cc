@@ -7,6 +7,7 @@
 
 #include "cli_command.h"
 #include "common_flags.h"
+#include "log_reading_flags.h"
 #include "idbench/workbench/commands/montecarlo_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
 
@@ -14,7 +15,12 @@ namespace idbench::cli {
 namespace {
 
 // Fields of MonteCarloOptions named in messages (beside the shared ones).
-constexpr FieldFlag kMonteCarloSpellings[] = {{"trials", "--trials"}, {"samples", "--samples"}, {"tau_noise", "--tau-noise"}, {"trajectory", "--trajectory"}};
+constexpr FieldFlag kMonteCarloSpellings[] = {{"trials", "--trials"}, {"samples", "--samples"}, {"tau_noise", "--tau-noise"}, {"tau_noise_bandwidth_hz", "--tau-noise-bandwidth"}, {"trajectory", "--trajectory"}};
+
+struct MonteCarloFlags {
+  MonteCarloOptions options;
+  bool no_derivatives = false;  // --no-derivatives: options.record_derivatives = false
+};
 
 int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;
@@ -37,8 +43,8 @@ int MonteCarloCommand(const MonteCarloOptions& options, const UrdfLoadOptions& l
 
 CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context) {
   context->AddSpellings(kMonteCarloSpellings);
-  auto options = std::make_shared<MonteCarloOptions>();
-  MonteCarloOptions& montecarlo = *options;
+  auto flags = std::make_shared<MonteCarloFlags>();
+  MonteCarloOptions& montecarlo = flags->options;
   montecarlo.command_line = context->command_line();
   CLI::App* command = app->add_subcommand(
       "montecarlo", "Identification error under torque noise: seeded trials against the predicted covariance");
@@ -52,11 +58,20 @@ CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context) {
   command->add_option("--tau-noise", montecarlo.tau_noise,
                       "Torque noise sigma per joint, or one for all [N m]; default: 0.5 on joints 1-3, 0.05 on the others")
       ->delimiter(',');
+  command->add_option("--tau-noise-bandwidth", montecarlo.tau_noise_bandwidth_hz,
+                      "Torque noise low-pass coloured to this band [Hz], sigma unchanged; 0 = white")
+      ->capture_default_str();
+  command->add_flag("--no-derivatives", flags->no_derivatives,
+                    "Identify each trial from t, q, tau as a robot logs them: qd, qdd from the filtered q");
+  AddFilterFlags(command, &montecarlo.filter);
   AddFrictionFlag(command, &montecarlo.friction, "Friction terms");
   command->add_option("--trials", montecarlo.trials, "Number of trials")->capture_default_str();
   AddSeedFlag(command, &montecarlo.seed);
   AddOutFlag(command, &montecarlo.out_dir, "Directory for montecarlo.json (optional)");
-  return {command, [options, context] { return MonteCarloCommand(*options, *context->robot_load(), *context); }};
+  return {command, [flags, context] {
+            flags->options.record_derivatives = !flags->no_derivatives;
+            return MonteCarloCommand(flags->options, *context->robot_load(), *context);
+          }};
 }
 
 }  // namespace idbench::cli

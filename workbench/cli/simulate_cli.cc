@@ -20,7 +20,8 @@ constexpr FieldFlag kSimulateSpellings[] = {{"paper_accel_deg_s2", "--accel"},
                                             {"motor_viscous", "--motor-viscous"},
                                             {"motor_coulomb", "--motor-coulomb"},
                                             {"motor_rotor_inertia", "--motor-rotor-inertia"},
-                                            {"transmission", "--transmission"}};
+                                            {"transmission", "--transmission"},
+                                            {"tau_noise_bandwidth_hz", "--tau-noise-bandwidth"}};
 
 struct SimulateFlags {
   SimulateOptions options;
@@ -79,6 +80,9 @@ CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
   command->add_option("--tau-noise", simulate.sensors.tau_noise,
                       "Torque noise sigma [N m]: one value, or one per joint")
       ->delimiter(',');
+  command->add_option("--tau-noise-bandwidth", simulate.sensors.tau_noise_bandwidth_hz,
+                      "Torque noise low-pass coloured to this band [Hz], sigma unchanged; 0 = white")
+      ->capture_default_str();
   command->add_option("--q-noise", simulate.sensors.q_noise, "Position noise sigma [rad]")->capture_default_str();
   command->add_option("--encoder-resolution", simulate.sensors.q_resolution, "Encoder quantum [rad]; 0 = none")
       ->capture_default_str();

@@ -23,6 +23,7 @@ constexpr idbench::FieldSpelling kKeywordSpellings[] = {
     {"ramp_seconds", "ramp"},
     {"paper_accel_deg_s2", "paper_accel"},
     {"max_gap_s", "max_gap"},
+    {"tau_noise_bandwidth_hz", "tau_noise_bandwidth"},
     {"filter.cutoff_hz", "filter_cutoff"},
     {"filter.order", "filter_order"},
     {"filter.decimation", "decimate"},

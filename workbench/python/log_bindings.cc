@@ -51,7 +51,7 @@ void BindLog(py::module_& m) {
   m.def(
       "simulate",
       [](const Robot& robot, const std::string& trajectory, double duration, double paper_accel, double dt,
-         double rate, const std::vector<double>& tau_noise, double q_noise, double q_resolution, bool derivatives,
+         double rate, const std::vector<double>& tau_noise, double tau_noise_bandwidth, double q_noise, double q_resolution, bool derivatives,
          unsigned seed, const py::object& base_pose, const std::string& transmission,
          const std::vector<double>& motor_viscous, const std::vector<double>& motor_coulomb,
          const std::vector<double>& motor_rotor_inertia) {
@@ -64,6 +64,7 @@ void BindLog(py::module_& m) {
         options.dt = dt;
         options.sensors.rate_hz = rate;
         options.sensors.tau_noise = tau_noise;
+        options.sensors.tau_noise_bandwidth_hz = tau_noise_bandwidth;
         options.sensors.q_noise = q_noise;
         options.sensors.q_resolution = q_resolution;
         options.sensors.record_derivatives = derivatives;
@@ -100,14 +101,16 @@ void BindLog(py::module_& m) {
       py::arg("robot"), py::arg("trajectory") = sim_defaults.trajectory, py::kw_only(),
       py::arg("duration") = sim_defaults.duration, py::arg("paper_accel") = sim_defaults.paper_accel_deg_s2,
       py::arg("dt") = sim_defaults.dt, py::arg("rate") = sim_defaults.sensors.rate_hz,
-      py::arg("tau_noise") = std::vector<double>{}, py::arg("q_noise") = sim_defaults.sensors.q_noise,
+      py::arg("tau_noise") = std::vector<double>{},
+      py::arg("tau_noise_bandwidth") = sim_defaults.sensors.tau_noise_bandwidth_hz, py::arg("q_noise") = sim_defaults.sensors.q_noise,
       py::arg("q_resolution") = sim_defaults.sensors.q_resolution,
       py::arg("derivatives") = sim_defaults.sensors.record_derivatives, py::arg("seed") = sim_defaults.sensors.seed,
       py::arg("base_pose") = py::none(), py::arg("transmission") = sim_defaults.transmission,
       py::arg("motor_viscous") = std::vector<double>{}, py::arg("motor_coulomb") = std::vector<double>{},
       py::arg("motor_rotor_inertia") = std::vector<double>{},
       "Simulates the robot along a built-in motion or a trajectory file in Bullet (as `idbench simulate`), its base "
-      "at base_pose=(x, y, z, roll, pitch, yaw) [m, rad] when given; "
+      "at base_pose=(x, y, z, roll, pitch, yaw) [m, rad] when given; torque noise tau_noise [N m], white or low-pass "
+      "coloured to tau_noise_bandwidth [Hz] (sigma unchanged); "
       "returns {t, q, [qd, qdd], tau} as numpy arrays. With transmission (\"urdf\" or a file, as `idbench "
       "simulate --transmission`) and the motors' own motor_viscous, motor_coulomb, motor_rotor_inertia (one value "
       "or one per motor), also the motor side, qm = A·(q − q0), [qdm = A·qd], taum = A⁻ᵀ·tau, where the sensors' "

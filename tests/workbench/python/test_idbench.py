@@ -168,6 +168,25 @@ def test_a_refused_model_is_the_verdict_not_a_urdf(puma, tmp_path):
                                rtol=1e-12)
 
 
+def test_simulate_colours_the_torque_noise_to_its_band(puma):
+    # The noise, recovered as noisy minus noise-free torques, keeps sigma and has the lag-1 autocorrelation
+    # exp(-2 pi fc / fs) of a first-order low-pass (sensor_model.h); white noise has none.
+    clean = idbench.simulate(puma, "general", duration=3.0, rate=1000.0, derivatives=False)
+    coloured = idbench.simulate(puma, "general", duration=3.0, rate=1000.0, derivatives=False, tau_noise=[0.1],
+                                tau_noise_bandwidth=10.0, seed=5)
+    white = idbench.simulate(puma, "general", duration=3.0, rate=1000.0, derivatives=False, tau_noise=[0.1], seed=5)
+
+    def lag1(noise):
+        return np.mean([np.corrcoef(noise[1:, j], noise[:-1, j])[0, 1] for j in range(noise.shape[1])])
+
+    noise = coloured["tau"] - clean["tau"]
+    assert np.std(noise) == pytest.approx(0.1, rel=0.1)
+    assert lag1(noise) == pytest.approx(np.exp(-2 * np.pi * 10.0 / 1000.0), abs=0.02)
+    assert abs(lag1(white["tau"] - clean["tau"])) < 0.03
+    with pytest.raises(ValueError, match="^tau_noise_bandwidth: expected 0 .white. or a band in .0, 500. Hz"):
+        idbench.simulate(puma, "general", duration=1.0, tau_noise=[0.1], tau_noise_bandwidth=600.0)
+
+
 def test_errors_carry_the_command_lines_messages_in_keywords(puma, tmp_path):
     code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
     assert code != 0

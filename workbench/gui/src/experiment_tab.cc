@@ -48,9 +48,10 @@ void GuiApp::Impl::DrawExperimentTab() {
   if (s.sensors.tau_noise.empty()) s.sensors.tau_noise.push_back(0.0);
   widgets.InputDouble("experiment.tau_noise", "τ noise σ [N m]", &s.sensors.tau_noise[0]);
   ImGui::SameLine(260);
+  widgets.InputDouble("experiment.tau_noise_bandwidth", "τ noise band [Hz] (0: white)", &s.sensors.tau_noise_bandwidth_hz);
   widgets.InputDouble("experiment.q_noise", "q noise σ [rad]", &s.sensors.q_noise);
-  widgets.InputUnsigned("experiment.seed", "noise seed", &s.sensors.seed);
   ImGui::SameLine(260);
+  widgets.InputUnsigned("experiment.seed", "noise seed", &s.sensors.seed);
   widgets.InputDouble("experiment.rate", "rate [Hz]", &s.sensors.rate_hz);
   ImGui::EndDisabled();
   if (widgets.Button("experiment.simulate", "Simulate", !busy)) session.StartSimulate();

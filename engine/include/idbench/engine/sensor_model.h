@@ -17,6 +17,9 @@ struct SensorOptions {
   double q_resolution = 0.0;      // encoder quantum [rad]; 0 = none
   double q_noise = 0.0;           // σ of position noise [rad], before quantisation
   std::vector<double> tau_noise;  // σ of torque noise [N m]: none, one for all joints, or one per joint
+  // Band of the torque noise [Hz]: 0 = white; else low-pass coloured to
+  // this −3 dB cutoff with σ unchanged (TorqueNoise), in (0, rate_hz/2].
+  double tau_noise_bandwidth_hz = 0.0;
   bool record_derivatives = true; // log the simulator's exact qd, qdd
   unsigned seed = 1;              // the noise is reproducible for a given seed
 
@@ -24,6 +27,32 @@ struct SensorOptions {
   bool IsValid(int n_dof, double dt, std::string* why) const;
   // Decimation of the simulation steps: round(1 / (rate_hz · dt)).
   int StepsPerSample(double dt) const;
+};
+
+// Torque noise of σ_j per joint, sample by sample: white, or coloured by a
+// first-order low-pass of −3 dB cutoff f_c (the exact discretisation of an
+// Ornstein–Uhlenbeck process at the sample rate f_s):
+//   x_0 = σ e_0,   x_k = a x_{k−1} + σ √(1 − a²) e_k,   a = exp(−2π f_c / f_s),
+// e_k standard normal draws, so every x_k has variance σ² (stationary from
+// the first sample) and the autocorrelation at lag ℓ is a^ℓ. White (f_c = 0)
+// is a = 0: x_k = σ e_k, the same numbers for the same draws.
+class TorqueNoise {
+ public:
+  // sigma: one σ for all joints or one per joint [N m]; bandwidth_hz 0 or in
+  // (0, rate_hz/2]. Throws std::invalid_argument naming tau_noise or
+  // tau_noise_bandwidth_hz.
+  TorqueNoise(const std::vector<double>& sigma, int n_dof, double bandwidth_hz, double rate_hz);
+
+  // Joint j's noise at its next sample, from a standard normal draw.
+  double Next(int joint, double standard_normal);
+  // exp(−2π f_c / f_s): the correlation of consecutive samples (0 = white).
+  double correlation() const { return a_; }
+
+ private:
+  std::vector<double> sigma_;  // per joint
+  std::vector<double> state_;  // x_{k−1} per joint
+  std::vector<bool> started_;
+  double a_ = 0.0, innovation_ = 1.0;  // a, √(1 − a²)
 };
 
 // Samples a simulation log through the sensors. Throws std::invalid_argument

@@ -11,33 +11,47 @@
 // is kept. Its covariance is the sandwich
 //   cov = G Ω G,   Ω = Var(Σ_t s_t).
 // Ω by non-overlapping batch means (Conway 1963; Flegal & Jones 2010, Ann.
-// Statist. 38(2)): the n samples cut into blocks of L = ⌈√n⌉ consecutive
-// samples, S_b = Σ_{t∈b} s_t at the fitted β̂ (the residual e = τ − W β̂), and
+// Statist. 38(2)): the n samples cut into blocks of L consecutive samples,
+// S_b = Σ_{t∈b} s_t at the fitted β̂ (the residual e = τ − W β̂), and
 //   Ω = B/(B − 1) Σ_b S_b S_bᵀ     (B blocks).
 // Correlation within a block is counted in full, across blocks only at their
-// boundaries: consistent when the residual's correlation time is short
-// against L, and L = ⌈√n⌉ grows with the log. Its expectation weights lag ℓ
-// by (1 − ℓ/L), Newey–West's Bartlett kernel with bandwidth L; B/(B − 1)
-// undoes the shrinkage of Σ_b S_b S_bᵀ by the fitted β̂ (Σ_t s_t = 0 at β̂:
-// for white noise and similar blocks, E Σ_b S_b S_bᵀ = (1 − 1/B) σ² W̃ᵀW̃).
-// It needs only the running block sum and a p × p accumulator: memory
-// O(p²), whatever the log's length.
+// boundaries: its expectation weights lag ℓ by (1 − ℓ/L), Newey–West's
+// Bartlett kernel with bandwidth L, so Ω is short by about 2 Σ_ℓ ℓ γ_ℓ / L:
+// L must be long against the residual's correlation time. B/(B − 1) undoes
+// the shrinkage of Σ_b S_b S_bᵀ by the fitted β̂ (Σ_t s_t = 0 at β̂: for white
+// noise and similar blocks, E Σ_b S_b S_bᵀ = (1 − 1/B) σ² W̃ᵀW̃).
+// The block length: at least L₀ = ⌈√n⌉ (the standard consistent batch size),
+// longer when the scores are strongly correlated: Andrews' (1991,
+// Econometrica 59(3)) AR(1) plug-in bandwidth for the Bartlett kernel,
+//   L_A = 1.1447 (α n)^{1/3},  α = mean_k 4ρ_k² / ((1 − ρ_k)² (1 + ρ_k)²),
+// ρ_k the lag-1 autocorrelation of score component k (each component
+// weighted alike, whatever its scale; ρ_k < 0 counts as 0). The blocks are
+// summed at L₀, 2L₀, 4L₀, … (while they give at least kMinAutoBlocks
+// blocks) in the same pass, and the shortest of those ≥ L_A is used (the
+// longest when none is). Measured on AR(1) noise of ρ = 0.97 over 10 000
+// samples, 400 draws (tests/ident/residual_covariance_test.cc): L₀ = 100
+// gives σ 0.80–0.86 of the spread of the estimates, the chosen 400 0.90–0.98.
+// It needs only running block sums and p × p accumulators per length:
+// memory O(p² log n), whatever the log's length.
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "idbench/ident/linear_estimator.h"
 
 namespace idbench {
 
-// ⌈√n⌉, at least 1: the samples per block of batch means for n samples.
+// ⌈√n⌉, at least 1: the shortest block of batch means for n samples.
 Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples);
+// The fewest blocks a longer block length may leave (automatic length).
+inline constexpr Eigen::Index kMinAutoBlocks = 20;
 
 // The scores of a fit's samples, pushed in time order, summed over blocks.
 class ScoreBatchMeans {
  public:
   // p parameters, n_samples that will be pushed, block_samples per block
-  // (0: BatchMeansBlockSamples(n_samples)). Throws std::invalid_argument for
+  // (0: chosen from the scores, above). Throws std::invalid_argument for
   // p < 1, n_samples < 1 or block_samples < 0.
   ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples = 0);
 
@@ -47,17 +61,30 @@ class ScoreBatchMeans {
 
   bool done() const { return n_pushed_ == n_samples_; }
   Eigen::Index n_samples() const { return n_samples_; }
-  Eigen::Index block_samples() const { return block_; }
-  // Blocks (the last may be shorter); complete once done().
-  Eigen::Index n_blocks() const { return n_blocks_ + (in_block_ > 0 ? 1 : 0); }
+  // The block length used (before done(): the shortest summed).
+  Eigen::Index block_samples() const { return Chosen().block; }
+  // Blocks of that length (the last may be shorter); complete once done().
+  Eigen::Index n_blocks() const { return Chosen().n_blocks + (Chosen().in_block > 0 ? 1 : 0); }
+  // Andrews' L_A from the scores so far (0 before two samples, or when the
+  // block length was given).
+  double andrews_block_samples() const;
   // B/(B − 1) Σ_b S_b S_bᵀ (p × p); requires done() and at least 2 blocks.
   Eigen::MatrixXd Omega() const;
 
  private:
-  Eigen::Index n_samples_, block_;
-  Eigen::Index n_pushed_ = 0, in_block_ = 0, n_blocks_ = 0;
-  Eigen::VectorXd block_sum_;  // S_b of the block being filled (p)
-  Eigen::MatrixXd sum_;        // Σ_b S_b S_bᵀ over the completed blocks (p × p)
+  struct Blocks {                // the sums at one block length
+    Eigen::Index block = 1;
+    Eigen::Index in_block = 0, n_blocks = 0;
+    Eigen::VectorXd block_sum;   // S_b of the block being filled (p)
+    Eigen::MatrixXd sum;         // Σ_b S_b S_bᵀ over the completed blocks (p × p)
+  };
+  const Blocks& Chosen() const;
+
+  Eigen::Index n_samples_;
+  Eigen::Index n_pushed_ = 0;
+  bool automatic_;
+  std::vector<Blocks> lengths_;  // L₀, 2L₀, … (one: a given length)
+  Eigen::VectorXd previous_, c0_, c1_;  // s_{t−1}; Σ s_t²; Σ s_t s_{t−1} (p)
 };
 
 // Adds the scores of dense stacked rows (rows interleaved by joint,

@@ -1,7 +1,12 @@
 // `idbench montecarlo`: how much to trust joint-torque identification under
 // torque noise. One noise-free Bullet experiment (and a held-out one) is
-// simulated; every trial adds fresh seeded noise to the torques, identifies
-// by WLS, and is compared with the truth and with the predicted covariance.
+// simulated; every trial adds fresh seeded noise to the torques (white, or
+// coloured to a band), identifies by WLS with σ from the residual as it is
+// (batch means, residual_covariance.h), and is compared with the truth: the
+// spread against the printed σ, and how often the printed 95 % intervals
+// hold the truth (coverage). With record_derivatives off, each trial
+// identifies from t, q, τ as a robot's log: qd, qdd from the filtered q and
+// the equations parallel-filtered, as identify does.
 #pragma once
 
 #include <string>
@@ -10,6 +15,7 @@
 #include "idbench/engine/enum_names.h"
 #include "idbench/engine/trajectory.h"
 #include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/signal_filter.h"
 
 namespace idbench {
 
@@ -30,6 +36,11 @@ struct MonteCarloOptions {
   double dt = 1e-3;                            // simulation step [s]
   int samples = 1000;                          // samples over the identification motion's duration
   std::vector<double> tau_noise;               // σ per joint (or one for all) [N m]; empty: DefaultTorqueNoise
+  double tau_noise_bandwidth_hz = 0.0;         // 0: white; else coloured to this band (SensorOptions)
+  // true: the simulator's exact qd, qdd; false: t, q, τ only, through
+  // `filter` (identify's filter path, its defaults: trims 5/fc).
+  bool record_derivatives = true;
+  LogFilterOptions filter{.trim_s = -1.0};
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   int trials = 100;
   unsigned seed = 1;
@@ -53,10 +64,13 @@ struct MonteCarloReport {
   std::string trajectory, held_out;    // the motions' names (options' trajectory and held_out)
   int trials = 0, samples = 0;         // as run
   std::vector<double> tau_noise;       // σ per joint (or one for all) [N m], as run
+  double tau_noise_bandwidth_hz = 0.0; // as run (0: white)
+  bool record_derivatives = true;      // as run (false: the filter path)
   JointLog log;                        // the noise-free identification log (Bullet-executed states)
   BaseParameters base;
   Eigen::VectorXd beta_true;           // C·π of the robot file (n_base)
-  Eigen::VectorXd predicted_sigma;     // mean over trials of WLS's σ per base parameter
+  Eigen::VectorXd predicted_sigma;     // mean over trials of the printed σ per base parameter (batch means)
+  Eigen::VectorXd predicted_sigma_white;  // the same for the white-residual formula
   Eigen::VectorXd empirical_sigma;     // standard deviation of the trials' estimates
   Eigen::VectorXd empirical_bias;      // mean estimate − truth
   double mean_relative_error = 0.0;    // mean over trials of ‖β̂ − β‖/‖β‖
@@ -65,10 +79,17 @@ struct MonteCarloReport {
   double held_out_noise_floor = 0.0;   // the same for the true parameters (noise alone)
   double worst_sigma_ratio = 0.0;      // max |empirical/predicted − 1| over base parameters
   int worst_sigma_index = 0;
+  // Fraction of trials × base parameters whose printed 95 % interval
+  // β̂ ± 1.96 σ holds the truth: with σ from batch means (coverage) and from
+  // the white-residual formula (coverage_white). Honest σ: about 0.95.
+  double coverage = 0.0, coverage_white = 0.0;
+  double n_effective = 0.0;            // mean over trials of the fits' effective sample count
+  int n_equation_samples = 0;          // samples whose equations each trial fits (after filtering's trim)
 
-  // Four lines: what ran, the mean error against the predicted one, the worst
-  // σ ratio and the held-out error against the noise alone (the first and
-  // last lines of FormatMonteCarloTables); kNotExcited: what ran and message.
+  // Five lines: what ran, the mean error against the predicted one, the worst
+  // σ ratio, the coverage and the held-out error against the noise alone (the
+  // first and last lines of FormatMonteCarloTables); kNotExcited: what ran
+  // and message.
   std::string BriefReport() const;
 };
 
