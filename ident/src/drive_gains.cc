@@ -1,5 +1,7 @@
 #include "idbench/ident/drive_gains.h"
 
+#include "idbench/ident/residual_covariance.h"
+
 #include <Eigen/SVD>
 #include <cmath>
 #include <cstdio>
@@ -85,9 +87,10 @@ GainEquations StackGainSystem(const RobotModel& model, const DriveGainOptions& o
 // measured: e = (W β + Y φ' + M y)/K_j − i per row of joint j (the first
 // n_head unknowns are [β; φ'], the last n the gains K). Started at *x;
 // noise-free data are a fixed point. *solution: the solve at the estimate
-// (its Jacobian, for σ) with the residual ‖e‖².
+// (its Jacobian *J, for σ) with the residual *e and ‖e‖².
 void RefineInCurrentUnits(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
-                          const std::vector<std::string>& names, Eigen::VectorXd* x, MinNormSolution* solution) {
+                          const std::vector<std::string>& names, Eigen::VectorXd* x, MinNormSolution* solution,
+                          Eigen::MatrixXd* J_at_estimate, Eigen::VectorXd* e_at_estimate) {
   const Eigen::Index p = A.cols(), n_head = p - n;
   auto current_residual = [&](const Eigen::VectorXd& xk, Eigen::MatrixXd* J) {
     const Eigen::VectorXd torque = A.leftCols(n_head) * xk.head(n_head) - b;  // W β + Y φ' + M y
@@ -115,6 +118,8 @@ void RefineInCurrentUnits(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, in
   const Eigen::VectorXd e = current_residual(*x, &J);
   *solution = SolveMinNorm(J, e, names);  // for σ: the Jacobian at the estimate
   solution->residual2 = e.squaredNorm();
+  *J_at_estimate = std::move(J);
+  *e_at_estimate = e;
 }
 
 // The estimate's status and message: gains the logs do not determine (from
@@ -230,7 +235,9 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
 
   // 2. Gauss–Newton in current units (RefineInCurrentUnits), from the linear
   //    estimate.
-  if (gains_found) RefineInCurrentUnits(A, b, n, out.unknown_names, &x, &solution);
+  Eigen::MatrixXd J = A;                  // the rows σ comes from, and their residual
+  Eigen::VectorXd J_residual = A * x - b;
+  if (gains_found) RefineInCurrentUnits(A, b, n, out.unknown_names, &x, &solution, &J, &J_residual);
   const Eigen::VectorXd x_full = x;  // the undetermined entries as the minimum-norm steps left them
   for (size_t c = 0; c < out.identifiable.size(); ++c) {
     if (!out.identifiable[c]) x[static_cast<Eigen::Index>(c)] = std::numeric_limits<double>::quiet_NaN();
@@ -239,11 +246,17 @@ DriveGainEstimate EstimateDriveGains(const RobotModel& model, const CurrentLog& 
   out.payload = x.segment(n_base, n_payload);
   out.gains = x.tail(n);
 
-  // σ² = ‖e‖²/(m − rank), cov = σ² (JᵀJ)⁺ (the linear A if no refinement).
+  // σ from the residual as it is (residual_covariance.h): the sandwich with
+  // G = (JᵀJ)⁺ (the linear A if no refinement) over the two logs' samples;
+  // σ_white² = ‖e‖²/(m − rank) G_kk.
   const double sigma2 = solution.residual2 / static_cast<double>(out.n_equations - out.rank);
-  out.sigma = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  const Eigen::MatrixXd G = solution.pseudo_inverse_factor * solution.pseudo_inverse_factor.transpose();
+  const Eigen::MatrixXd covariance = StackedSandwichCovariance(J, J_residual, n, G, sigma2, &out.covariance_method);
+  out.sigma = out.sigma_white = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
   for (int j = 0; j < n; ++j) {
-    if (out.identifiable[static_cast<size_t>(n_head + j)]) out.sigma[j] = std::sqrt(sigma2 * solution.variance[n_head + j]);
+    if (!out.identifiable[static_cast<size_t>(n_head + j)]) continue;
+    out.sigma[j] = std::sqrt(std::max(0.0, covariance(n_head + j, n_head + j)));
+    out.sigma_white[j] = std::sqrt(sigma2 * solution.variance[n_head + j]);
   }
 
   // Each log's torque residual W β + Y φ' + M y − K·i (the undetermined

@@ -1,5 +1,7 @@
 #include "idbench/ident/payload_estimator.h"
 
+#include "idbench/ident/residual_covariance.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -343,7 +345,14 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
   std::vector<std::string> parameter_reason(kInertialParametersPerLink);
   InertialParameters phi_filled = solution.x.tail(kInertialParametersPerLink);  // every entry finite
   out.phi = phi_filled;
-  out.covariance = sigma2 * M;
+  const Eigen::VectorXd residual = A * solution.x - b;
+  // σ from the residual as it is (residual_covariance.h): the sandwich with
+  // G = (AᵀA)⁺ = F_all F_allᵀ over the two logs' samples, one after the other.
+  const Eigen::MatrixXd G = solution.pseudo_inverse_factor * solution.pseudo_inverse_factor.transpose();
+  const Eigen::MatrixXd sandwich =
+      StackedSandwichCovariance(A, residual, model.n_dof(), G, sigma2, &out.covariance_method);
+  out.covariance = sandwich.bottomRightCorner(kInertialParametersPerLink, kInertialParametersPerLink);
+  out.covariance_white = sigma2 * M;
   bool all_identifiable = true;
   for (int i = 0; i < kInertialParametersPerLink; ++i) {
     out.parameter_identifiable[i] = solution.ls.identifiable[static_cast<size_t>(first + i)];
@@ -351,11 +360,12 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
     if (out.parameter_identifiable[i]) continue;
     all_identifiable = false;
     out.phi[i] = kNaN;
-    out.covariance.row(i).setConstant(kNaN);
-    out.covariance.col(i).setConstant(kNaN);
+    for (Matrix10* c : {&out.covariance, &out.covariance_white}) {
+      c->row(i).setConstant(kNaN);
+      c->col(i).setConstant(kNaN);
+    }
   }
   const Eigen::VectorXd payload_torque = A.bottomRows(A.rows() - loaded_first).rightCols(kInertialParametersPerLink) * phi_filled;
-  const Eigen::VectorXd residual = A * solution.x - b;
   out.payload_signal_to_noise = payload_torque.norm() / residual.tail(A.rows() - loaded_first).norm();
 
   // 3. The quantities' identifiability.
@@ -366,22 +376,29 @@ PayloadEstimate EstimatePayload(const RobotModel& model, const TorqueLog& loaded
                                           .eigenvalues()
                                           .minCoeff();
   if (all_identifiable) {
+    // The nearest body in the metric of the covariance (Mahalanobis), the
+    // white one's shape when the batch-means covariance is not definite.
     double distance2 = 0.0;
-    out.consistent_phi = ProjectOntoConsistent(phi_filled, M, &distance2);
+    const bool definite = Eigen::LLT<Matrix10>(out.covariance).info() == Eigen::Success;
+    const Matrix10 metric = definite ? Matrix10(out.covariance / sigma2) : M;
+    out.consistent_phi = ProjectOntoConsistent(phi_filled, metric, &distance2);
     out.projection_distance = distance2 > 0.0 ? std::sqrt(distance2 / sigma2) : 0.0;
     out.body = PayloadBodyFromParameters(out.consistent_phi);
     const Matrix10 J = PayloadQuantityJacobian(out.consistent_phi);
     out.sigma = (J * out.covariance * J.transpose()).diagonal().cwiseSqrt();
+    out.sigma_white = (J * out.covariance_white * J.transpose()).diagonal().cwiseSqrt();
   } else {
     out.consistent_phi.setConstant(kNaN);
     out.body = PayloadBodyFromParameters(phi_filled);
     const Matrix10 J = PayloadQuantityJacobian(phi_filled);
-    out.sigma = (J * (sigma2 * M) * J.transpose()).diagonal().cwiseSqrt();
+    out.sigma = (J * sandwich.bottomRightCorner(kInertialParametersPerLink, kInertialParametersPerLink) *
+                 J.transpose()).diagonal().cwiseSqrt();
+    out.sigma_white = (J * (sigma2 * M) * J.transpose()).diagonal().cwiseSqrt();
     Vector10 q = PayloadQuantities(out.body);
     for (int k = 0; k < kInertialParametersPerLink; ++k) {
       if (out.identifiable[k]) continue;
       q[k] = kNaN;
-      out.sigma[k] = kNaN;
+      out.sigma[k] = out.sigma_white[k] = kNaN;
     }
     out.body.mass = q[0];
     out.body.p_BoPcm_B = q.segment<3>(1);

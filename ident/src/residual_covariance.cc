@@ -8,6 +8,30 @@
 #include <vector>
 
 namespace idbench {
+namespace {
+
+// The summary of batch-means scores, n_eff = n · the median of the ratios
+// (σ_white,k / σ_k)² (reordered).
+CovarianceSummary Summarise(const ScoreBatchMeans& scores, std::vector<double>* ratios) {
+  CovarianceSummary summary;
+  summary.method = CovarianceMethod::kBatchMeans;
+  summary.n_samples = scores.n_samples();
+  summary.block_samples = scores.block_samples();
+  summary.n_blocks = scores.n_blocks();
+  double median = 1.0;
+  if (!ratios->empty()) {
+    const size_t h = ratios->size() / 2;
+    std::nth_element(ratios->begin(), ratios->begin() + static_cast<std::ptrdiff_t>(h), ratios->end());
+    median = (*ratios)[h];
+    if (ratios->size() % 2 == 0) {
+      median = 0.5 * (median + *std::max_element(ratios->begin(), ratios->begin() + static_cast<std::ptrdiff_t>(h)));
+    }
+  }
+  summary.n_effective = static_cast<double>(scores.n_samples()) * median;
+  return summary;
+}
+
+}  // namespace
 
 Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples) {
   if (n_samples <= 1) return 1;
@@ -141,21 +165,38 @@ void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit) {
     }
   }
   fit->rel_sigma_percent = 100.0 * fit->sigma.cwiseQuotient(fit->beta.cwiseAbs());
-  CovarianceSummary& summary = fit->covariance_method;
-  summary.method = CovarianceMethod::kBatchMeans;
-  summary.n_samples = scores.n_samples();
-  summary.block_samples = scores.block_samples();
-  summary.n_blocks = scores.n_blocks();
-  double median = 1.0;
-  if (!ratios.empty()) {
-    const size_t h = ratios.size() / 2;
-    std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(h), ratios.end());
-    median = ratios[h];
-    if (ratios.size() % 2 == 0) {
-      median = 0.5 * (median + *std::max_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(h)));
-    }
+  fit->covariance_method = Summarise(scores, &ratios);
+}
+
+Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
+                                          const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary) {
+  const Eigen::Index p = A.cols();
+  if (n_dof < 1 || A.rows() != residual.size() || A.rows() % n_dof != 0 || G.rows() != p || G.cols() != p) {
+    throw std::invalid_argument("stacked sandwich: expected A with whole samples of " + std::to_string(n_dof) +
+                                " rows, a residual of its rows and G of " + std::to_string(p) + " x " +
+                                std::to_string(p) + ", got " + std::to_string(A.rows()) + " x " +
+                                std::to_string(p) + ", " + std::to_string(residual.size()) + ", " +
+                                std::to_string(G.rows()) + " x " + std::to_string(G.cols()));
   }
-  summary.n_effective = static_cast<double>(scores.n_samples()) * median;
+  const Eigen::Index n = A.rows() / n_dof;
+  if (n < 1 || p < 1 || BatchMeansBlockSamples(n) >= n) {  // fewer than 2 blocks: the white formula
+    if (summary) *summary = CovarianceSummary{CovarianceMethod::kWhite, n, 0, 0, static_cast<double>(n)};
+    return sigma2 * G;
+  }
+  ScoreBatchMeans scores(static_cast<int>(p), n);
+  for (Eigen::Index t = 0; t < n; ++t) {
+    scores.Push(A.middleRows(t * n_dof, n_dof).transpose() * residual.segment(t * n_dof, n_dof));
+  }
+  Eigen::MatrixXd covariance = G * scores.Omega() * G;
+  covariance = 0.5 * (covariance + covariance.transpose()).eval();
+  if (summary) {
+    std::vector<double> ratios;
+    for (Eigen::Index k = 0; k < p; ++k) {
+      if (G(k, k) > 0.0 && covariance(k, k) > 0.0) ratios.push_back(sigma2 * G(k, k) / covariance(k, k));
+    }
+    *summary = Summarise(scores, &ratios);
+  }
+  return covariance;
 }
 
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,

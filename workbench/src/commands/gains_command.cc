@@ -9,6 +9,7 @@
 #include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
 #include "formats/json_number.h"
+#include "formats/sigma_method_json.h"
 
 namespace idbench {
 namespace {
@@ -139,6 +140,7 @@ std::string FormatGainsTable(const RobotModel& model, const GainsOptions& option
     }
     out += line;
   }
+  out += SigmaMethodText(e.covariance_method, "gains.json") + "\n";
   out += ResidualLine(e) + "\n";
   std::snprintf(line, sizeof(line), "Payload torque / loaded residual: %.3g (at least %g); unloaded K·i / robot file's "
                 "torques: %.3g (%g to %g)\n", e.payload_signal_to_noise, DriveGainOptions::kMinPayloadSignalToNoise,
@@ -151,10 +153,11 @@ std::string FormatGainsTable(const RobotModel& model, const GainsOptions& option
 std::string FormatGainsJson(const RobotModel& model, const GainsOptions& options, const GainsReport& report) {
   using nlohmann::json;
   const DriveGainEstimate& e = report.estimate;
-  json gains = json::array(), sigma = json::array(), payload = json::object();
+  json gains = json::array(), sigma = json::array(), sigma_white = json::array(), payload = json::object();
   for (int j = 0; j < model.n_dof(); ++j) {
     gains.push_back(NumberOrNull(e.gains[j]));
     sigma.push_back(NumberOrNull(e.sigma[j]));
+    sigma_white.push_back(NumberOrNull(e.sigma_white[j]));
   }
   for (size_t c = 0; c < PayloadParameterNames().size(); ++c) {
     payload[PayloadParameterNames()[c]] = NumberOrNull(e.payload[static_cast<Eigen::Index>(c)]);
@@ -162,6 +165,8 @@ std::string FormatGainsJson(const RobotModel& model, const GainsOptions& options
   const json result = {
       {"drive_gains", gains},
       {"sigma", sigma},
+      {"sigma_white", sigma_white},
+      {"sigma_method", SigmaMethodJson(e.covariance_method, "gains.json")},
       {"command", options.command_line},
       {"robot", model.name()},
       {"unloaded", {{"data", options.data}, {"n_samples", report.n_unloaded}, {"joint_rms", ToStdVector(e.unloaded_rms)},

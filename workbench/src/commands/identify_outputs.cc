@@ -10,6 +10,7 @@
 #include "idbench/engine/urdf.h"
 #include "idbench/workbench/formats/joints_yaml.h"
 #include "idbench/workbench/formats/mjcf_writer.h"
+#include "formats/sigma_method_json.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -205,13 +206,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"friction", options.friction},
       {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
       {"rank", id.linear.rank},
-      {"sigma_method",
-       {{"method", ToKey(id.linear.covariance_method.method)},
-        {"n_samples", id.linear.covariance_method.n_samples},
-        {"block_samples", id.linear.covariance_method.block_samples},
-        {"n_blocks", id.linear.covariance_method.n_blocks},
-        {"n_effective", id.linear.covariance_method.n_effective},
-        {"text", SigmaMethodText(id.linear)}}},
+      {"sigma_method", SigmaMethodJson(id.linear.covariance_method, "identified.json")},
       {"base_parameters", base},
       {"unexcited_standard_parameters", unexcited},
       {"fit", {{"joint_rms", ToStdVector(report.identification.fit.joint_rms)}, {"relative_error", report.identification.fit.relative_error}}},

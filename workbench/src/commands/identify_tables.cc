@@ -41,20 +41,21 @@ std::string SamplesText(const IdentifyReport& report) {
 
 }  // namespace
 
-std::string SigmaMethodText(const LinearFit& fit) {
-  const CovarianceSummary& c = fit.covariance_method;
+std::string SigmaMethodText(const CovarianceSummary& c, const std::string& output) {
   if (c.method == CovarianceMethod::kWhite) return "sigma: as if the residual were white (too few samples for batch means)";
   // The median factor between the two σ: √(n / n_eff).
   const double factor = c.n_effective > 0.0 ? std::sqrt(static_cast<double>(c.n_samples) / c.n_effective) : std::nan("");
   char text[400];
   std::snprintf(text, sizeof(text),
                 "sigma: from the residual as it is (coloured, per joint): batch means of the scores over %lld blocks of "
-                "%lld samples; n_eff %.4g of %lld samples (sigma as if white, sigma_white in identified.json: %.3g "
+                "%lld samples; n_eff %.4g of %lld samples (sigma as if white, sigma_white in %s: %.3g "
                 "times smaller, median)",
                 static_cast<long long>(c.n_blocks), static_cast<long long>(c.block_samples), c.n_effective,
-                static_cast<long long>(c.n_samples), factor);
+                static_cast<long long>(c.n_samples), output.c_str(), factor);
   return text;
 }
+
+std::string SigmaMethodText(const LinearFit& fit) { return SigmaMethodText(fit.covariance_method, "identified.json"); }
 
 double RelativeSigmaPercent(double value, double sigma) {
   if (!std::isfinite(value) || !std::isfinite(sigma) || !(std::abs(value) > 3.0 * sigma)) return std::nan("");

@@ -6,9 +6,11 @@
 #include <stdexcept>
 
 #include "idbench/engine/urdf.h"
+#include "idbench/workbench/commands/identify_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
 #include "formats/json_number.h"
+#include "formats/sigma_method_json.h"
 
 namespace idbench {
 namespace {
@@ -190,6 +192,7 @@ std::string FormatPayloadTable(const PayloadOptions& options, const PayloadSumma
     out += line;
   }
   out += "(centre of mass in link '" + summary.link_name + "' frame; inertia about the centre of mass, in its axes)\n";
+  out += SigmaMethodText(e.covariance_method, "payload.json") + "\n";
   for (int k = 0; k < 10; ++k) {
     if (!e.identifiable[static_cast<size_t>(k)]) out += PayloadQuantityNames()[k] + ": " + e.not_identifiable_reason[k] + "\n";
   }
@@ -225,6 +228,10 @@ std::string FormatPayloadJson(const RobotModel& model, const PayloadOptions& opt
       {"sigma", {{"mass", NumberOrNull(e.sigma[0])},
                  {"com", NumbersOrNull(e.sigma.segment<3>(1))},
                  {"inertia", NumbersOrNull(e.sigma.tail<6>())}}},
+      {"sigma_white", {{"mass", NumberOrNull(e.sigma_white[0])},
+                       {"com", NumbersOrNull(e.sigma_white.segment<3>(1))},
+                       {"inertia", NumbersOrNull(e.sigma_white.tail<6>())}}},
+      {"sigma_method", SigmaMethodJson(e.covariance_method, "payload.json")},
       {"verdict", {{"status", PayloadStatusName(summary.status)},
                    {"good", summary.good()},
                    {"message", summary.message},

@@ -76,7 +76,11 @@ struct DriveGainEstimate {
   DriveGainStatus status = DriveGainStatus::kEstimated;
   std::string message;          // what is not identifiable, and what to change
   Eigen::VectorXd gains;        // K [N m/A] (n_dof); NaN where not identifiable
-  Eigen::VectorXd sigma;        // standard deviation of K [N m/A] (n_dof); ∞ where not identifiable
+  // Standard deviation of K [N m/A] (n_dof); ∞ where not identifiable: from
+  // the residual as it is (batch means, residual_covariance.h), and as if it
+  // were white.
+  Eigen::VectorXd sigma, sigma_white;
+  CovarianceSummary covariance_method;  // how `sigma` was computed
   BaseParameters base;          // the robot's base parameters β stands for
   Eigen::VectorXd beta;         // β (n_base); NaN where not identifiable
   Eigen::VectorXd payload;      // φ' [kg m, kg m²] (9); NaN where not identifiable

@@ -101,9 +101,13 @@ struct PayloadEstimate {
   std::string message;             // why the status is not kEstimated, and what to change
   bool two_logs = false;
   int link = -1;                   // index of the payload's link
-  // Least squares: φ and its covariance (NaN where not identifiable).
+  // Least squares: φ and its covariance (NaN where not identifiable): from
+  // the residual as it is (batch means, residual_covariance.h), and as if it
+  // were white.
   InertialParameters phi;
   Eigen::Matrix<double, 10, 10> covariance;
+  Eigen::Matrix<double, 10, 10> covariance_white;
+  CovarianceSummary covariance_method;       // how `covariance` was computed
   std::vector<bool> parameter_identifiable;  // per φ entry (10)
   // The 10 quantities (PayloadQuantityNames): identifiable when every φ entry
   // they depend on is; the reason names the ones missing.
@@ -113,7 +117,8 @@ struct PayloadEstimate {
   InertialParameters consistent_phi;
   PayloadBody body;                          // of consistent_phi
   Eigen::Matrix<double, 10, 1> sigma;        // σ of the 10 quantities at it; NaN where not identifiable
-  double projection_distance = 0.0;          // ‖consistent − least squares‖ in σ (Mahalanobis)
+  Eigen::Matrix<double, 10, 1> sigma_white;  // the same from covariance_white
+  double projection_distance = 0.0;          // ‖consistent − least squares‖ in σ (Mahalanobis, `covariance`)
   double min_pseudo_inertia_eigenvalue = 0.0;  // of the least-squares φ [kg m²]
   // Fit.
   int rank = 0;                    // of the stacked equations

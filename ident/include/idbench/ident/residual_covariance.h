@@ -100,6 +100,17 @@ void PushStackedScores(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int
 // std::invalid_argument unless the scores are complete and of fit's size.
 void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit);
 
+// The batch-means sandwich G Ω G of a least-squares solution x of dense
+// stacked rows A x ≈ b (row = sample·n_dof + joint; several logs one after
+// the other, whole samples each), from its residual e = A x − b and
+// G = (AᵀA)⁺ (p × p); Ω from the per-sample scores A_tᵀ e_t. *summary
+// (optional) gets the method, blocks and n_eff against the white σ² G_kk
+// (sigma2 = ‖e‖²/(m − rank)). Returns sigma2 · G when there are too few
+// samples for 2 blocks (summary: kWhite). Throws std::invalid_argument on a
+// size mismatch. For estimators that are not LinearFit (payload, gains).
+Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
+                                          const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary);
+
 // The batch-means covariance of a fit to dense stacked rows (the rows the
 // fit was solved from): PushStackedScores, then ApplyScoreCovariance.
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,

@@ -148,7 +148,9 @@ std::string RefusedModelMessage(const IdentifyOptions& options, const IdentifyRe
 
 // The line identify prints under its table: how σ was computed (batch
 // means: blocks, samples per block), n_eff, and the factor to the
-// white-residual σ.
+// white-residual σ, which `output` (a file name) holds as sigma_white.
+std::string SigmaMethodText(const CovarianceSummary& summary, const std::string& output);
+// The same for identify (identified.json).
 std::string SigmaMethodText(const LinearFit& fit);
 
 // %σ of a value as printed: 100 σ/|value|, or NaN where |value| ≤ 3σ (the
