@@ -68,8 +68,8 @@ TEST(BaseParametersPuma560Test, FortyEightBaseParametersWithViscousAndCoulombFri
 
 // Actuator-side terms through a gear ratio N scale their columns by N (Fc)
 // and N² (Fv, Ia); the link columns do not. The base set is the same at any N
-// up to the transmission's bound (N = 1e4, and 1e5 beyond it: 48 and 30 on the
-// old code, which compared every column with the largest), and the rotor
+// up to the transmission's bound and beyond it (N = 1e5: 18 of 52 on the old
+// code, which compared every column with the largest), and the rotor
 // inertia absorbs link 1's Izz as Iam1 + Izz1/N² (by virtual work: motor 1
 // and link 1 turn together, N rad to 1).
 TEST(BaseParametersPuma560Test, GearRatiosDoNotChangeTheBaseSet) {
