@@ -78,6 +78,14 @@ void CheckInputFile(const std::string& path) {
   CheckStatus(path, status);
 }
 
+bool IsSameFile(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  // Device and inode, as std::filesystem::equivalent compares them.
+  struct stat status_a, status_b;
+  if (::stat(a.c_str(), &status_a) != 0 || ::stat(b.c_str(), &status_b) != 0) return false;
+  return status_a.st_dev == status_b.st_dev && status_a.st_ino == status_b.st_ino;
+}
+
 std::string ReadInputFile(const std::string& path) {
   CheckInputFile(path);
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);

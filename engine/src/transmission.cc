@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace idbench {
 
@@ -24,9 +26,27 @@ bool Transmission::IsValid(int n, std::string* why) const {
                 "actuator, one column per joint), got " + std::to_string(A.rows()) + " × " + std::to_string(A.cols()));
   }
   if (!A.allFinite()) return fail("actuator_from_joint: expected finite numbers");
+  // Bounded before the SVD: a ratio of 1e77 overflowed the regressor (N²) downstream.
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      if (std::abs(A(k, j)) > kMaxRatio) {
+        char text[64];
+        std::snprintf(text, sizeof(text), "%g", A(k, j));
+        return fail("actuator_from_joint[" + std::to_string(k) + "][" + std::to_string(j) + "]: " + text +
+                    " rad of motor " + std::to_string(k + 1) + " per rad of joint " + std::to_string(j + 1) +
+                    ", beyond any drive (a gear ratio of magnitude at most 10000)");
+      }
+    }
+  }
   const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
   if (n > 0 && !(sigma[n - 1] > 1e-12 * sigma[0])) {
     return fail("actuator_from_joint: not invertible (a joint no motor turns, or two motors turning as one)");
+  }
+  if (n > 0 && sigma[n - 1] < 1.0 / kMaxRatio) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%g", sigma[n - 1]);
+    return fail("actuator_from_joint: smallest singular value " + std::string(text) + ", below 1/10000: a joint "
+                "would turn more than 10000 rad per rad of its motors, beyond any drive");
   }
   if (joint_offset.size() != 0 && joint_offset.size() != n) {
     return fail("joint_offset: expected " + std::to_string(n) + " values, got " + std::to_string(joint_offset.size()));

@@ -18,11 +18,10 @@
 namespace idbench::internal {
 namespace {
 
-// Beyond any robot link: the largest <inertial> mass [kg], inertia entry
-// [kg m²] and centre-of-mass offset from the link frame [m] a file may give.
-constexpr double kMaxMass = 1e6;
-constexpr double kMaxInertia = 1e8;
-constexpr double kMaxOffset = 1e3;
+// Beyond any robot link (urdf.h).
+constexpr double kMaxMass = kMaxLinkMass;
+constexpr double kMaxInertia = kMaxLinkInertia;
+constexpr double kMaxOffset = kMaxLinkComOffset;
 
 Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

@@ -33,12 +33,19 @@ BaseParameters ComputeBaseParameters(const RobotModel& model, const FrictionMode
     ComputeJointTorqueRegressor(model, friction, q, qd, qdd, &data, &Y);
     W.middleRows(s * n, n) = Y;
   }
-  // 2. Zero columns, then QR with column pivoting of the normalised rest.
+  // 2. Zero columns, then QR with column pivoting of the normalised rest. A
+  // column is zero against the largest of its kind: the inertial ones, or the
+  // friction and rotor ones, which a transmission scales by N and N² (a
+  // reduction of 1e4 makes them 1e8 times the inertial ones; against those
+  // every inertial column would read as zero).
   const Eigen::VectorXd norms = W.colwise().norm();
-  const double max_norm = norms.maxCoeff();
+  const int n_inertial = std::min(p, model.n_links() * kInertialParametersPerLink);
+  const double max_inertial = n_inertial > 0 ? norms.head(n_inertial).maxCoeff() : 0.0;
+  const double max_friction = p > n_inertial ? norms.tail(p - n_inertial).maxCoeff() : 0.0;
   BaseParameters base;
   std::vector<int> live;
   for (int c = 0; c < p; ++c) {
+    const double max_norm = c < n_inertial ? max_inertial : max_friction;
     if (norms[c] > options.rank_tolerance * max_norm) live.push_back(c);
     else base.unexcited.push_back(c);
   }
@@ -71,7 +78,12 @@ BaseParameters ComputeBaseParameters(const RobotModel& model, const FrictionMode
   const Eigen::MatrixXd Wb = base.Reduce(W);
   Eigen::MatrixXd Wd(W.rows(), static_cast<int>(dependent.size()));
   for (size_t c = 0; c < dependent.size(); ++c) Wd.col(static_cast<int>(c)) = W.col(dependent[c]);
-  const Eigen::MatrixXd K = Wb.colPivHouseholderQr().solve(Wd);
+  // On normalised columns (K = D_b⁻¹·(W_b D_b⁻¹)⁺·W_d): the pivoting QR's
+  // rank threshold would otherwise drop the small columns beside N²-scaled ones.
+  Eigen::VectorXd scale_b(rank);
+  for (int k = 0; k < rank; ++k) scale_b[k] = norms[base.independent[static_cast<size_t>(k)]];
+  const Eigen::MatrixXd K =
+      scale_b.cwiseInverse().asDiagonal() * (Wb * scale_b.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(Wd);
 
   // 4. β = π_b + K π_d, with readable names.
   const std::vector<std::string> names = StandardParameterNames(model, friction);

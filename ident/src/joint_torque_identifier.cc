@@ -23,6 +23,11 @@ void CheckLog(const RobotModel& model, const JointLog& log) {
     throw std::invalid_argument("joint log has " + std::to_string(log.n_dof()) + " joints, robot '" +
                                 model.name() + "' has " + std::to_string(n));
   }
+  // Before the derivatives: an empty log has no qd, qdd either, and that is not what is wrong.
+  if (log.n_samples() == 0) {
+    throw std::invalid_argument("joint log has no samples (none in its time window, if it was cut to one): "
+                                "nothing to stack equations from");
+  }
   if (!log.has_derivatives()) {
     throw std::invalid_argument("joint log has no velocities and accelerations (qd, qdd): estimate them from q "
                                 "first (zero-phase low-pass filtering and differentiation)");
@@ -235,19 +240,25 @@ bool PlausibilitySettings::IsValid(std::string* why) const {
     if (why) *why = message;
     return false;
   };
+  // %g, not std::to_string's %f (1e300 would print 301 digits).
+  auto g = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.6g", v);
+    return std::string(text);
+  };
   if (!(mass_factor_min >= 0.0) || !(mass_factor_max >= 1.0) || !(mass_factor_min <= 1.0) || !(mass_factor_max <= 1e6))
     return fail("plausibility.mass_factor_min, plausibility.mass_factor_max: expected 0 <= LO <= 1 <= HI <= 1e6 (factors of each link's robot-file mass), got " +
-                std::to_string(mass_factor_min) + "," + std::to_string(mass_factor_max));
+                g(mass_factor_min) + "," + g(mass_factor_max));
   if (!(total_mass >= 0.0) || !(total_mass <= 1e6))
-    return fail("plausibility.total_mass: expected 0 (none) to 1e6 kg, got " + std::to_string(total_mass));
+    return fail("plausibility.total_mass: expected 0 (none) to 1e6 kg, got " + g(total_mass));
   if (!(total_mass_tolerance >= 0.0) || !(total_mass_tolerance <= 1.0))
-    return fail("plausibility.total_mass_tolerance: expected a fraction in [0, 1], got " + std::to_string(total_mass_tolerance));
+    return fail("plausibility.total_mass_tolerance: expected a fraction in [0, 1], got " + g(total_mass_tolerance));
   if (!(prior_weight > 0.0) || !(prior_weight <= 1e6))
-    return fail("plausibility.prior_weight: expected more than 0, up to 1e6, got " + std::to_string(prior_weight) +
+    return fail("plausibility.prior_weight: expected more than 0, up to 1e6, got " + g(prior_weight) +
                 ": the prior decides what the log does not determine (with 0 that is arbitrary); for a negligible "
                 "prior give a small value, e.g. 1e-8");
   if (!(cost_tolerance >= 0.0) || !(cost_tolerance <= 1e6))
-    return fail("plausibility.cost_tolerance: expected a fraction from 0 to 1e6, got " + std::to_string(cost_tolerance));
+    return fail("plausibility.cost_tolerance: expected a fraction from 0 to 1e6, got " + g(cost_tolerance));
   return true;
 }
 

@@ -73,7 +73,8 @@ bool JointLogFormat::IsValidFor(int n_dof, std::string* why) const {
                 std::to_string(n_dof) + " joints");
   }
   if (transmission && !transmission->IsValid(n_dof, why)) {
-    if (why) *why = "transmission." + *why;
+    // Named where it was given (a URDF's <transmission> elements), when known.
+    if (why) *why = (transmission->source.empty() ? "" : transmission->source + ": ") + "transmission." + *why;
     return false;
   }
   if (columns.empty()) return true;

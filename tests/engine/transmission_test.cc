@@ -67,5 +67,28 @@ TEST(TransmissionTest, InvalidOnesNameTheField) {
   EXPECT_EQ(why, "joint_offset: expected 6 values, got 3");
 }
 
+// Gear ratios are bounded as drive gains are (kMaxRatio = 1e4 either way):
+// 1e77 overflowed the regressor's N² (a segfault in the base-parameter QR),
+// 1e5 silently halved the base set. The bound itself is accepted.
+TEST(TransmissionTest, GearRatiosBeyondAnyDriveAreRefused) {
+  std::string why;
+  Transmission t = Tx40();
+  t.actuator_from_joint(2, 2) = 1e77;
+  EXPECT_FALSE(t.IsValid(6, &why));
+  EXPECT_EQ(why, "actuator_from_joint[2][2]: 1e+77 rad of motor 3 per rad of joint 3, beyond any drive (a gear ratio "
+                 "of magnitude at most 10000)");
+  t.actuator_from_joint(2, 2) = -1e5;
+  EXPECT_FALSE(t.IsValid(6, &why));
+  EXPECT_EQ(why.rfind("actuator_from_joint[2][2]: -100000 rad of motor 3", 0), 0u) << why;
+  t.actuator_from_joint(2, 2) = -Transmission::kMaxRatio;
+  EXPECT_TRUE(t.IsValid(6, &why)) << why;
+  t = Transmission::FromReduction({1, 1, 1e-5, 1, 1, 1});  // joint 3 turning 1e5 rad per motor rad
+  EXPECT_FALSE(t.IsValid(6, &why));
+  EXPECT_EQ(why, "actuator_from_joint: smallest singular value 1e-05, below 1/10000: a joint would turn more than "
+                 "10000 rad per rad of its motors, beyond any drive");
+  t = Transmission::FromReduction({1, 1, 1.0 / Transmission::kMaxRatio, 1, 1, 1});
+  EXPECT_TRUE(t.IsValid(6, &why)) << why;
+}
+
 }  // namespace
 }  // namespace idbench

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
+#include <algorithm>
 
 #include "engine/test_robots.h"
 #include "engine/test_util.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/puma560.h"
 
 namespace idbench {
 namespace {
@@ -62,6 +64,36 @@ TEST(BaseParametersPuma560Test, FortyEightBaseParametersWithViscousAndCoulombFri
   int friction_terms = 0;
   for (int c : base.independent) friction_terms += c >= 60;
   EXPECT_EQ(friction_terms, 12);
+}
+
+// Actuator-side terms through a gear ratio N scale their columns by N (Fc)
+// and N² (Fv, Ia); the link columns do not. The base set is the same at any N
+// up to the transmission's bound and beyond it (N = 1e5: 18 of 52 on the old
+// code, which compared every column with the largest), and the rotor
+// inertia absorbs link 1's Izz as Iam1 + Izz1/N² (by virtual work: motor 1
+// and link 1 turn together, N rad to 1).
+TEST(BaseParametersPuma560Test, GearRatiosDoNotChangeTheBaseSet) {
+  const RobotModel puma = MakePuma560();
+  auto base_through = [&](double N) {
+    FrictionModel friction;
+    friction.viscous = friction.coulomb = friction.rotor_inertia = true;
+    friction.actuator_from_joint = Eigen::MatrixXd::Identity(6, 6) * N;
+    return ComputeBaseParameters(puma, friction);
+  };
+  const BaseParameters direct = base_through(1.0);
+  const std::vector<std::string> names = StandardParameterNames(puma, FrictionModel{.viscous = true, .coulomb = true,
+                                                                                    .rotor_inertia = true});
+  for (double N : {160.0, 1e4, 1e5}) {
+    const BaseParameters geared = base_through(N);
+    EXPECT_EQ(geared.n_base(), direct.n_base()) << "N = " << N;
+    EXPECT_EQ(geared.independent, direct.independent) << "N = " << N;
+    if (N > 1e4) continue;  // below 1e-9 the combination's entries are not kept
+    // Iam1's base parameter (standard column 62: link 1's Fv, Fc, Ia after 60 inertial).
+    const auto at = std::find(geared.independent.begin(), geared.independent.end(), 62);
+    ASSERT_NE(at, geared.independent.end()) << "N = " << N;
+    const Eigen::Index k = at - geared.independent.begin();
+    EXPECT_NEAR(geared.combination(k, 9), 1.0 / (N * N), 1e-6 / (N * N)) << "N = " << N << ": " << names[9];
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, BaseParametersTest, ::testing::Range(0, testing::kNumTestRobots),

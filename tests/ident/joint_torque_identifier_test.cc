@@ -122,6 +122,33 @@ TEST_F(PredictTorqueSeriesTest, WrongNumberOfParametersThrows) {
                std::invalid_argument);
 }
 
+// A log of 0 samples (the Python regressor on empty arrays, a window holding
+// none) is said to have no samples, not to lack qd/qdd (it had 0 × 6 of
+// each); a log with samples but no qd/qdd still says that.
+TEST(StackBaseRegressorTest, AnEmptyLogIsSaidToHaveNoSamples) {
+  const RobotModel model = MakePuma560();
+  const FrictionModel friction{.viscous = true};
+  const BaseParameters base = ComputeBaseParameters(model, friction);
+  JointLog empty;
+  empty.t = Eigen::VectorXd(0);
+  empty.q = empty.qd = empty.qdd = empty.tau = Eigen::MatrixXd::Zero(0, 6);
+  try {
+    StackBaseRegressor(model, friction, base, empty);
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("joint log has no samples", 0), 0u) << e.what();
+  }
+  JointLog no_rates;
+  no_rates.t = Eigen::VectorXd::LinSpaced(3, 0.0, 0.02);
+  no_rates.q = no_rates.tau = Eigen::MatrixXd::Zero(3, 6);
+  try {
+    StackBaseRegressor(model, friction, base, no_rates);
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no velocities and accelerations (qd, qdd)"), std::string::npos) << e.what();
+  }
+}
+
 // ---- The verdict, on a robot file whose shapes are offset from its inertials --
 
 // puma560 (the truth, its Fv, Fc, Ia included) with each link drawn as a

@@ -37,6 +37,7 @@ int CompareCommand(const CompareOptions& options, const UrdfLoadOptions& load, b
   if (!options.IsValid(&why)) return context.UsageError(why);
   const RobotModel model = LoadRobotOrThrow(options.robot, load);
   const CompareReport report = RunCompare(model, options);
+  context.PrintWarnings(report.warnings);  // how the logs were read, as identify prints it
   std::fputs(FormatCompareTable(options, report).c_str(), stdout);
   OutputFiles out(options.out_dir);
   out.Add("compare.json", FormatCompareJson(options, report));

@@ -63,9 +63,19 @@ int DesignCommand(const DesignCommandOptions& options, const UrdfLoadOptions& lo
       std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(explanation).c_str());
       return kExitFailure;
     }
-    case DesignStatus::kNotExcited:  // a motion within the limits that leaves parameters unexcited: nothing written
+    case DesignStatus::kNotExcited: {  // a motion within the limits that leaves parameters unexcited
+      // Nothing written, unless asked: then design.json (status not_excited) and the motion found.
       std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(explanation).c_str());
+      if (!options.write_trajectory_anyway) return kExitFailure;
+      OutputFiles out(options.out_dir);
+      out.Add("design.json", FormatDesignJson(model, options, report));
+      out.Add("trajectory.json", FormatTrajectoryJson(report.result.trajectory));
+      out.Add("trajectory.csv", FormatDesignTrajectoryCsv(model, options, report));
+      out.Write();
+      std::fprintf(stderr, "idbench: wrote %s with the diagnostics and, as asked, trajectory.json and trajectory.csv\n",
+                   out.Path("design.json").c_str());
       return kExitFailure;
+    }
   }
   std::fputs(context.FlagSpelling(FormatDesignSummary(options, report)).c_str(), stdout);
   OutputFiles out(options.out_dir);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "workbench/cli/cli_fixture.h"
@@ -49,6 +50,47 @@ TEST_F(CompareCliTest, RecordedLogsAreRankedBesideTheMotions) {
   // (5/cutoff = 0.625 s each end) dropped first: 8.745 s, so 8.5 s.
   EXPECT_NEAR(c["motions"][1]["duration"].get<double>(), 9.75, 1e-9);
   EXPECT_NEAR(c["motions"][2]["duration"].get<double>(), 8.5, 1e-9);
+}
+
+// compare reads a log as identify does and says so as identify does: the
+// same notes before its table (a dropped line: "resampled ...") and the same
+// warnings (a radian log read with --angle-unit deg: "is the log in
+// radians?"; before, compare printed neither, and on the KUKA log cond 3.7e8
+// without a word). Here the degrees leave the PUMA's motion too small to
+// excite every parameter: the warning comes with that error.
+TEST_F(CompareCliTest, SaysHowItReadTheLogsAsIdentifyDoes) {
+  const fs::path whole = dir_ / "whole.csv", log = dir_ / "log.csv";
+  ASSERT_EQ(Run("simulate --robot puma560 --trajectory general --rate 200 --no-derivatives --out " + whole.string())
+                .exit_code, 0);  // q only: filtered, so resampled onto a uniform grid
+  std::istringstream in(idbench::testing::Slurp(whole));
+  std::ofstream out(log);
+  int n = 0;
+  for (std::string line; std::getline(in, line); ++n) {
+    if (n != 500) out << line << "\n";  // one sample dropped: a 10 ms step among 5 ms ones
+  }
+  out.close();
+  ASSERT_EQ(Run("identify --robot puma560 --data " + log.string() + " --out " + (dir_ / "id").string()).exit_code, 0);
+  const nlohmann::json notes = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "id" / "identified.json"))["log_preparation"];
+  ASSERT_GE(notes.size(), 1u);
+  EXPECT_NE(notes[0].get<std::string>().find("resampled"), std::string::npos) << notes.dump();
+  const Result r = Compare("general --log " + log.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& note : notes) EXPECT_NE(r.out.find(note.get<std::string>() + "\n"), std::string::npos) << r.out;
+  EXPECT_LT(r.out.find(notes[0].get<std::string>()), r.out.find("compare: torque model"));  // before the table, as identify
+  // In degrees: identify's warnings, word for word.
+  const Result id = Run("identify --robot puma560 --data " + log.string() + " --angle-unit deg --out " +
+                        (dir_ / "deg").string());
+  const Result deg = Compare("general --log " + log.string() + " --angle-unit deg");
+  EXPECT_NE(deg.err.find("is the log in radians?"), std::string::npos) << deg.err;
+  std::istringstream warnings(id.err);
+  int n_warnings = 0;
+  for (std::string line; std::getline(warnings, line);) {
+    const std::string prefix = "idbench: warning: ";
+    if (line.rfind(prefix, 0) != 0) continue;
+    EXPECT_NE(deg.err.find(line.substr(prefix.size())), std::string::npos) << line << "\n" << deg.err;
+    ++n_warnings;
+  }
+  EXPECT_GE(n_warnings, 1) << id.err;
 }
 
 TEST_F(CompareCliTest, BadLogsExitTwoNamingTheFile) {

@@ -150,6 +150,51 @@ TEST_F(DesignCliTest, NoFeasibleDesignIsExplainedInDesignJson) {
   EXPECT_FALSE(fs::exists(dir_ / "d" / "trajectory.json"));
 }
 
+// Joint 6 held still by its limits: a motion within every limit that leaves
+// joint 6's friction unexcited (status not_excited, exit 1). Nothing is
+// written unless --write-trajectory-anyway asks: then design.json with its
+// status and why, and the motion found, whose joint 6 indeed stands still.
+TEST_F(DesignCliTest, UnexcitedDesignIsWrittenWhenAsked) {
+  std::ofstream(dir_ / "still6.json") << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
+      {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
+      {"qd_max": 1e-12, "qdd_max": 1e-12}]})";
+  const std::string common = "design --robot puma560 --limits " + (dir_ / "still6.json").string() +
+                             " --starts 1 --max-evaluations 5 --quiet --out ";
+  const Result plain = Run(common + (dir_ / "a").string());
+  EXPECT_EQ(plain.exit_code, 1) << plain.err;
+  EXPECT_FALSE(fs::exists(dir_ / "a"));
+  const Result r = Run(common + (dir_ / "b").string() + " --write-trajectory-anyway");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("idbench: error: no design within these limits excites every parameter (rank "), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("design.json with the diagnostics and, as asked, trajectory.json and trajectory.csv"),
+            std::string::npos) << r.err;
+  const json design = json::parse(Slurp(dir_ / "b" / "design.json"));
+  EXPECT_EQ(design["status"], "not_excited");
+  EXPECT_FALSE(design["verdict"]["usable"].get<bool>());
+  EXPECT_EQ(design["not_excited"]["explanation"].get<std::string>().rfind("no design within these limits excites", 0), 0u);
+  EXPECT_LT(design["after"]["identifiability"]["rank"].get<int>(), static_cast<int>(design["parameters"].size()))
+      << design["after"].dump();
+  ASSERT_TRUE(fs::exists(dir_ / "b" / "trajectory.json"));
+  // trajectory.csv: t, q1..q6, ...; joint 6's q stays where it starts (its limits hold it).
+  std::istringstream csv(Slurp(dir_ / "b" / "trajectory.csv"));
+  std::string line;
+  std::getline(csv, line);  // header
+  double q6_min = 1e300, q6_max = -1e300;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> values;
+    std::stringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) values.push_back(std::stod(field));
+    ASSERT_GE(values.size(), 7u);
+    q6_min = std::min(q6_min, values[6]);
+    q6_max = std::max(q6_max, values[6]);
+    ++rows;
+  }
+  EXPECT_GT(rows, 100);
+  EXPECT_LT(q6_max - q6_min, 1e-6);
+}
+
 // Motor-side limits through --transmission (a TX40-like wrist: motor 6 turns
 // with joint 5); without a transmission they are refused, naming the flag.
 TEST_F(DesignCliTest, ActuatorLimitsNeedATransmissionAndAreKept) {

@@ -84,16 +84,36 @@ TEST_F(GainsCliTest, UnloadedAndLoadedLogsGiveTheGains) {
 // written. Bad options: exit 2.
 TEST_F(GainsCliTest, PairThatDoesNotDetermineTheGainsFails) {
   const fs::path unloaded = WriteCurrents("unloaded.csv", MakePuma560());
-  const Result r = Run("gains --robot puma560 --data " + unloaded.string() + " --loaded " + unloaded.string() +
+  const fs::path again = WriteCurrents("unloaded_again.csv", MakePuma560());  // a second recording, as it were
+  const Result r = Run("gains --robot puma560 --data " + unloaded.string() + " --loaded " + again.string() +
                        " --payload-mass 2.5" + kColumns + " --out " + (dir_ / "g").string());
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "g"));
-  const std::string base = "gains --robot puma560 --data " + unloaded.string() + " --loaded " + unloaded.string();
+  const std::string base = "gains --robot puma560 --data " + unloaded.string() + " --loaded " + again.string();
   EXPECT_EQ(Run(base + " --payload-mass 0" + kColumns).exit_code, 2);
   EXPECT_EQ(Run(base + " --payload-mass 1 --columns t,q1..q6,tau1..tau6,bogus").exit_code, 2);
   const Result no_currents = Run(base + " --payload-mass 1 --columns t,q1..q6,qd1..qd6,qdd1..qdd6,tau1..tau6");
   EXPECT_EQ(no_currents.exit_code, 2);  // the log lacks what gains needs: a wrong input
   EXPECT_NE(no_currents.err.find("missing column 'i1'"), std::string::npos) << no_currents.err;
+}
+
+// One file given as both logs, however spelled (./x.csv and x.csv, a link):
+// refused before anything is read, exit 2, naming both; two windows of one
+// file are two logs.
+TEST_F(GainsCliTest, TheSameFileTwiceIsRefused) {
+  const fs::path unloaded = WriteCurrents("unloaded.csv", MakePuma560());
+  fs::create_symlink(unloaded, dir_ / "link.csv");
+  const std::string common = " --payload-mass 2.5" + std::string(kColumns) + " --out " + (dir_ / "g").string();
+  for (const std::string& other : {(dir_ / "." / "unloaded.csv").string(), (dir_ / "link.csv").string()}) {
+    const Result r = Run("gains --robot puma560 --data " + unloaded.string() + " --loaded " + other + common);
+    EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find("--loaded: expected the log with the payload, got '" + other + "', the unloaded log '" +
+                         unloaded.string() + "' again (the same file)"), std::string::npos) << r.err;
+  }
+  const Result windows = Run("gains --robot puma560 --data " + unloaded.string() + " --loaded " +
+                             (dir_ / "link.csv").string() + " --time-window 0,5 --loaded-time-window 5,10" + common);
+  EXPECT_NE(windows.exit_code, 2) << windows.err;  // runs (two parts of one recording)
+  EXPECT_FALSE(fs::exists(dir_ / "g"));
 }
 
 // A log longer than the bound on what gains holds (200 000 samples): exit 2

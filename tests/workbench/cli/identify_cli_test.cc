@@ -14,6 +14,7 @@
 #include "ident/offset_geometry.h"
 #include "ident/synthetic_log.h"
 #include "workbench/cli/cli_fixture.h"
+#include "workbench/geared_paper6r.h"
 #include "workbench/cli/joint_log_writer.h"
 
 namespace idbench {
@@ -373,6 +374,38 @@ TEST_F(RealLogCliTest, HeaderlessCurrentsWithGainsAndTimeWindow) {
   }
 }
 
+// Joint 5's current logged as τ/6.2 read with the gain -6.2 (and joint 2's as
+// τ/55 with -55): those torques turn around, and their viscous and Coulomb
+// friction come out negative and "determined". A sign note under the table
+// names each, and the negative drive gain behind it; the right gains print
+// none.
+TEST_F(RealLogCliTest, NegativeFrictionFromANegativeGainGetsASignNote) {
+  const Eigen::VectorXd gains = (Eigen::VectorXd(6) << 31.5, 55.0, 28.0, 7.5, 6.2, 4.1).finished();
+  const fs::path path = Write("currents.csv", testing::SyntheticJointLog(model_, *motion_, Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0)),
+                              {"t", "q", "qd", "qdd", "i"}, false, gains);
+  const std::string args = "identify --robot puma560 --data " + path.string() + " --columns t,q1..q6,qd1..qd6,qdd1..qdd6,i1..i6";
+  const Result right = Run(args + " --drive-gains 31.5,55,28,7.5,6.2,4.1 --out " + (dir_ / "a").string());
+  ASSERT_EQ(right.exit_code, 0) << right.err;
+  EXPECT_EQ(right.out.find("sign:"), std::string::npos) << right.out;
+  const Result wrong = Run(args + " --drive-gains 31.5,-55,28,7.5,-6.2,4.1 --out " + (dir_ / "b").string());
+  const nlohmann::json b = Json(dir_ / "b" / "identified.json");
+  for (const char* name : {"Fv5", "Fc5", "Fv2", "Fc2"}) {
+    double value = 0.0;
+    std::string status;
+    for (const auto& p : b["base_parameters"]) {
+      if (p["name"] == name) value = p["value"], status = p["status"];
+    }
+    EXPECT_LT(value, 0.0) << name;
+    EXPECT_EQ(status, "determined") << name;
+    const std::string joint = std::string(name).substr(2);
+    const std::string gain = joint == "5" ? "6.2" : "55";
+    EXPECT_NE(wrong.out.find(std::string("sign: ") + name + " = "), std::string::npos) << wrong.out;
+    EXPECT_NE(wrong.out.find("(the drive gain of joint " + joint + " is negative, -" + gain +
+                             " N m/A: if its current is logged with the same sign as its torque, give " + gain + ")"),
+              std::string::npos) << wrong.out;
+  }
+}
+
 // (c) The KUKA LWR's shape: header t, q, qd, qdd, tau at 200 Hz: used as read,
 // exact to rounding.
 TEST_F(RealLogCliTest, FullDerivativesAt200Hz) {
@@ -532,6 +565,55 @@ TEST_F(IdentifyCliTest, VerdictOptionsAndDegenerateBoundsInRange) {
       }
     }
   }
+}
+
+// A window's message says what is wrong with it: three values, a bound that
+// is not a finite number, or the order (all "T0 < T1" before); a huge cost
+// tolerance is shown as %g, not 301 digits. Exit 2, nothing written.
+TEST_F(IdentifyCliTest, WindowAndToleranceMessagesSayWhatIsWrong) {
+  const fs::path log = SimulatePuma("log.csv");
+  const std::string common = "identify --robot puma560 --data " + log.string() + " --validate " + log.string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--validate-window 1,2,3", "--validate-window: expected two values T0,T1 [s], got 3 (1,2,3)"},
+      {"--validate-window nan,1", "--validate-window: expected finite bounds T0,T1 [s] (a number of seconds each), got nan,1"},
+      {"--time-window -inf,inf", "--time-window: expected finite bounds T0,T1 [s] (a number of seconds each), got -inf,inf"},
+      {"--time-window 5,2", "--time-window: expected T0,T1 [s] with T0 < T1, got 5,2"},
+      {"--cost-tolerance 1e300", "--cost-tolerance: expected a fraction from 0 to 1e6, got 1e+300\n"}};
+  for (const auto& [option, expected] : cases) {
+    const Result r = Run(common + " " + option + " --out " + (dir_ / "bad").string());
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << option << ": " << r.err;
+    const size_t error = r.err.find("idbench: error: ");
+    EXPECT_LT(r.err.find('\n', error) - error, 200u) << option << ": " << r.err;  // one line, no 301 digits
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  }
+}
+
+// Gear ratios beyond any drive (|N| > 1e4, as drive gains are bounded) are
+// refused before anything runs, exit 2, naming where they were given: a
+// URDF's <mechanicalReduction> of 1e77 (before: a segfault with
+// --friction-side actuator) and a description's 1e5 (before: run, with the
+// base set cut without a word).
+TEST_F(IdentifyCliTest, GearRatiosBeyondAnyDriveAreRefused) {
+  const fs::path log = SimulatePuma("log.csv");
+  std::ofstream(dir_ / "geared.urdf") << testing::GearedPaper6rUrdf({"100", "1e77", "100", "100", "100", "100"});
+  const fs::path paper6r_log = dir_ / "p6.csv";
+  ASSERT_EQ(Run("simulate --robot paper6r --duration 10 --rate 100 --out " + paper6r_log.string()).exit_code, 0);
+  Result r = Run("identify --robot " + (dir_ / "geared.urdf").string() + " --data " + paper6r_log.string() +
+                 " --friction-side actuator --out " + (dir_ / "a").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("idbench: error: " + (dir_ / "geared.urdf").string() + " (<transmission>): "
+                       "transmission.actuator_from_joint[1][1]: 1e+77 rad of motor 2 per rad of joint 2, beyond any "
+                       "drive (a gear ratio of magnitude at most 10000)"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "log.json") << R"({"files": [{"path": "log.csv"}],
+    "transmission": {"reduction": [100, 100, 100000, 100, 100, 100]}})";
+  r = Run("identify --robot puma560 --data " + (dir_ / "log.json").string() + " --friction-side actuator --out " +
+          (dir_ / "b").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("log.json: .transmission.actuator_from_joint[2][2]: 100000 rad of motor 3 per rad of joint 3"),
+            std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "a"));
+  EXPECT_FALSE(fs::exists(dir_ / "b"));
 }
 
 // A URDF link mass of 1e200 hung every identify (OLS too) on main 6ab1a0b:

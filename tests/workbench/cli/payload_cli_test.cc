@@ -157,6 +157,12 @@ TEST_F(PayloadCliTest, WrongOptionsExitTwoAndWriteNothing) {
   r = Run("payload --robot puma560 --data " + loaded.string() + " --unloaded " + loaded.string() + out);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--unloaded:"), std::string::npos) << r.err;
+  // The same file spelled differently: compared by device and inode.
+  const std::string spelled = (dir_ / "." / "loaded.csv").string();
+  r = Run("payload --robot puma560 --data " + loaded.string() + " --unloaded " + spelled + out);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("--unloaded: expected a log without the payload, got '" + spelled + "', the loaded log '" +
+                       loaded.string() + "' again (the same file)"), std::string::npos) << r.err;
   r = Run("payload --robot puma560 --data " + loaded.string() + " --unloaded-time-window 0,1" + out);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--unloaded-time-window"), std::string::npos) << r.err;

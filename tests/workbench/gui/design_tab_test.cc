@@ -12,6 +12,7 @@
 #include "idbench/engine/robot_library.h"
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
+#include "workbench/geared_paper6r.h"
 #include "workbench/gui/gui_test_util.h"
 
 namespace idbench::gui {
@@ -213,19 +214,8 @@ TEST(DesignTabTest, AMotorLimitThroughTheTransmissionEqualsRunDesign) {
 // limits file's motor limit, as `idbench design --transmission urdf` does.
 TEST(DesignTabTest, AMotorLimitThroughTheUrdfTransmissionEqualsRunDesign) {
   const fs::path out = DesignTabDir("urdf_motor");
-  std::string urdf = ReadFile(fs::path(IDBENCH_SOURCE_DIR) / "engine" / "robots" / "paper6r.urdf");
-  std::string transmissions;
-  for (int j = 1; j <= 6; ++j) {
-    const std::string n = std::to_string(j);
-    transmissions += "<transmission name=\"t" + n + "\"><type>transmission_interface/SimpleTransmission</type>"
-                     "<joint name=\"O" + n + "\"/><actuator name=\"m" + n +
-                     "\"><mechanicalReduction>50</mechanicalReduction></actuator></transmission>\n";
-  }
-  const size_t end = urdf.rfind("</robot>");
-  ASSERT_NE(end, std::string::npos);
-  urdf.insert(end, transmissions);
   const fs::path robot = out / "geared.urdf";
-  std::ofstream(robot) << urdf;
+  std::ofstream(robot) << testing::GearedPaper6rUrdf({"50", "50", "50", "50", "50", "50"});
   const fs::path limits = out / "limits.json";
   WriteLimitsFile(limits, "{\"q_min\": -2.5, \"q_max\": 2.5, \"qd_max\": 2, \"qdd_max\": 10}",
                   "[{\"qd_max\": 30}, {}, {}, {}, {}, {}]");

@@ -186,10 +186,13 @@ class RecordedMotion final : public Trajectory {
 };
 
 // Reads a recorded log with PrepareJointLog (identify's reading, resampling
-// and zero-phase filter) and drops the filter's end transients.
+// and zero-phase filter) and drops the filter's end transients; the reading's
+// notes and warnings go to report's.
 std::unique_ptr<RecordedMotion> LoadRecordedMotion(const std::string& path, const RobotModel& model,
-                                                   const CompareOptions& options) {
+                                                   const CompareOptions& options, CompareReport* report) {
   const PreparedLog prepared = PrepareJointLog(path, model, options.preparation());
+  report->notes.insert(report->notes.end(), prepared.notes.begin(), prepared.notes.end());
+  report->warnings.insert(report->warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   const JointLog& log = prepared.log;
   double trim = 0.0;  // [s] at both ends
   if (prepared.parallel_filter) {
@@ -316,7 +319,7 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) 
   const double spacing = options.samples * options.dt;
   for (const std::string& path : options.logs) {
     names.push_back(path);
-    std::unique_ptr<RecordedMotion> motion = LoadRecordedMotion(path, model, options);
+    std::unique_ptr<RecordedMotion> motion = LoadRecordedMotion(path, model, options, &report);
     const double cut = std::floor(motion->duration() / spacing + 1e-9) * spacing;
     simulated.push_back(cut >= spacing && cut / options.dt <= SimulationOptions::kMaxSteps);
     if (simulated.back()) motion->Cut(cut);
@@ -364,7 +367,12 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) 
       mc.seed = options.seed;
       const MonteCarloReport r = RunMonteCarlo(model, mc, *motion);
       // W of the motion had full rank, that of its simulated states not: the motion is wrong input.
-      if (r.status == MonteCarloStatus::kNotExcited) throw std::invalid_argument(r.message);
+      // A recorded log's reading warnings may say why ("is the log in radians?"): with the error, not lost.
+      if (r.status == MonteCarloStatus::kNotExcited) {
+        std::string message = r.message;
+        for (const std::string& warning : report.warnings) message += "\n  " + warning;
+        throw std::invalid_argument(message);
+      }
       row.realised = ComputeIdentifiability(StackStates(regressor, r.log.q, r.log.qd, r.log.qdd));
       SetPredictedSigma(r.predicted_sigma, r.beta_true, &row);
       row.mean_relative_error = r.mean_relative_error;
@@ -408,6 +416,7 @@ std::string CompareReport::BriefReport() const {
 
 std::string FormatCompareTable(const CompareOptions& options, const CompareReport& report) {
   std::string out;
+  for (const std::string& note : report.notes) out += note + "\n";  // as identify's table starts
   char line[512];
   out += Headline(report) + "\n\n";
   std::snprintf(line, sizeof line, "%4s %-28s %11s %11s %11s %11s %11s %11s  %s\n", "rank", "motion", "cond(W)",

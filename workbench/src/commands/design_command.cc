@@ -336,6 +336,7 @@ std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignComm
                                        const DesignCommandReport& report) {
   const DesignInfeasibility& infeasible = report.result.infeasibility;
   nlohmann::json result = SettingsJson(model, options, report.limits, report.actuators, report.parameter_names);
+  result["status"] = std::string(kDesignStatusNames.Name(report.status()));
   result["check"] = CheckJson(infeasible.check);
   result["infeasible"] = {{"before_search", infeasible.before_search},
                           {"explanation", infeasible.explanation},
@@ -348,7 +349,10 @@ std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignComm
 std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                              const DesignCommandReport& report) {
   using nlohmann::json;
-  if (report.status() != DesignStatus::kFeasible) return FormatInfeasibleDesignJson(model, options, report);
+  // Without a motion: the settings and why. A motion that leaves parameters
+  // unexcited has one: the full form, its status and why.
+  if (report.status() != DesignStatus::kFeasible && report.status() != DesignStatus::kNotExcited)
+    return FormatInfeasibleDesignJson(model, options, report);
   const DesignResult& r = report.result;
   json starts = json::array();
   for (const DesignStartSummary& s : r.starts) {
@@ -363,6 +367,8 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
                       {"final_violation", s.final_violation}});
   }
   json result = SettingsJson(model, options, report.limits, report.actuators, report.parameter_names);
+  result["status"] = std::string(kDesignStatusNames.Name(report.status()));
+  if (report.status() == DesignStatus::kNotExcited) result["not_excited"] = {{"explanation", r.infeasibility.explanation}};
   result.update({
       {"before", {{"criterion", r.initial_value}, {"identifiability", IdentifiabilityJson(r.initial)}}},
       {"after", {{"criterion", r.value}, {"identifiability", IdentifiabilityJson(r.final)}}},

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "idbench/engine/input_file.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "number_format.h"
 #include "formats/json_number.h"
@@ -89,6 +90,10 @@ bool GainsOptions::IsValid(std::string* why) const {
   };
   if (data.empty()) return fail("data: the unloaded log is required");
   if (loaded.empty()) return fail("loaded: the log with the payload is required");
+  // The same file however spelled (device and inode), and the same part of it.
+  if (IsSameFile(loaded, data) && loaded_time_window == time_window)
+    return fail("loaded: expected the log with the payload, got '" + loaded + "', the unloaded log '" + data +
+                "' again" + (loaded == data ? "" : " (the same file)"));
   DriveGainOptions gains;
   gains.payload_mass = payload_mass;
   std::string gains_why;

@@ -154,6 +154,24 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     const std::string what = e.what();
     throw std::invalid_argument(what.rfind(options.data + ":", 0) == 0 ? what : options.data + ": " + what);
   }
+  // Actuator-side columns scale as N and N² with the gear ratios N, the link
+  // ones do not: from N = 1000 (N² = 1e6, the fit's rank tolerance) a column
+  // may be lost to that spread rather than to the motion. Said when it happens.
+  const LinearFit& linear = report.identification.linear;
+  if (id_options.friction.actuator_side() && linear.rank < base.n_base()) {
+    const double ratio = id_options.friction.actuator_from_joint.cwiseAbs().maxCoeff();
+    if (ratio >= 1e3) {
+      char text[600];
+      std::snprintf(text, sizeof(text),
+                    "the transmission's gear ratios, up to %g, make the actuator-side columns (∝ N, N²) up to %.3g times "
+                    "the link columns; W has rank %d of %d, and the %d base parameter(s) marked 'not ident.' may be "
+                    "lost to that scale rather than to the motion (the fit resolves 1e-6 of the largest): check "
+                    "with friction_side joint, or the transmission's ratios",
+                    ratio, ratio * ratio, linear.rank, base.n_base(),
+                    static_cast<int>(std::count(linear.identifiable.begin(), linear.identifiable.end(), false)));
+      report.warnings.push_back(text);
+    }
+  }
   report.prepared = std::make_shared<PreparedLog>(std::move(data));
   if (held_out) {
     for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));

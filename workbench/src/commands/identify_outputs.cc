@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "idbench/engine/urdf.h"
+#include "idbench/workbench/commands/export_command.h"
 #include "idbench/workbench/formats/joints_yaml.h"
 #include "idbench/workbench/formats/mjcf_writer.h"
 #include "formats/sigma_method_json.h"
@@ -83,38 +84,12 @@ nlohmann::json JointSideEquivalentsJson(const RobotModel& model, const IdentifyO
   return {{"Ia", Ia}, {"Fv", Fv}, {"Fc", Fc}};
 }
 
-// A robot file's text with an XML comment before each coupled joint's
-// <joint name="..."> line (CouplingNote), and `zeros` (the writer's
-// attributes holding that joint's 0 friction) taken off that line.
-std::string AnnotateCoupledJoints(std::string text, const RobotModel& model, const IdentifyOptions& options,
-                                  const IdentifyReport& report, const std::vector<std::string>& zeros) {
-  const FrictionModel friction = options.friction_model();
-  const std::vector<JointDynamicsValues> joints = JointDynamicsOf(model, options, report);
-  for (size_t j = 0; j < joints.size(); ++j) {
-    if (joints[j].coupled_motors.empty()) continue;
-    const std::string name = joints[j].name.empty() ? model.link(static_cast<int>(j)).name + "_joint" : joints[j].name;
-    const size_t at = text.find("<joint name=\"" + EscapeXml(name) + "\"");
-    if (at == std::string::npos) continue;
-    const size_t line = text.rfind('\n', at) + 1;
-    const size_t end = text.find('\n', at);
-    std::string joint_line = text.substr(line, end - line);
-    for (const std::string& zero : zeros) {
-      if (const size_t z = joint_line.find(zero); z != std::string::npos) joint_line.erase(z, zero.size());
-    }
-    // A comment is raw text (no entities); "--" may not appear in it.
-    std::string note = CouplingNote(joints[j], friction);
-    for (size_t d = note.find("--"); d != std::string::npos; d = note.find("--")) note.replace(d, 2, "- -");
-    const std::string indent = text.substr(line, at - line);
-    text.replace(line, end - line, indent + "<!-- " + note + " -->\n" + joint_line);
-  }
-  return text;
-}
-
 }  // namespace
 
 std::string FormatJointDynamicsYaml(const RobotModel& model, const IdentifyOptions& options,
                                     const IdentifyReport& report) {
-  return FormatJointsYaml(model.name(), JointDynamicsOf(model, options, report), options.friction_model());
+  return FormatIdentifiedModel(ExportFormat::kYaml, model, options.friction_model(), report.identification.consistent.pi,
+                               JointDynamicsOf(model, options, report));
 }
 
 std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions& options,
@@ -234,7 +209,16 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
         {"links", links}}},
       {"joints", JointDynamicsJson(JointDynamicsOf(model, options, report))},
   };
-  if (options.friction_side == FrictionSide::kActuator) result["joint_side"] = JointSideEquivalentsJson(model, options, report);
+  if (options.friction_side == FrictionSide::kActuator) {
+    result["joint_side"] = JointSideEquivalentsJson(model, options, report);
+    // The transmission the actuator-side terms act through (a log
+    // description's or the URDF's): export reads it back from here.
+    const Eigen::MatrixXd A = options.friction_model().actuator_from_joint;
+    json rows = json::array();
+    for (Eigen::Index k = 0; k < A.rows(); ++k) rows.push_back(ToStdVector(A.row(k).transpose()));
+    const std::optional<Transmission> used = options.transmission();
+    result["transmission"] = {{"actuator_from_joint", rows}, {"source", used ? json(used->source) : json(nullptr)}};
+  }
   if (report.validation) {
     result["validation"] = {{"data", options.validate},
                             {"joint_rms", ToStdVector(report.validation->joint_rms)},
@@ -250,22 +234,14 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
 
 std::string FormatIdentifiedUrdf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
-  // A coupled joint has no <dynamics> (its friction is zero in the model): a
-  // comment says why.
-  return AnnotateCoupledJoints(
-      WriteUrdf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi)), model,
-      options, report, {});
+  return FormatIdentifiedModel(ExportFormat::kUrdf, model, options.friction_model(), report.identification.consistent.pi,
+                               JointDynamicsOf(model, options, report));
 }
-
-}  // namespace idbench
-
-namespace idbench {
 
 std::string FormatIdentifiedMjcf(const RobotModel& model, const IdentifyOptions& options,
                                  const IdentifyReport& report) {
-  return AnnotateCoupledJoints(
-      WriteMjcf(ModelWithStandardParameters(model, options.friction_model(), report.identification.consistent.pi)), model,
-      options, report, {" armature=\"0\"", " damping=\"0\"", " frictionloss=\"0\""});
+  return FormatIdentifiedModel(ExportFormat::kMjcf, model, options.friction_model(), report.identification.consistent.pi,
+                               JointDynamicsOf(model, options, report));
 }
 
 }  // namespace idbench

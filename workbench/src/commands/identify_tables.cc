@@ -39,6 +39,34 @@ std::string SamplesText(const IdentifyReport& report) {
   return why.empty() ? text : text + ")";
 }
 
+// A note per friction or rotor-inertia base parameter (Fv, Fc, Ia of a joint
+// or motor: >= 0 in any drive) whose estimate is negative beyond 3 σ, naming
+// a negative drive gain of that joint or motor (a current logged with the
+// opposite sign turns its torque, and so these terms, around). Empty when
+// there is none.
+std::string NegativeFrictionNotes(const IdentifyOptions& options, const JointTorqueIdentification& id) {
+  std::string out;
+  for (int k = 0; k < id.base.n_base(); ++k) {
+    const std::string& name = id.base.names[static_cast<size_t>(k)];
+    const bool physical_sign = name.rfind("Fv", 0) == 0 || name.rfind("Fc", 0) == 0 || name.rfind("Ia", 0) == 0;
+    if (!physical_sign || !(id.beta[k] < -3.0 * id.linear.sigma[k])) continue;
+    const bool motor = name.size() > 2 && name[2] == 'm';
+    const std::string number = name.substr(motor ? 3 : 2);
+    if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos) continue;  // a combination
+    const size_t j = std::stoul(number) - 1;
+    out += "sign: " + name + " = " + Format("%.4g", id.beta[k]) + " is negative; friction and rotor inertia are >= 0 ";
+    const std::vector<double>& gains = options.format.drive_gains;
+    if (j < gains.size() && gains[j] < 0.0) {
+      out += "(the drive gain of " + std::string(motor ? "motor " : "joint ") + number + " is negative, " +
+             Shortest(gains[j]) + " N m/A: if its current is logged with the same sign as its torque, give " +
+             Shortest(-gains[j]) + ")\n";
+    } else {
+      out += "(is the torque of " + std::string(motor ? "motor " : "joint ") + number + " logged with the opposite sign?)\n";
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string SigmaMethodText(const CovarianceSummary& c, const std::string& output) {
@@ -89,6 +117,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   }
   out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero "
          "(%sigma '-': sigma itself is what is known)\n";
+  out += NegativeFrictionNotes(options, id);
   out += SigmaMethodText(id.linear) + "\n";
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
     out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "

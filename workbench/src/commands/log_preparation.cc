@@ -20,12 +20,16 @@ bool LogPreparationOptions::IsValid(std::string* why) const {
   };
   if (!format.IsValid(why)) return false;
   if (!time_window.empty()) {
-    if (time_window.size() != 2 || !std::isfinite(time_window[0]) || !std::isfinite(time_window[1]) ||
-        !(time_window[0] < time_window[1])) {
-      std::string given;
-      for (double v : time_window) given += (given.empty() ? "" : ",") + Shortest(v);
-      return fail(window_field + ": expected T0,T1 [s] with T0 < T1, got " + given);
+    // Say which of the three is wrong: the count, a bound not a finite number, the order.
+    std::string given;
+    for (double v : time_window) given += (given.empty() ? "" : ",") + Shortest(v);
+    if (time_window.size() != 2) {
+      return fail(window_field + ": expected two values T0,T1 [s], got " + std::to_string(time_window.size()) +
+                  " (" + given + ")");
     }
+    if (!std::isfinite(time_window[0]) || !std::isfinite(time_window[1]))
+      return fail(window_field + ": expected finite bounds T0,T1 [s] (a number of seconds each), got " + given);
+    if (!(time_window[0] < time_window[1])) return fail(window_field + ": expected T0,T1 [s] with T0 < T1, got " + given);
   }
   if (!(max_gap_s >= 0.0 && max_gap_s <= kMaxGapS)) {
     return fail("max_gap_s: expected 0 (10 median steps) to " + Shortest(kMaxGapS) + " s, got " + Shortest(max_gap_s));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "idbench/engine/input_file.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/workbench/commands/identify_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
@@ -70,8 +71,11 @@ bool PayloadOptions::IsValid(std::string* why) const {
   };
   if (robot.empty()) return fail("robot: the identified robot (URDF) is required");
   if (loaded_log.empty()) return fail("loaded_log: the log with the payload is required");
-  if (!unloaded_log.empty() && unloaded_log == loaded_log)
-    return fail("unloaded_log: expected a log without the payload, got the loaded log '" + loaded_log + "' again");
+  // The same file however spelled (device and inode), and the same part of it:
+  // one recording cannot be both (two windows of one file can).
+  if (!unloaded_log.empty() && IsSameFile(unloaded_log, loaded_log) && unloaded_time_window == time_window)
+    return fail("unloaded_log: expected a log without the payload, got '" + unloaded_log + "', the loaded log '" +
+                loaded_log + "' again" + (unloaded_log == loaded_log ? "" : " (the same file)"));
   if (!unloaded_time_window.empty() && unloaded_log.empty())
     return fail("unloaded_time_window: given without an unloaded log (unloaded_log)");
   std::string friction_why;

@@ -1,7 +1,11 @@
 #include "idbench/workbench/formats/joints_yaml.h"
 
+#include <cmath>
+#include <stdexcept>
 #include <utility>
 
+#include "idbench/engine/urdf.h"
+#include "idbench/logs/joint_log_format.h"
 #include "number_format.h"
 
 namespace idbench {
@@ -50,22 +54,57 @@ nlohmann::json JointDynamicsJson(const std::vector<JointDynamicsValues>& values)
   return joints;
 }
 
-std::vector<JointDynamicsValues> JointDynamicsFromJson(const nlohmann::json& joints) {
-  auto value = [](const nlohmann::json& joint, const char* name) {
+std::vector<JointDynamicsValues> JointDynamicsFromJson(const nlohmann::json& joints, const RobotModel& model,
+                                                       const std::string& source) {
+  auto fail = [&](const std::string& field, const std::string& message) {
+    throw std::invalid_argument(source + ": " + field + ": " + message);
+  };
+  if (!joints.is_array() || joints.size() != static_cast<size_t>(model.n_dof())) {
+    fail("joints", "expected one entry per joint of robot '" + model.name() + "' (" + std::to_string(model.n_dof()) +
+                       "), got " + (joints.is_array() ? std::to_string(joints.size()) : std::string(joints.type_name())) +
+                       ": identified on another robot?");
+  }
+  // A value: null, or finite within [lowest, highest].
+  auto value = [&](const nlohmann::json& joint, const std::string& where, const char* name, double lowest,
+                   double highest, const char* unit) -> std::optional<double> {
     const nlohmann::json& v = joint.at(name);
-    return v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+    if (v.is_null()) return std::nullopt;
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lowest || x > highest) {
+      fail(where + "." + name, "expected " + (lowest < 0.0 ? "-" + Shortest(highest) : Shortest(lowest)) + " to " +
+                                   Shortest(highest) + " " + unit + (lowest == 0.0 ? " (friction and rotor inertia are >= 0)" : "") +
+                                   ", got " + Shortest(x));
+    }
+    return x;
   };
   std::vector<JointDynamicsValues> out;
-  for (const nlohmann::json& joint : joints) {
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const nlohmann::json& joint = joints[j];
+    const std::string where = "joints[" + std::to_string(j) + "]";
     JointDynamicsValues& v = out.emplace_back();
     v.name = joint.at("name").get<std::string>();
-    v.viscous = value(joint, "viscous");
-    v.coulomb = value(joint, "coulomb");
-    v.offset = value(joint, "offset");
-    v.rotor_inertia = value(joint, "rotor_inertia");
-    v.drive_gain = value(joint, "drive_gain");
+    const std::string& expected = model.link(static_cast<int>(j)).joint_name;
+    if (v.name != expected) {
+      fail(where + ".name", "expected '" + expected + "' (robot '" + model.name() + "'), got '" + v.name +
+                                "': identified on another robot?");
+    }
+    v.viscous = value(joint, where, "viscous", 0.0, kMaxJointFriction, "N m s/rad");
+    v.coulomb = value(joint, where, "coulomb", 0.0, kMaxJointFriction, "N m");
+    v.offset = value(joint, where, "offset", -kMaxJointFriction, kMaxJointFriction, "N m");
+    v.rotor_inertia = value(joint, where, "rotor_inertia", 0.0, kMaxLinkInertia, "kg m^2");
+    v.drive_gain = value(joint, where, "drive_gain", -JointLogFormat::kMaxDriveGain, JointLogFormat::kMaxDriveGain, "N m/A");
+    if (v.drive_gain && std::abs(*v.drive_gain) < JointLogFormat::kMinDriveGain) {
+      fail(where + ".drive_gain", "expected a gain of magnitude " + Shortest(JointLogFormat::kMinDriveGain) + " to " +
+                                      Shortest(JointLogFormat::kMaxDriveGain) + " N m/A, got " + Shortest(*v.drive_gain));
+    }
     if (joint.contains("coupled_motors")) {
-      for (int k : joint.at("coupled_motors").get<std::vector<int>>()) v.coupled_motors.push_back(k - 1);
+      for (int k : joint.at("coupled_motors").get<std::vector<int>>()) {
+        if (k < 1 || k > model.n_dof()) {
+          fail(where + ".coupled_motors", "expected motors 1 to " + std::to_string(model.n_dof()) + ", got " +
+                                              std::to_string(k));
+        }
+        v.coupled_motors.push_back(k - 1);
+      }
     }
   }
   return out;

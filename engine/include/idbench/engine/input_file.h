@@ -26,6 +26,11 @@ std::string InputLimitDescription();
 // the limit).
 void CheckInputFile(const std::string& path);
 
+// Whether paths a and b name the same file: the same string, or the same
+// device and inode however spelled (./x.json and x.json, a hard or symbolic
+// link). False when either cannot be stat()ed (its reader says why).
+bool IsSameFile(const std::string& a, const std::string& b);
+
 // The whole file after CheckInputFile. Opened without blocking, and checked
 // again once open, so a FIFO swapped in after the check does not hang it.
 // Throws std::invalid_argument as CheckInputFile, and when reading fails.

@@ -28,9 +28,18 @@ struct Transmission {
   static Transmission FromReduction(const std::vector<double>& reduction);
 
   int n_dof() const { return static_cast<int>(actuator_from_joint.rows()); }
+  // Beyond any robot drive: a motor turning more than kMaxRatio rad per rad
+  // of a joint, or a joint turning more than kMaxRatio rad per rad of the
+  // motors (as drive gains are bounded, JointLogFormat). Within it the
+  // actuator-side regressor columns (∝ N, N²) stay within 1e8 of the
+  // joint-side ones, which the base parameters and the estimators resolve.
+  static constexpr double kMaxRatio = 1e4;
+
   // A square, n_dof × n_dof, finite and invertible (smallest singular
-  // value above 1e-12 of the largest), joint_offset empty or n_dof finite values. *why names
-  // the field ("actuator_from_joint: expected 6 × 6, got 6 × 5").
+  // value above 1e-12 of the largest), every entry within ±kMaxRatio and the
+  // smallest singular value at least 1/kMaxRatio, joint_offset empty or n_dof
+  // finite values. *why names the field ("actuator_from_joint: expected 6 × 6,
+  // got 6 × 5", "actuator_from_joint[2][2]: ...").
   bool IsValid(int n_dof, std::string* why) const;
 
   // Rows are samples, columns actuators or joints (as JointLog's matrices).

@@ -24,6 +24,14 @@
 
 namespace idbench {
 
+// Beyond any robot link: the largest <inertial> mass [kg], inertia entry
+// [kg m²] and centre-of-mass offset from the link frame [m] a robot file may
+// give. The URDF reader refuses larger values; so does `export` in an
+// identified.json (the same bounds for a model read and one written).
+inline constexpr double kMaxLinkMass = 1e6;
+inline constexpr double kMaxLinkInertia = 1e8;
+inline constexpr double kMaxLinkComOffset = 1e3;
+
 struct UrdfLoadResult {
   RobotModel model;
   // What was accepted but not fully kept, one line each naming the link or

@@ -86,6 +86,9 @@ struct CompareReport {
   std::vector<std::string> parameter_names;
   Eigen::VectorXd true_parameters;
   std::vector<MotionComparison> motions;
+  // How the recorded logs were read, as identify says it (PreparedLog):
+  std::vector<std::string> notes;     // one line per step done (window, resampling, columns), for stdout
+  std::vector<std::string> warnings;  // for stderr ("is the log in radians?")
 
   // A few lines: the comparison's settings (FormatCompareTable's first line),
   // the best-ranked motion with its cond(W) and Monte-Carlo error, the motions
@@ -96,6 +99,7 @@ struct CompareReport {
 
 // Throws std::invalid_argument naming a bad trajectory or option.
 CompareReport RunCompare(const RobotModel& model, const CompareOptions& options);
+// The table, after the notes of how the logs were read (as identify prints them).
 std::string FormatCompareTable(const CompareOptions& options, const CompareReport& report);
 std::string FormatCompareJson(const CompareOptions& options, const CompareReport& report);
 std::string FormatCompareCsv(const CompareReport& report);

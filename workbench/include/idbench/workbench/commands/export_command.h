@@ -5,13 +5,16 @@
 // or joints.yaml (formats/joints_yaml.h), the same bytes `identify` writes.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/base_pose.h"
 #include "idbench/engine/enum_names.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/engine/transmission.h"
+#include "idbench/workbench/formats/joints_yaml.h"
 
 namespace idbench {
 
@@ -61,11 +64,25 @@ struct ExportReport {
   std::string BriefReport() const;
 };
 
+// The identified robot's file in `format` from the physically consistent
+// standard parameters pi (StandardParameterNames(model, friction) order) and
+// the per-joint values (identified.json's "joints"): what `identify` writes,
+// and `export` again from identified.json, one function for both. The URDF
+// and MJCF carry a comment (CouplingNote) on each coupled joint and no
+// friction or armature for it.
+std::string FormatIdentifiedModel(ExportFormat format, const RobotModel& model, const FrictionModel& friction,
+                                  const Eigen::VectorXd& pi, const std::vector<JointDynamicsValues>& joints);
+
 // Reads options.identified and rebuilds the identified robot model from
-// `model` (loaded and mounted as identified; transmission: the URDF's, for
-// terms identified on the actuator side). Throws std::invalid_argument naming
-// identified.json's field for a file that is not identify's, or that was
-// identified on another robot (its standard parameters' names differ).
+// `model` (loaded and mounted as identified). Terms identified on the
+// actuator side act through the transmission identified.json records
+// (`transmission`, the one identify used: a log description's or the URDF's);
+// `transmission` (the URDF's) only for a file written before it was recorded.
+// Throws std::invalid_argument naming identified.json's field for a file that
+// is not identify's, that was identified on another robot (its standard
+// parameters' names differ), or whose values are not a robot's: not finite,
+// beyond the URDF reader's bounds (urdf.h), negative friction or rotor
+// inertia, or `joints` not one per joint of the robot (joints_yaml.h).
 ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
                        const std::optional<Transmission>& transmission = std::nullopt);
 

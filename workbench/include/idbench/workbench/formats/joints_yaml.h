@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "idbench/engine/robot_model.h"
 #include "idbench/ident/joint_torque_regressor.h"
 
 namespace idbench {
@@ -28,9 +29,19 @@ std::string CouplingNote(const JointDynamicsValues& v, const FrictionModel& fric
 // identified.json's "joints": [{name, viscous, coulomb, offset, rotor_inertia,
 // drive_gain, [coupled_motors (1-based)]}], null for a missing value.
 nlohmann::json JointDynamicsJson(const std::vector<JointDynamicsValues>& joints);
-// The values back from that array; throws nlohmann::json::exception for
-// another shape.
-std::vector<JointDynamicsValues> JointDynamicsFromJson(const nlohmann::json& joints);
+// Beyond any robot joint: the largest viscous [N m s/rad], Coulomb and offset
+// [N m] friction a joint's values may hold. Rotor inertia is bounded as a
+// link's inertia entry (kMaxLinkInertia, urdf.h), drive gains as
+// JointLogFormat's.
+inline constexpr double kMaxJointFriction = 1e6;
+
+// The values back from that array, checked against `model`: one per joint,
+// named as its joints in order; each value null or finite, viscous, coulomb
+// and rotor_inertia >= 0, within the bounds above; coupled_motors 1..n_dof.
+// Throws std::invalid_argument "SOURCE: joints[2].viscous: ..." naming the
+// field and the value, nlohmann::json::exception for another shape.
+std::vector<JointDynamicsValues> JointDynamicsFromJson(const nlohmann::json& joints, const RobotModel& model,
+                                                       const std::string& source);
 
 // joints.yaml for robot `robot_name`.
 std::string FormatJointsYaml(const std::string& robot_name, const std::vector<JointDynamicsValues>& joints,
