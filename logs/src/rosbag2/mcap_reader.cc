@@ -4,9 +4,13 @@
 #include <zlib.h>
 #include <zstd.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+
+#include "idbench/engine/input_file.h"
 
 namespace idbench::internal {
 namespace {
@@ -108,8 +112,14 @@ void DecompressLz4Frame(const std::uint8_t* in, std::size_t in_size, std::vector
 }  // namespace
 
 McapReader::McapReader(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "rb");
-  if (file_ == nullptr) throw std::invalid_argument("cannot open the file: " + std::string(std::strerror(errno)));
+  // Only a regular file: a FIFO would block the open, a directory named
+  // bag_0.mcap is named as one.
+  const int fd = OpenStreamedInputFile(path);
+  file_ = ::fdopen(fd, "rb");
+  if (file_ == nullptr) {
+    ::close(fd);
+    throw std::invalid_argument("cannot open the file: " + std::string(std::strerror(errno)));
+  }
   std::fseek(file_, 0, SEEK_END);
   const std::uint64_t file_size = static_cast<std::uint64_t>(ftello(file_));
   data_end_ = file_size;
@@ -131,9 +141,21 @@ McapReader::McapReader(const std::string& path) : path_(path) {
       if (summary_start >= data_end_) summary_start = 0;
     }
   }
+  bool summary_read = false;
   if (summary_start != 0) {
-    Scan(summary_start);
-  } else {
+    // A Footer's summary_start that does not lead to records ending at the
+    // Footer (damaged, or pointing into the data section's middle) is not
+    // the file's end being cut: the data section is read instead.
+    try {
+      Scan(summary_start);
+      summary_read = true;
+    } catch (const std::invalid_argument&) {
+      schema_names_.clear();
+      channels_.clear();
+      topics_.clear();
+    }
+  }
+  if (!summary_read) {
     // No summary (or no Footer: a truncated file): the data section's own
     // Schema and Channel records, up to the first damage, which Next reports.
     try {
@@ -246,22 +268,33 @@ void McapReader::OpenChunk(std::uint64_t offset) {
   const std::string compression = fields.String("compression");
   std::uint64_t compressed_size = 0;
   const std::uint8_t* records = fields.Bytes(8, "records", &compressed_size);
-  if (uncompressed_size > kMaxChunkBytes) {
-    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) +
-                                " is beyond the " + std::to_string(kMaxChunkBytes) + " bytes read");
+  if (!compression.empty() && compression != "lz4" && compression != "zstd") {
+    throw std::invalid_argument(where + ": compression '" + compression + "' is not read (\"\", lz4 or zstd)");
   }
 
-  // Decompress: "" (stored), "lz4" (an LZ4 frame), "zstd" (Zstandard frames).
+  // uncompressed_size within the stated bounds before it is allocated: what
+  // the compressed records can give at most, and kMaxChunkBytes.
   if (compression.empty() && compressed_size != uncompressed_size) {
     throw std::invalid_argument(where + ": uncompressed chunk of " + std::to_string(compressed_size) +
                                 " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
+  }
+  const std::uint64_t ratio = compression == "lz4" ? kMaxLz4Ratio : compression == "zstd" ? kMaxZstdRatio : 1;
+  if (uncompressed_size > compressed_size * ratio) {  // compressed_size is within the file: no overflow
+    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) + " bytes, but " +
+                                std::to_string(compressed_size) + " bytes of " + compression +
+                                " records give at most " + std::to_string(compressed_size * ratio) +
+                                " (the file is damaged)");
+  }
+  if (uncompressed_size > kMaxChunkBytes) {
+    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) +
+                                " bytes is beyond the " + std::to_string(kMaxChunkBytes) + " bytes of a chunk read");
   }
   chunk_.resize(uncompressed_size);
   if (compression.empty()) {
     std::copy(records, records + compressed_size, chunk_.begin());
   } else if (compression == "lz4") {
     DecompressLz4Frame(records, compressed_size, chunk_, where);
-  } else if (compression == "zstd") {
+  } else {  // zstd
     const std::size_t written = ZSTD_decompress(chunk_.data(), chunk_.size(), records, compressed_size);
     if (ZSTD_isError(written)) {
       throw std::invalid_argument(where + ": Zstandard: " + ZSTD_getErrorName(written));
@@ -270,8 +303,6 @@ void McapReader::OpenChunk(std::uint64_t offset) {
       throw std::invalid_argument(where + ": Zstandard gives " + std::to_string(written) +
                                   " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
     }
-  } else {
-    throw std::invalid_argument(where + ": compression '" + compression + "' is not read (\"\", lz4 or zstd)");
   }
 
   // CRC-32 of the decompressed records; 0 means not given.
