@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "idbench/engine/printable_text.h"
+#include "urdf_messages.h"
 
 namespace idbench::internal {
 namespace {
@@ -108,6 +109,7 @@ class DocumentCheck {
       if (e->ValueStr() == "joint") AddJoint(*e, where);
     }
     CheckNoLoop();
+    CheckMimics(*robot);
   }
 
  private:
@@ -173,6 +175,28 @@ class DocumentCheck {
       Fail(joint.Row(), where + "its child link '" + PrintableText(child_link) + "' already hangs from joint '" +
                             PrintableText(it->second.joint) + "' (line " + std::to_string(it->second.line) +
                             "); each link hangs from one joint (a URDF is a tree)");
+    }
+  }
+
+  // Every <mimic joint="..."> names another joint of the file (a typo would
+  // leave the joint free, or follow nothing).
+  void CheckMimics(const TiXmlElement& robot) const {
+    std::vector<std::string> joints;
+    for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
+      if (const char* name = e->Attribute("name")) joints.push_back(name);
+    }
+    for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
+      const TiXmlElement* mimic = e->FirstChildElement("mimic");
+      const char* leader = mimic == nullptr ? nullptr : mimic->Attribute("joint");
+      if (leader == nullptr) continue;  // urdfdom names what is missing
+      const char* name = e->Attribute("name");
+      const std::string joint = name == nullptr ? "" : name;
+      const std::string where = "joint " + Quote(joint) + ": <mimic joint=\"" + PrintableText(leader) + "\">: ";
+      if (leader == joint) Fail(mimic->Row(), where + "a joint cannot mimic itself; name the joint it follows");
+      if (std::find(joints.begin(), joints.end(), leader) == joints.end()) {
+        Fail(mimic->Row(), where + "the file has no joint " + Quote(leader) + " (joints: " + QuotedList(joints) +
+                               "); name the joint it follows");
+      }
     }
   }
 
