@@ -135,6 +135,45 @@ TEST(McapReaderTest, RefusesAnUncompressedSizeItsRecordsCannotGive) {
   std::filesystem::remove(path);
 }
 
+// The offset of a fixture's first Chunk record (records walked from the magic).
+std::uint64_t FirstChunk(const std::string& fixture) {
+  std::uint64_t offset = 8;
+  while (LittleEndianAt(fixture, offset, 1) != 0x06) offset += 9 + LittleEndianAt(fixture, offset + 1, 8);
+  return offset;
+}
+
+// The decompressed records grow as they arrive: an uncompressed_size within
+// the bound but larger (or smaller) than what the records give is named, for
+// either compression, and the chunk with its own size still reads.
+TEST(McapReaderTest, NamesAnUncompressedSizeTheRecordsDoNotGive) {
+  for (const std::string compression : {"lz4", "zstd"}) {
+    const std::string fixture = "joint_states_" + compression + ".mcap";
+    const std::uint64_t chunk = FirstChunk(fixture);
+    const std::uint64_t size = LittleEndianAt(fixture, chunk + 25, 8);
+    ASSERT_GT(size, 1000u) << fixture;
+    const std::string where = "Chunk record at offset " + std::to_string(chunk) + ": ";
+    const std::string gives = compression == "lz4" ? "LZ4 frame gives " : "Zstandard gives ";
+    const std::string says = compression == "lz4" ? ", the chunk's uncompressed_size is " : ", uncompressed_size says ";
+    const std::uint64_t records = LittleEndianAt(fixture, chunk + 41 + compression.size(), 8);
+    const std::uint64_t ratio = compression == "lz4" ? McapReader::kMaxLz4Ratio : McapReader::kMaxZstdRatio;
+    for (const std::uint64_t wrong : {size + 1, records * ratio, size - 1}) {
+      const std::string path = Patched(fixture, chunk + 25, wrong, 8, "idbench_mcap_wrong_size.mcap");
+      std::string error = "(no error)";
+      try {
+        McapReader reader(path);
+        CountMessages(reader, "/joint_states");
+      } catch (const std::invalid_argument& e) {
+        error = e.what();
+      }
+      const std::string expected = where + gives + (wrong > size ? std::to_string(size) : std::to_string(wrong) +
+                                                    " bytes and does not end") ;
+      EXPECT_EQ(error.substr(0, expected.size()), expected) << error;
+      EXPECT_NE(error.find(says + std::to_string(wrong)), std::string::npos) << error;
+      std::filesystem::remove(path);
+    }
+  }
+}
+
 // Issue 35 item 21: a Footer whose summary_start does not lead to a summary
 // (here one byte into the first chunk of the intact file) is not a truncated
 // file: the data section is read, every message as in the original.
