@@ -52,7 +52,8 @@ bool IsTorqueOrCurrentColumn(std::string field) {
 }  // namespace
 
 bool IsRecordedJointLogPath(const std::string& path) {
-  if (IsRosbag2Path(path)) return true;
+  std::error_code error;
+  if (IsRosbag2Path(path) || std::filesystem::is_directory(path, error)) return true;  // a folder is only ever a bag
   if (path.ends_with(".yaml") || path.ends_with(".yml")) return true;
   try {
     if (path.ends_with(".json")) {

@@ -8,6 +8,7 @@
 
 #include "db3_reader.h"
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/printable_text.h"
 #include "mcap_reader.h"
 
 namespace idbench::internal {
@@ -60,7 +61,7 @@ BagFiles FromMetadata(const fs::path& directory, const std::string& metadata_pat
   const YAML::Node paths = info["relative_file_paths"];
   if (paths && !paths.IsNull() && !paths.IsSequence()) {
     throw std::invalid_argument(metadata_path + ": relative_file_paths: expected a list of file names, got " +
-                                (paths.IsMap() ? "a map" : "'" + paths.Scalar() + "'"));
+                                (paths.IsMap() ? "a map" : "'" + PrintableText(paths.Scalar()) + "'"));
   }
   if (paths && paths.size() > kMaxBagFiles) {
     throw std::invalid_argument(metadata_path + ": relative_file_paths lists " + std::to_string(paths.size()) +
