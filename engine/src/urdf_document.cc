@@ -179,12 +179,20 @@ class DocumentCheck {
   }
 
   // Every <mimic joint="..."> names another joint of the file (a typo would
-  // leave the joint free, or follow nothing).
+  // leave the joint free, or follow nothing), and following the leaders ends
+  // at a joint that mimics none.
   void CheckMimics(const TiXmlElement& robot) const {
     std::vector<std::string> joints;
     for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
       if (const char* name = e->Attribute("name")) joints.push_back(name);
     }
+    std::vector<std::string> sorted = joints;
+    std::sort(sorted.begin(), sorted.end());
+    struct Mimic {
+      std::string leader;
+      int line;
+    };
+    std::map<std::string, Mimic> mimic_of;  // by joint
     for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
       const TiXmlElement* mimic = e->FirstChildElement("mimic");
       const char* leader = mimic == nullptr ? nullptr : mimic->Attribute("joint");
@@ -193,10 +201,34 @@ class DocumentCheck {
       const std::string joint = name == nullptr ? "" : name;
       const std::string where = "joint " + Quote(joint) + ": <mimic joint=\"" + PrintableText(leader) + "\">: ";
       if (leader == joint) Fail(mimic->Row(), where + "a joint cannot mimic itself; name the joint it follows");
-      if (std::find(joints.begin(), joints.end(), leader) == joints.end()) {
+      if (!std::binary_search(sorted.begin(), sorted.end(), std::string(leader))) {
         Fail(mimic->Row(), where + "the file has no joint " + Quote(leader) + " (joints: " + QuotedList(joints) +
                                "); name the joint it follows");
       }
+      mimic_of.emplace(joint, Mimic{leader, mimic->Row()});
+    }
+    // Leaders followed from every mimic joint, each joint walked once.
+    enum class State { kOnWalk, kDone };
+    std::map<std::string, State> state;
+    for (const auto& [first, unused] : mimic_of) {
+      std::vector<std::string> walk;
+      for (std::string joint = first;;) {
+        const auto seen = state.find(joint);
+        if (seen != state.end() && seen->second == State::kDone) break;
+        if (seen != state.end()) {
+          const auto loop = std::find(walk.begin(), walk.end(), joint);
+          const Mimic& mimic = mimic_of.at(joint);
+          Fail(mimic.line, "joint " + Quote(joint) + ": <mimic joint=\"" + PrintableText(mimic.leader) + "\">: joints " +
+                               QuotedList(std::vector<std::string>(loop, walk.end())) +
+                               " mimic each other in a loop; one of them must follow a joint that mimics none");
+        }
+        const auto up = mimic_of.find(joint);
+        if (up == mimic_of.end()) break;
+        state[joint] = State::kOnWalk;
+        walk.push_back(joint);
+        joint = up->second.leader;
+      }
+      for (const std::string& joint : walk) state[joint] = State::kDone;
     }
   }
 

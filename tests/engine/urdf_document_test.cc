@@ -40,6 +40,10 @@ TEST(UrdfTest, AMimicOfNoOtherJointIsRefused) {
                   "name the joint it follows"});
   ExpectRejected(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j2\"/>")),
                  {"<string>:6: joint 'j2': <mimic joint=\"j2\">: a joint cannot mimic itself; name the joint it follows"});
+  // Mimics that follow each other round (j2 → j3 → j2) lead nowhere.
+  ExpectRejected(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j3\"/>") + MassLink("c") +
+                       Joint("j3", "revolute", "b", "c", kLimit + "<mimic joint=\"j2\"/>")),
+                 {"<string>:6: joint 'j2': <mimic joint=\"j3\">: joints 'j2', 'j3' mimic each other in a loop"});
   // A mimic of another joint still loads (with its warning).
   EXPECT_EQ(LoadUrdfString(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j1\"/>")))
                 .model.n_links(),
