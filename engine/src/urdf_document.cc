@@ -55,6 +55,30 @@ const std::map<std::string, std::vector<NumberRule>>& Rules() {
   return rules;
 }
 
+// Follows the edges (a name → the next name along: a link's parent link, a
+// joint's mimic leader) from every name, each name walked once. The names of
+// the first loop found, from the one a walk came back to; empty when none.
+template <typename Edge, typename NextOf>
+std::vector<std::string> FirstLoop(const std::map<std::string, Edge>& edges, NextOf next_of) {
+  enum class State { kOnWalk, kDone };
+  std::map<std::string, State> state;
+  for (const auto& [first, unused] : edges) {
+    std::vector<std::string> walk;
+    for (std::string at = first;;) {
+      const auto seen = state.find(at);
+      if (seen != state.end() && seen->second == State::kDone) break;
+      if (seen != state.end()) return std::vector<std::string>(std::find(walk.begin(), walk.end(), at), walk.end());
+      const auto edge = edges.find(at);
+      if (edge == edges.end()) break;
+      state[at] = State::kOnWalk;
+      walk.push_back(at);
+      at = next_of(edge->second);
+    }
+    for (const std::string& name : walk) state[name] = State::kDone;
+  }
+  return {};
+}
+
 const char* SignText(Sign sign) {
   switch (sign) {
     case Sign::kNonNegative: return " >= 0";
@@ -207,51 +231,21 @@ class DocumentCheck {
       }
       mimic_of.emplace(joint, Mimic{leader, mimic->Row()});
     }
-    // Leaders followed from every mimic joint, each joint walked once.
-    enum class State { kOnWalk, kDone };
-    std::map<std::string, State> state;
-    for (const auto& [first, unused] : mimic_of) {
-      std::vector<std::string> walk;
-      for (std::string joint = first;;) {
-        const auto seen = state.find(joint);
-        if (seen != state.end() && seen->second == State::kDone) break;
-        if (seen != state.end()) {
-          const auto loop = std::find(walk.begin(), walk.end(), joint);
-          const Mimic& mimic = mimic_of.at(joint);
-          Fail(mimic.line, "joint " + Quote(joint) + ": <mimic joint=\"" + PrintableText(mimic.leader) + "\">: joints " +
-                               QuotedList(std::vector<std::string>(loop, walk.end())) +
-                               " mimic each other in a loop; one of them must follow a joint that mimics none");
-        }
-        const auto up = mimic_of.find(joint);
-        if (up == mimic_of.end()) break;
-        state[joint] = State::kOnWalk;
-        walk.push_back(joint);
-        joint = up->second.leader;
-      }
-      for (const std::string& joint : walk) state[joint] = State::kDone;
+    // Leaders followed from every mimic joint.
+    const std::vector<std::string> loop = FirstLoop(mimic_of, [](const Mimic& mimic) { return mimic.leader; });
+    if (!loop.empty()) {
+      const Mimic& mimic = mimic_of.at(loop.front());
+      Fail(mimic.line, "joint " + Quote(loop.front()) + ": <mimic joint=\"" + PrintableText(mimic.leader) +
+                           "\">: joints " + QuotedList(loop) +
+                           " mimic each other in a loop; one of them must follow a joint that mimics none");
     }
   }
 
   // Walks up from every link through the joints it hangs from; coming back
   // to a link of the same walk is a loop.
   void CheckNoLoop() const {
-    enum class State { kOnWalk, kDone };
-    std::map<std::string, State> state;
-    for (const auto& [first, unused] : parent_of_) {
-      std::vector<std::string> walk;
-      std::string link = first;
-      for (;;) {
-        const auto seen = state.find(link);
-        if (seen != state.end() && seen->second == State::kDone) break;
-        if (seen != state.end()) FailLoop(walk, link);
-        const auto up = parent_of_.find(link);
-        if (up == parent_of_.end()) break;
-        state[link] = State::kOnWalk;
-        walk.push_back(link);
-        link = up->second.parent;
-      }
-      for (const std::string& l : walk) state[l] = State::kDone;
-    }
+    const std::vector<std::string> loop = FirstLoop(parent_of_, [](const Edge& edge) { return edge.parent; });
+    if (!loop.empty()) FailLoop(loop, loop.front());
   }
 
   [[noreturn]] void FailLoop(const std::vector<std::string>& walk, const std::string& again) const {
