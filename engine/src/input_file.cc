@@ -115,6 +115,20 @@ std::string ReadInputFile(const std::string& path) {
   return text;
 }
 
+int OpenStreamedInputFile(const std::string& path) {
+  struct stat status;
+  if (::stat(path.c_str(), &status) != 0) FailErrno(path, "cannot read the file");
+  if (!S_ISREG(status.st_mode)) CheckInputFile(path);  // throws, saying what it is
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) FailErrno(path, "cannot read the file");
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
+    ::close(fd);
+    CheckInputFile(path);
+    throw std::invalid_argument(path + ": is not a regular file; pass a file");  // replaced while opened
+  }
+  return fd;
+}
+
 std::size_t MaxLineBytes() {
   const std::uint64_t bytes = LimitFromEnvironment(kLineVariable, 1024);
   return bytes > 0 ? static_cast<std::size_t>(bytes) : 64 * 1024;

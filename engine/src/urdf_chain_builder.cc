@@ -80,12 +80,6 @@ std::string LockArgument(const urdf::Joint& joint) {
 }
 
 // Names quoted and separated by ", ".
-std::string QuotedList(const std::vector<std::string>& names) {
-  std::string list;
-  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + Quote(name);
-  return list;
-}
-
 // Chooses the chain of a urdfdom tree (the joints that become the model's
 // degrees of freedom), then walks it from the root, merging every link held
 // rigidly (fixed or locked joints) into the chain link above it.

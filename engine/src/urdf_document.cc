@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "idbench/engine/printable_text.h"
+#include "urdf_messages.h"
 
 namespace idbench::internal {
 namespace {
@@ -52,6 +53,30 @@ const std::map<std::string, std::vector<NumberRule>>& Rules() {
       {"calibration", {{"rising", 1, Sign::kAny}, {"falling", 1, Sign::kAny}}},
   };
   return rules;
+}
+
+// Follows the edges (a name → the next name along: a link's parent link, a
+// joint's mimic leader) from every name, each name walked once. The names of
+// the first loop found, from the one a walk came back to; empty when none.
+template <typename Edge, typename NextOf>
+std::vector<std::string> FirstLoop(const std::map<std::string, Edge>& edges, NextOf next_of) {
+  enum class State { kOnWalk, kDone };
+  std::map<std::string, State> state;
+  for (const auto& [first, unused] : edges) {
+    std::vector<std::string> walk;
+    for (std::string at = first;;) {
+      const auto seen = state.find(at);
+      if (seen != state.end() && seen->second == State::kDone) break;
+      if (seen != state.end()) return std::vector<std::string>(std::find(walk.begin(), walk.end(), at), walk.end());
+      const auto edge = edges.find(at);
+      if (edge == edges.end()) break;
+      state[at] = State::kOnWalk;
+      walk.push_back(at);
+      at = next_of(edge->second);
+    }
+    for (const std::string& name : walk) state[name] = State::kDone;
+  }
+  return {};
 }
 
 const char* SignText(Sign sign) {
@@ -108,6 +133,7 @@ class DocumentCheck {
       if (e->ValueStr() == "joint") AddJoint(*e, where);
     }
     CheckNoLoop();
+    CheckMimics(*robot);
   }
 
  private:
@@ -176,26 +202,50 @@ class DocumentCheck {
     }
   }
 
+  // Every <mimic joint="..."> names another joint of the file (a typo would
+  // leave the joint free, or follow nothing), and following the leaders ends
+  // at a joint that mimics none.
+  void CheckMimics(const TiXmlElement& robot) const {
+    std::vector<std::string> joints;
+    for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
+      if (const char* name = e->Attribute("name")) joints.push_back(name);
+    }
+    std::vector<std::string> sorted = joints;
+    std::sort(sorted.begin(), sorted.end());
+    struct Mimic {
+      std::string leader;
+      int line;
+    };
+    std::map<std::string, Mimic> mimic_of;  // by joint
+    for (const TiXmlElement* e = robot.FirstChildElement("joint"); e != nullptr; e = e->NextSiblingElement("joint")) {
+      const TiXmlElement* mimic = e->FirstChildElement("mimic");
+      const char* leader = mimic == nullptr ? nullptr : mimic->Attribute("joint");
+      if (leader == nullptr) continue;  // urdfdom names what is missing
+      const char* name = e->Attribute("name");
+      const std::string joint = name == nullptr ? "" : name;
+      const std::string where = "joint " + Quote(joint) + ": <mimic joint=\"" + PrintableText(leader) + "\">: ";
+      if (leader == joint) Fail(mimic->Row(), where + "a joint cannot mimic itself; name the joint it follows");
+      if (!std::binary_search(sorted.begin(), sorted.end(), std::string(leader))) {
+        Fail(mimic->Row(), where + "the file has no joint " + Quote(leader) + " (joints: " + QuotedList(joints) +
+                               "); name the joint it follows");
+      }
+      mimic_of.emplace(joint, Mimic{leader, mimic->Row()});
+    }
+    // Leaders followed from every mimic joint.
+    const std::vector<std::string> loop = FirstLoop(mimic_of, [](const Mimic& mimic) { return mimic.leader; });
+    if (!loop.empty()) {
+      const Mimic& mimic = mimic_of.at(loop.front());
+      Fail(mimic.line, "joint " + Quote(loop.front()) + ": <mimic joint=\"" + PrintableText(mimic.leader) +
+                           "\">: joints " + QuotedList(loop) +
+                           " mimic each other in a loop; one of them must follow a joint that mimics none");
+    }
+  }
+
   // Walks up from every link through the joints it hangs from; coming back
   // to a link of the same walk is a loop.
   void CheckNoLoop() const {
-    enum class State { kOnWalk, kDone };
-    std::map<std::string, State> state;
-    for (const auto& [first, unused] : parent_of_) {
-      std::vector<std::string> walk;
-      std::string link = first;
-      for (;;) {
-        const auto seen = state.find(link);
-        if (seen != state.end() && seen->second == State::kDone) break;
-        if (seen != state.end()) FailLoop(walk, link);
-        const auto up = parent_of_.find(link);
-        if (up == parent_of_.end()) break;
-        state[link] = State::kOnWalk;
-        walk.push_back(link);
-        link = up->second.parent;
-      }
-      for (const std::string& l : walk) state[l] = State::kDone;
-    }
+    const std::vector<std::string> loop = FirstLoop(parent_of_, [](const Edge& edge) { return edge.parent; });
+    if (!loop.empty()) FailLoop(loop, loop.front());
   }
 
   [[noreturn]] void FailLoop(const std::vector<std::string>& walk, const std::string& again) const {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "idbench/engine/printable_text.h"
 
@@ -15,6 +16,15 @@ namespace idbench::internal {
 // for the user to find it; 64 bytes cut the KUKA's).
 constexpr std::size_t kMaxQuotedBytes = 1024;
 inline std::string Quote(const std::string& name) { return "'" + PrintableText(name, kMaxQuotedBytes) + "'"; }
+
+// Names as a message lists them: 'a', 'b', 'c' (the first 64, then "and N more").
+inline std::string QuotedList(const std::vector<std::string>& names) {
+  constexpr std::size_t kMaxListed = 64;
+  std::string list;
+  for (std::size_t k = 0; k < names.size() && k < kMaxListed; ++k) list += (list.empty() ? "" : ", ") + Quote(names[k]);
+  if (names.size() > kMaxListed) list += " and " + std::to_string(names.size() - kMaxListed) + " more";
+  return list;
+}
 
 // A number as a message shows it (6 significant digits).
 inline std::string Format(double value) {

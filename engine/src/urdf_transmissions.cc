@@ -2,6 +2,7 @@
 
 #include <tinyxml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -30,6 +31,10 @@ std::optional<Transmission> ReadUrdfTransmissions(const std::string& xml, const 
   const int n = model.n_dof();
   std::vector<double> reduction(static_cast<size_t>(n), 0.0);
   bool any = false;
+  std::vector<std::string> file_joints;  // every joint of the file, on the chain or off it
+  for (const TiXmlElement* e = robot->FirstChildElement("joint"); e; e = e->NextSiblingElement("joint")) {
+    if (const char* name = e->Attribute("name")) file_joints.push_back(name);
+  }
   for (const TiXmlElement* t = robot->FirstChildElement("transmission"); t; t = t->NextSiblingElement("transmission")) {
     const char* name_attribute = t->Attribute("name");
     const std::string where =
@@ -40,7 +45,16 @@ std::optional<Transmission> ReadUrdfTransmissions(const std::string& xml, const 
     for (int k = 0; k < n && joint_name; ++k) {
       if (model.link(k).joint_name == joint_name) j = k;
     }
-    if (j < 0) continue;  // a joint off the chain (a gripper's), or none
+    // A joint the file lacks (a typo) would leave its joint direct drive.
+    if (joint_name == nullptr) {
+      throw std::invalid_argument(where + ": no <joint name=\"...\"> in it; a transmission names the joint it drives");
+    }
+    if (std::find(file_joints.begin(), file_joints.end(), joint_name) == file_joints.end()) {
+      throw std::invalid_argument(where + ": <joint name=\"" + PrintableText(joint_name) +
+                                  "\">: the robot has no joint " + Quote(joint_name) +
+                                  " (joints: " + QuotedList(file_joints) + ")");
+    }
+    if (j < 0) continue;  // a joint off the chain (a gripper's)
     const char* type_attribute = t->Attribute("type");
     const std::string type = t->FirstChildElement("type") ? TextOf(t->FirstChildElement("type"))
                                                           : (type_attribute ? type_attribute : "");

@@ -1,7 +1,5 @@
 #include "line_reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,16 +24,7 @@ constexpr std::string_view kBom = "\xef\xbb\xbf";
 LineReader LineReader::FromFile(const std::string& path) {
   LineReader reader;
   reader.source_ = path;
-  // Opened without blocking, then checked: a FIFO or a device is refused
-  // rather than waited on (CheckInputFile's reasons; no size limit, as the
-  // file is never held whole).
-  struct stat status;
-  if (::stat(path.c_str(), &status) != 0) FailErrno(path, "cannot read the file");
-  if (!S_ISREG(status.st_mode)) CheckInputFile(path);  // throws, saying what it is
-  reader.fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (reader.fd_ < 0) FailErrno(path, "cannot read the file");
-  if (::fstat(reader.fd_, &status) != 0) FailErrno(path, "cannot read the file");
-  if (!S_ISREG(status.st_mode)) CheckInputFile(path);
+  reader.fd_ = OpenStreamedInputFile(path);  // a FIFO or a device is refused, not waited on
   reader.buffer_.resize(kBlockBytes);
   return reader;
 }

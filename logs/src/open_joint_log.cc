@@ -5,6 +5,7 @@
 #include "idbench/logs/rosbag2_joint_log.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -16,8 +17,12 @@ namespace idbench {
 
 std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const RobotModel& model,
                                              const JointLogFormat& format, TorqueColumns torques) {
-  // A rosbag2 bag: a directory with metadata.yaml, a .db3 or an .mcap file.
-  if (IsRosbag2Path(path)) return OpenRosbag2JointLog(path, model, format, torques);
+  // A rosbag2 bag: a directory with metadata.yaml, a .db3 or an .mcap file
+  // (any other directory is refused there, saying it lacks metadata.yaml).
+  std::error_code error;
+  if (IsRosbag2Path(path) || std::filesystem::is_directory(path, error)) {
+    return OpenRosbag2JointLog(path, model, format, torques);
+  }
   if (!format.topic.empty()) throw std::invalid_argument(path + ": topic: '" + format.topic + "' given, but only a bag has topics");
   // A log description (.json, .yaml, .yml): the files it describes.
   if (IsJointLogDescriptionPath(path)) {
@@ -47,7 +52,8 @@ bool IsTorqueOrCurrentColumn(std::string field) {
 }  // namespace
 
 bool IsRecordedJointLogPath(const std::string& path) {
-  if (IsRosbag2Path(path)) return true;
+  std::error_code error;
+  if (IsRosbag2Path(path) || std::filesystem::is_directory(path, error)) return true;  // a folder is only ever a bag
   if (path.ends_with(".yaml") || path.ends_with(".yml")) return true;
   try {
     if (path.ends_with(".json")) {

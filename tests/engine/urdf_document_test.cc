@@ -30,6 +30,26 @@ TEST(UrdfTest, LoopsAreRefusedNamingTheJointsAndTheLine) {
                  {"<string>:4:", "joints 'self' form a loop"});
 }
 
+// Issue 35 item 29: a <mimic> of a joint the file lacks, or of itself, is
+// refused naming the joint, the element and the line (it was loaded with a
+// warning, the joint independent).
+TEST(UrdfTest, AMimicOfNoOtherJointIsRefused) {
+  const std::string chain = BareLink("base") + MassLink("a") + MassLink("b") + Joint("j1", "revolute", "base", "a");
+  ExpectRejected(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j_1\" multiplier=\"2\"/>")),
+                 {"<string>:6: joint 'j2': <mimic joint=\"j_1\">: the file has no joint 'j_1' (joints: 'j1', 'j2'); "
+                  "name the joint it follows"});
+  ExpectRejected(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j2\"/>")),
+                 {"<string>:6: joint 'j2': <mimic joint=\"j2\">: a joint cannot mimic itself; name the joint it follows"});
+  // Mimics that follow each other round (j2 → j3 → j2) lead nowhere.
+  ExpectRejected(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j3\"/>") + MassLink("c") +
+                       Joint("j3", "revolute", "b", "c", kLimit + "<mimic joint=\"j2\"/>")),
+                 {"<string>:6: joint 'j2': <mimic joint=\"j3\">: joints 'j2', 'j3' mimic each other in a loop"});
+  // A mimic of another joint still loads (with its warning).
+  EXPECT_EQ(LoadUrdfString(Robot(chain + Joint("j2", "revolute", "a", "b", kLimit + "<mimic joint=\"j1\"/>")))
+                .model.n_links(),
+            2);
+}
+
 // Every number urdfdom reads is one finite number of the right sign, else
 // the file is refused naming the element, the attribute, the text and the
 // line (urdfdom dropped such elements and loaded the rest, or said "mass must

@@ -70,5 +70,33 @@ TEST(UrdfTransmissionsTest, NoneOrBadOnes) {
             std::string::npos) << loaded.warnings.back();
 }
 
+// Issue 35 item 26: a transmission naming a joint the robot lacks (j2 typed
+// "j_2") was dropped, and j2 became direct drive (reduction 1 instead of 160).
+TEST(UrdfTransmissionsTest, RefusesAJointTheRobotLacks) {
+  const auto error = [](const std::string& transmissions) {
+    try {
+      LoadUrdfString(ArmUrdf(transmissions), "arm.urdf");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string t1 = R"(<transmission name="t1"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="j1"/><actuator name="m1"><mechanicalReduction>100</mechanicalReduction></actuator></transmission>)";
+  EXPECT_EQ(error(t1 + R"(
+    <transmission name="t2"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="j_2"/><actuator name="m2"><mechanicalReduction>160</mechanicalReduction></actuator></transmission>)"),
+            "arm.urdf:3: transmission 't2': <joint name=\"j_2\">: the robot has no joint 'j_2' (joints: 'j1', 'j2', "
+            "'j3', 'finger_joint')");
+  EXPECT_EQ(error(t1 + R"(
+    <transmission name="t2"><type>transmission_interface/SimpleTransmission</type>
+      <actuator name="m2"><mechanicalReduction>160</mechanicalReduction></actuator></transmission>)"),
+            "arm.urdf:3: transmission 't2': no <joint name=\"...\"> in it; a transmission names the joint it drives");
+  // A joint off the chain (the finger) is still taken and left out.
+  EXPECT_EQ(error(t1 + R"(<transmission name="tf"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="finger_joint"/><actuator name="mf"><mechanicalReduction>7</mechanicalReduction></actuator></transmission>)"),
+            "(no error)");
+}
+
 }  // namespace
 }  // namespace idbench

@@ -56,6 +56,8 @@ TEST_F(RecordedJointLogPathTest, DescriptionsAndBagsAreLogs) {
   EXPECT_TRUE(IsRecordedJointLogPath(Write("log.yaml", "rate: 100\n")));
   EXPECT_TRUE(IsRecordedJointLogPath((testing::kBags / "bag_mcap").string()));
   EXPECT_TRUE(IsRecordedJointLogPath((testing::kBags / "joint_states_zstd.mcap").string()));
+  // A folder without metadata.yaml too: opening it says what it lacks (issue 35 item 21).
+  EXPECT_TRUE(IsRecordedJointLogPath(dir_.string()));
 }
 
 }  // namespace

@@ -18,11 +18,16 @@ struct BagFiles {
 };
 
 // Throws std::invalid_argument "path: what" for a metadata.yaml that cannot
-// be read, an unknown storage_identifier, a compressed bag
-// (compression_format), or a file that is neither .db3 nor .mcap.
+// be read (a FIFO, a directory: ReadInputFile's words), a field of the wrong
+// kind (storage_identifier, compression_format or a relative_file_paths entry
+// that is not a string; relative_file_paths not a list, or longer than
+// 10 000), an unknown storage_identifier, a compressed bag
+// (compression_format), a directory without metadata.yaml (naming the .mcap
+// and .db3 files it holds), or a file that is neither .db3 nor .mcap.
 BagFiles FindBagFiles(const std::string& path);
 
-// Opens one storage file. Throws std::invalid_argument "file: what".
+// Opens one storage file. Throws std::invalid_argument "file: what", and
+// OpenStreamedInputFile's message for a path that is not a regular file.
 std::unique_ptr<BagMessageReader> OpenBagFile(BagFiles::Storage storage, const std::string& path);
 
 }  // namespace idbench::internal

@@ -4,9 +4,13 @@
 #include <zlib.h>
 #include <zstd.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+
+#include "idbench/engine/input_file.h"
 
 namespace idbench::internal {
 namespace {
@@ -76,13 +80,30 @@ class Fields {
   const Where& where_;
 };
 
-// Decompresses an LZ4 frame (not a raw block) of exactly out.size() bytes.
-void DecompressLz4Frame(const std::uint8_t* in, std::size_t in_size, std::vector<std::uint8_t>& out,
-                        const std::string& where) {
+// The output of a decompression grows as it arrives (doubling from a few
+// times the compressed size, up to the chunk's uncompressed_size), so a
+// forged uncompressed_size or frame header never allocates much more than
+// the records really give.
+std::size_t FirstOutputBytes(std::size_t in_size, std::size_t expected) {
+  return std::min(expected, std::max<std::size_t>(4 * in_size, 64 * 1024));
+}
+
+// Doubles `out` up to `expected` bytes; false when it is that large already.
+bool GrowOutput(std::vector<std::uint8_t>& out, std::size_t expected) {
+  if (out.size() >= expected) return false;
+  out.resize(std::min(expected, 2 * out.size()));
+  return true;
+}
+
+// Decompresses an LZ4 frame (not a raw block) into `out`, which must come to
+// exactly `expected` bytes.
+void DecompressLz4Frame(const std::uint8_t* in, std::size_t in_size, std::size_t expected,
+                        std::vector<std::uint8_t>& out, const std::string& where) {
   LZ4F_dctx* context = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&context, LZ4F_VERSION))) {
     throw std::invalid_argument(where + ": LZ4 context not created");
   }
+  out.resize(FirstOutputBytes(in_size, expected));
   std::size_t read = 0, written = 0;
   std::size_t hint = 1;
   while (hint != 0 && read < in_size) {
@@ -95,21 +116,57 @@ void DecompressLz4Frame(const std::uint8_t* in, std::size_t in_size, std::vector
     }
     read += in_step;
     written += out_step;
-    if (in_step == 0 && out_step == 0) break;  // output full, frame not done
+    const bool grew = written == out.size() && GrowOutput(out, expected);
+    if (in_step == 0 && out_step == 0 && !grew) break;  // output full at uncompressed_size, frame not done
   }
   LZ4F_freeDecompressionContext(context);
-  if (hint != 0 || written != out.size()) {
+  if (hint != 0 || written != expected) {
     throw std::invalid_argument(where + ": LZ4 frame gives " + std::to_string(written) + " bytes" +
                                 (hint != 0 ? " and does not end" : "") + ", the chunk's uncompressed_size is " +
-                                std::to_string(out.size()));
+                                std::to_string(expected));
+  }
+}
+
+// Decompresses Zstandard frames into `out`, which must come to exactly
+// `expected` bytes (ZSTD_decompress's result, streamed so that `out` grows).
+void DecompressZstd(const std::uint8_t* in, std::size_t in_size, std::size_t expected, std::vector<std::uint8_t>& out,
+                    const std::string& where) {
+  ZSTD_DCtx* context = ZSTD_createDCtx();
+  if (context == nullptr) throw std::invalid_argument(where + ": Zstandard context not created");
+  out.resize(FirstOutputBytes(in_size, expected));
+  ZSTD_inBuffer input{in, in_size, 0};
+  std::size_t written = 0, hint = 1;
+  for (;;) {
+    ZSTD_outBuffer output{out.data() + written, out.size() - written, 0};
+    hint = ZSTD_decompressStream(context, &output, &input);
+    if (ZSTD_isError(hint)) {
+      const std::string why = ZSTD_getErrorName(hint);
+      ZSTD_freeDCtx(context);
+      throw std::invalid_argument(where + ": Zstandard: " + why);
+    }
+    written += output.pos;
+    if (input.pos == input.size && output.pos < output.size) break;  // all read, all flushed
+    if (written == out.size() && !GrowOutput(out, expected)) break;  // output full at uncompressed_size
+  }
+  ZSTD_freeDCtx(context);
+  if (hint != 0 || input.pos != input.size || written != expected) {
+    throw std::invalid_argument(where + ": Zstandard gives " + std::to_string(written) + " bytes" +
+                                (hint != 0 || input.pos != input.size ? " and does not end" : "") +
+                                ", uncompressed_size says " + std::to_string(expected));
   }
 }
 
 }  // namespace
 
 McapReader::McapReader(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "rb");
-  if (file_ == nullptr) throw std::invalid_argument("cannot open the file: " + std::string(std::strerror(errno)));
+  // Only a regular file: a FIFO would block the open, a directory named
+  // bag_0.mcap is named as one.
+  const int fd = OpenStreamedInputFile(path);
+  file_ = ::fdopen(fd, "rb");
+  if (file_ == nullptr) {
+    ::close(fd);
+    throw std::invalid_argument("cannot open the file: " + std::string(std::strerror(errno)));
+  }
   std::fseek(file_, 0, SEEK_END);
   const std::uint64_t file_size = static_cast<std::uint64_t>(ftello(file_));
   data_end_ = file_size;
@@ -131,9 +188,21 @@ McapReader::McapReader(const std::string& path) : path_(path) {
       if (summary_start >= data_end_) summary_start = 0;
     }
   }
+  bool summary_read = false;
   if (summary_start != 0) {
-    Scan(summary_start);
-  } else {
+    // A Footer's summary_start that does not lead to records ending at the
+    // Footer (damaged, or pointing into the data section's middle) is not
+    // the file's end being cut: the data section is read instead.
+    try {
+      Scan(summary_start);
+      summary_read = true;
+    } catch (const std::invalid_argument&) {
+      schema_names_.clear();
+      channels_.clear();
+      topics_.clear();
+    }
+  }
+  if (!summary_read) {
     // No summary (or no Footer: a truncated file): the data section's own
     // Schema and Channel records, up to the first damage, which Next reports.
     try {
@@ -246,32 +315,33 @@ void McapReader::OpenChunk(std::uint64_t offset) {
   const std::string compression = fields.String("compression");
   std::uint64_t compressed_size = 0;
   const std::uint8_t* records = fields.Bytes(8, "records", &compressed_size);
-  if (uncompressed_size > kMaxChunkBytes) {
-    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) +
-                                " is beyond the " + std::to_string(kMaxChunkBytes) + " bytes read");
+  if (!compression.empty() && compression != "lz4" && compression != "zstd") {
+    throw std::invalid_argument(where + ": compression '" + compression + "' is not read (\"\", lz4 or zstd)");
   }
 
-  // Decompress: "" (stored), "lz4" (an LZ4 frame), "zstd" (Zstandard frames).
+  // uncompressed_size within the stated bounds before it is allocated: what
+  // the compressed records can give at most, and kMaxChunkBytes.
   if (compression.empty() && compressed_size != uncompressed_size) {
     throw std::invalid_argument(where + ": uncompressed chunk of " + std::to_string(compressed_size) +
                                 " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
   }
-  chunk_.resize(uncompressed_size);
+  const std::uint64_t ratio = compression == "lz4" ? kMaxLz4Ratio : compression == "zstd" ? kMaxZstdRatio : 1;
+  if (uncompressed_size > compressed_size * ratio) {  // compressed_size is within the file: no overflow
+    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) + " bytes, but " +
+                                std::to_string(compressed_size) + " bytes of " + compression +
+                                " records give at most " + std::to_string(compressed_size * ratio) +
+                                " (the file is damaged)");
+  }
+  if (uncompressed_size > kMaxChunkBytes) {
+    throw std::invalid_argument(where + ": uncompressed_size " + std::to_string(uncompressed_size) +
+                                " bytes is beyond the " + std::to_string(kMaxChunkBytes) + " bytes of a chunk read");
+  }
   if (compression.empty()) {
-    std::copy(records, records + compressed_size, chunk_.begin());
+    chunk_.assign(records, records + compressed_size);
   } else if (compression == "lz4") {
-    DecompressLz4Frame(records, compressed_size, chunk_, where);
-  } else if (compression == "zstd") {
-    const std::size_t written = ZSTD_decompress(chunk_.data(), chunk_.size(), records, compressed_size);
-    if (ZSTD_isError(written)) {
-      throw std::invalid_argument(where + ": Zstandard: " + ZSTD_getErrorName(written));
-    }
-    if (written != uncompressed_size) {
-      throw std::invalid_argument(where + ": Zstandard gives " + std::to_string(written) +
-                                  " bytes, uncompressed_size says " + std::to_string(uncompressed_size));
-    }
-  } else {
-    throw std::invalid_argument(where + ": compression '" + compression + "' is not read (\"\", lz4 or zstd)");
+    DecompressLz4Frame(records, compressed_size, uncompressed_size, chunk_, where);
+  } else {  // zstd
+    DecompressZstd(records, compressed_size, uncompressed_size, chunk_, where);
   }
 
   // CRC-32 of the decompressed records; 0 means not given.

@@ -18,10 +18,11 @@ namespace idbench::internal {
 class McapReader final : public BagMessageReader {
  public:
   // Checks the magic and learns the topics: from the summary section when the
-  // file ends with a Footer, else by a pass over the data section (which
-  // stops quietly at damage; Next reports it when reading reaches it).
-  // Throws std::invalid_argument "what" for a file that cannot be opened or
-  // does not start with the MCAP magic.
+  // file ends with a Footer whose summary can be read, else by a pass over the
+  // data section (which stops quietly at damage; Next reports it when reading
+  // reaches it). Throws std::invalid_argument "path: what" for a path that is
+  // not a regular file (a directory, a FIFO: OpenStreamedInputFile's words),
+  // and "what" for a file that does not start with the MCAP magic.
   explicit McapReader(const std::string& path);
   ~McapReader() override;
   McapReader(const McapReader&) = delete;
@@ -36,7 +37,15 @@ class McapReader final : public BagMessageReader {
   bool Next(BagMessage* message) override;
   std::string LastRecord() const override { return last_record_.Describe(); }
 
+  // A chunk's uncompressed_size is checked before anything is allocated: at
+  // most kMaxChunkBytes, and at most what its compressed records can give:
+  // their size itself when stored, times kMaxLz4Ratio for an LZ4 frame (a
+  // sequence's length bytes add at most 255 bytes each), times kMaxZstdRatio
+  // for Zstandard (every block costs at least 4 bytes, a 3-byte header and one
+  // byte, and gives at most 128 KiB).
   static constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 31;  // a chunk's decompressed size
+  static constexpr std::uint64_t kMaxLz4Ratio = 255;
+  static constexpr std::uint64_t kMaxZstdRatio = 128 * 1024 / 4;
 
  private:
   // Where a record is, described only for a message (not per record read).

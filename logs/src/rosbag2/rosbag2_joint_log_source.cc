@@ -18,9 +18,12 @@ std::string Join(const std::vector<std::string>& items) {
   return out;
 }
 
-// t [s] from whole seconds and nanoseconds, as the stamp is written.
-double Seconds(std::int64_t sec, std::int64_t nanosec) {
-  return static_cast<double>(sec) + static_cast<double>(nanosec) * 1e-9;
+// t [s] of a time `ns` after `t0_ns` (both [ns], ns >= t0_ns): the exact
+// integer difference (unsigned, so any two int64 times subtract without
+// overflow), divided by 1e9 once, so k ms gives the double nearest k/1000 s,
+// as a CSV's "0.00k" parses.
+double SecondsSince(std::int64_t t0_ns, std::int64_t ns) {
+  return static_cast<double>(static_cast<std::uint64_t>(ns) - static_cast<std::uint64_t>(t0_ns)) / 1e9;
 }
 
 }  // namespace
@@ -57,17 +60,21 @@ Rosbag2JointLogSource::Rosbag2JointLogSource(const std::string& path, const Robo
   Rewind();
   std::int64_t unstamped = -1, no_velocity = -1, no_effort = -1;
   std::int64_t stamp_not_increasing = -1, receive_not_increasing = -1;
-  double last_stamp = 0.0, last_receive = 0.0;
+  std::int64_t first_stamp = 0, first_receive = 0, last_stamp = 0, last_receive = 0;
   while (ReadMessage()) {
     ToSample(&sample_);
     const std::int64_t k = message_index_;
-    if (unstamped < 0 && sample_.t_stamp == 0.0) unstamped = k;
+    if (k == 0) {
+      first_stamp = sample_.stamp_ns;
+      first_receive = sample_.receive_ns;
+    }
+    if (unstamped < 0 && sample_.stamp_ns == 0) unstamped = k;
     if (no_velocity < 0 && !sample_.has_velocity) no_velocity = k;
     if (no_effort < 0 && !sample_.has_effort) no_effort = k;
-    if (k > 0 && stamp_not_increasing < 0 && !(sample_.t_stamp > last_stamp)) stamp_not_increasing = k;
-    if (k > 0 && receive_not_increasing < 0 && !(sample_.t_receive > last_receive)) receive_not_increasing = k;
-    last_stamp = sample_.t_stamp;
-    last_receive = sample_.t_receive;
+    if (k > 0 && stamp_not_increasing < 0 && !(sample_.stamp_ns > last_stamp)) stamp_not_increasing = k;
+    if (k > 0 && receive_not_increasing < 0 && !(sample_.receive_ns > last_receive)) receive_not_increasing = k;
+    last_stamp = sample_.stamp_ns;
+    last_receive = sample_.receive_ns;
   }
   n_messages_ = message_index_ + 1;
   if (n_messages_ == 0) throw std::invalid_argument(path + ": " + topic_ + " has no messages");
@@ -76,6 +83,7 @@ Rosbag2JointLogSource::Rosbag2JointLogSource(const std::string& path, const Robo
     Fail("effort is empty, and identification needs the joint torques");
   }
   use_stamps_ = unstamped < 0;
+  t0_ns_ = use_stamps_ ? first_stamp : first_receive;
   const std::int64_t not_increasing = use_stamps_ ? stamp_not_increasing : receive_not_increasing;
   if (not_increasing >= 0) {
     message_index_ = not_increasing;
@@ -213,8 +221,8 @@ void Rosbag2JointLogSource::ToSample(Sample* sample) {
   if (message_.position.empty()) Fail("position is empty");
 
   // Times, and the values of the model's joints.
-  sample->t_stamp = Seconds(message_.stamp_sec, message_.stamp_nanosec);
-  sample->t_receive = Seconds(raw_.log_time_ns / 1'000'000'000, raw_.log_time_ns % 1'000'000'000);
+  sample->stamp_ns = std::int64_t{message_.stamp_sec} * 1'000'000'000 + std::int64_t{message_.stamp_nanosec};
+  sample->receive_ns = raw_.log_time_ns;
   sample->has_velocity = !message_.velocity.empty();
   sample->has_effort = !message_.effort.empty();
   for (std::size_t j = 0; j < slot_.size(); ++j) {
@@ -259,7 +267,7 @@ bool Rosbag2JointLogSource::Next(Eigen::Index max_samples, JointLogChunk* chunk)
   for (Eigen::Index k = 0; k < count; ++k) {
     if (!ReadMessage()) throw std::invalid_argument(path_ + ": the bag ended early (was it changed while read?)");
     ToSample(&sample_);
-    out.t[k] = use_stamps_ ? sample_.t_stamp : sample_.t_receive;
+    out.t[k] = SecondsSince(t0_ns_, use_stamps_ ? sample_.stamp_ns : sample_.receive_ns);
     out.q.row(k) = sample_.q.transpose();
     if (layout_.has_qd) out.qd.row(k) = sample_.qd.transpose();
     if (layout_.has_tau) out.tau.row(k) = sample_.tau.transpose();

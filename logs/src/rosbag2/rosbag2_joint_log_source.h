@@ -29,8 +29,10 @@ class Rosbag2JointLogSource final : public JointLogSource {
  private:
   // The joint state the source hands out for one message.
   struct Sample {
-    double t_stamp = 0.0;    // header.stamp [s]; 0 when not stamped
-    double t_receive = 0.0;  // the bag's log time [s]
+    // Times in integer nanoseconds: a double holds 1.7e9 s only to 2.4e-7 s,
+    // so t is formed from the difference to the first message's time.
+    std::int64_t stamp_ns = 0;    // header.stamp [ns since the epoch]; 0 when not stamped
+    std::int64_t receive_ns = 0;  // the bag's log time [ns since the epoch]
     Eigen::VectorXd q, qd, tau;  // per model joint; qd, tau left as they were when the message lacks them
     bool has_velocity = false, has_effort = false;
   };
@@ -50,6 +52,7 @@ class Rosbag2JointLogSource final : public JointLogSource {
   std::vector<JointLimits> limits_;
   double to_rad_ = 1.0;
   bool use_stamps_ = true;
+  std::int64_t t0_ns_ = 0;  // the first message's time (stamp or receive time) [ns]: t = 0 there
 
   // Where the reading stands.
   std::unique_ptr<BagMessageReader> reader_;

@@ -3,9 +3,14 @@
 // bag encodes (written by make_db3.py from formulas, the MCAP files by npm's
 // @mcap/core), so each format must reproduce it exactly; each damaged bag must
 // be refused naming its file, the message and what is wrong.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
+#include <future>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -66,7 +71,9 @@ void ExpectEqualsExpected(const RecordedJointLog& read) {
   const JointLog expected = Expected();
   ASSERT_EQ(expected.n_samples(), 200);
   ASSERT_EQ(read.log.n_samples(), 200);
-  EXPECT_LE((read.log.t - expected.t).cwiseAbs().maxCoeff(), 1e-12);
+  // t counts from the first message's stamp (1 s in the fixtures).
+  EXPECT_EQ(read.log.t[0], 0.0);
+  EXPECT_LE((read.log.t.array() - (expected.t.array() - expected.t[0])).abs().maxCoeff(), 1e-12);
   EXPECT_LE((read.log.q - expected.q).cwiseAbs().maxCoeff(), 1e-12);
   ASSERT_EQ(read.log.qd.rows(), 200);
   EXPECT_LE((read.log.qd - expected.qd).cwiseAbs().maxCoeff(), 1e-12);
@@ -176,7 +183,7 @@ TEST(Rosbag2JointLogSourceTest, RefusesWhatABagCannotGive) {
   format.drive_gains = std::vector<double>(6, 1.0);
   ExpectMentions(Error(Bag("bag_db3"), format), {"drive_gains"});
   ExpectMentions(Error(Bag("bag_db3"), {}, TorqueColumns::kCurrents), {"no motor currents"});
-  ExpectMentions(Error(Bag("no_such.mcap")), {"no_such.mcap: cannot open"});
+  ExpectMentions(Error(Bag("no_such.mcap")), {"no_such.mcap: cannot read the file"});
   ExpectMentions(Error(Bag("expected.csv.mcap")), {"expected.csv.mcap"});
   format = {};
   format.topic = "/joint_states";
@@ -190,6 +197,124 @@ TEST(Rosbag2JointLogSourceTest, KnowsABagByItsPath) {
   EXPECT_TRUE(IsRosbag2Path("anything.db3"));
   EXPECT_FALSE(IsRosbag2Path(Bag("expected.csv")));
   EXPECT_FALSE(IsRosbag2Path(kBags.string()));  // a directory without metadata.yaml
+}
+
+// Issue 35 item 11: stamps after a real epoch (sec 1.7e9) exactly 1 ms apart
+// read as exactly regular, t = k / 1000 s from the first stamp, and give the
+// same samples bit for bit as the same data in a CSV (make_epoch_db3.py
+// writes both). sec + nanosec * 1e-9 in a double jittered every step by up to
+// 1.2e-7 s and started at 1.7e9 s.
+TEST(Rosbag2JointLogSourceTest, StampsAfterTheEpochKeepTheirNanoseconds) {
+  const RecordedJointLog bag = Read(Bag("epoch_1ms.db3"));
+  const RecordedJointLog csv = Read(Bag("epoch_1ms.csv"));
+  ASSERT_EQ(bag.log.n_samples(), 200);
+  for (Eigen::Index k = 0; k < 200; ++k) ASSERT_EQ(bag.log.t[k], static_cast<double>(k) / 1000.0) << k;
+  EXPECT_EQ(bag.log.t, csv.log.t);
+  EXPECT_EQ(bag.log.q, csv.log.q);
+  EXPECT_EQ(bag.log.qd, csv.log.qd);
+  EXPECT_EQ(bag.log.tau, csv.log.tau);
+}
+
+// Writes and removes a scratch folder for hostile bags.
+class HostileBagTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("idbench_hostile_bag_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string Write(const std::string& name, const std::string& text) {
+    std::filesystem::create_directories((dir_ / name).parent_path());
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  std::filesystem::path dir_;
+};
+
+// The message of what opening `path` as a joint log throws, within 10 s: a
+// reader blocked on a FIFO is released by opening its other end (so the old
+// code fails here instead of hanging).
+std::string ErrorWithin10s(const std::string& path, const std::string& fifo) {
+  std::future<std::string> error = std::async(std::launch::async, [path] { return Error(path); });
+  if (error.wait_for(std::chrono::seconds(10)) == std::future_status::ready) return error.get();
+  const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  if (writer >= 0) ::close(writer);
+  error.wait();
+  return "(blocked on the FIFO)";
+}
+
+// Issue 35 item 6: a FIFO named as a bag's file is refused at once, as a CSV's is.
+TEST_F(HostileBagTest, AFifoIsRefusedNotWaitedOn) {
+  for (const std::string name : {"run.mcap", "run_0.db3", "bag/metadata.yaml"}) {
+    std::filesystem::create_directories((dir_ / name).parent_path());
+    const std::string fifo = (dir_ / name).string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_EQ(ErrorWithin10s(fifo, fifo), fifo + ": is a FIFO (named pipe), not a regular file; pass a file");
+    if (name == "bag/metadata.yaml") {  // the bag's folder
+      EXPECT_EQ(ErrorWithin10s((dir_ / "bag").string(), fifo), fifo + ": is a FIFO (named pipe), not a regular file; pass a file");
+    }
+    std::filesystem::remove(fifo);
+  }
+  // A metadata.yaml naming a FIFO as its storage file.
+  Write("split/metadata.yaml", "rosbag2_bagfile_information:\n  storage_identifier: mcap\n"
+                               "  relative_file_paths: [split_0.mcap]\n");
+  const std::string fifo = (dir_ / "split/split_0.mcap").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(ErrorWithin10s((dir_ / "split").string(), fifo),
+            fifo + ": is a FIFO (named pipe), not a regular file; pass a file");
+}
+
+// Issue 35 item 13: metadata.yaml fields of the wrong kind are refused as
+// invalid input (exit 2) naming the file and the field, not a bare yaml-cpp
+// conversion error (exit 1).
+TEST_F(HostileBagTest, MetadataFieldsOfTheWrongKindAreNamed) {
+  const std::string head = "rosbag2_bagfile_information:\n";
+  const std::string files = "  relative_file_paths: [bag_0.mcap]\n";
+  const struct {
+    std::string yaml, message;
+  } cases[] = {
+      {head + "  storage_identifier: {a: 1}\n" + files, "storage_identifier: expected a string, got a map"},
+      {head + "  storage_identifier: [mcap]\n" + files, "storage_identifier: expected a string, got a list"},
+      {head + "  storage_identifier: mcap\n  compression_format: {zstd: 1}\n" + files,
+       "compression_format: expected a string, got a map"},
+      {head + "  storage_identifier: mcap\n  relative_file_paths: [[bag_0.mcap]]\n",
+       "relative_file_paths[0]: expected a string, got a list"},
+      {head + "  storage_identifier: mcap\n  relative_file_paths: [a.mcap, {path: b.mcap}]\n",
+       "relative_file_paths[1]: expected a string, got a map"},
+      {head + "  storage_identifier: mcap\n  relative_file_paths: {path: b.mcap}\n",
+       "relative_file_paths: expected a list of file names, got a map"},
+      {head + "  storage_identifier: mcap\n  relative_file_paths: bag_0.mcap\n",
+       "relative_file_paths: expected a list of file names, got 'bag_0.mcap'"},
+      {head + "  storage_identifier: mcap\n  relative_file_paths: [\"\"]\n",
+       "relative_file_paths[0]: expected a file name, got none"},
+  };
+  for (const auto& c : cases) {
+    const std::string metadata = Write("bag/metadata.yaml", c.yaml);
+    EXPECT_EQ(Error((dir_ / "bag").string()), metadata + ": " + c.message) << c.yaml;
+  }
+}
+
+// Issue 35 item 21: a folder without metadata.yaml says so (and what it
+// holds), a directory named like a storage file says it is a directory.
+TEST_F(HostileBagTest, NamesAFolderWithoutMetadataAndADirectoryNamedAsAFile) {
+  std::filesystem::create_directories(dir_ / "rosbag2_run");
+  std::filesystem::copy_file(kBags / "joint_states_zstd.mcap", dir_ / "rosbag2_run" / "run_0.mcap");
+  const std::string folder = (dir_ / "rosbag2_run").string();
+  EXPECT_EQ(Error(folder), folder + ": a directory without metadata.yaml, so not a rosbag2 bag folder (it holds "
+                                    "run_0.mcap: pass one of those files to read it alone)");
+  ExpectEqualsExpected(Read((dir_ / "rosbag2_run" / "run_0.mcap").string()));
+  std::filesystem::create_directories(dir_ / "empty");
+  EXPECT_EQ(Error((dir_ / "empty").string()), (dir_ / "empty").string() +
+                                                   ": a directory without metadata.yaml, so not a rosbag2 bag folder "
+                                                   "(it holds no .mcap or .db3 file)");
+  for (const std::string name : {"bag_0.mcap", "bag_0.db3"}) {
+    std::filesystem::create_directories(dir_ / name);
+    EXPECT_EQ(Error((dir_ / name).string()),
+              (dir_ / name).string() + ": is a directory, not a regular file; pass a file");
+  }
 }
 
 }  // namespace

@@ -36,6 +36,14 @@ bool IsSameFile(const std::string& a, const std::string& b);
 // Throws std::invalid_argument as CheckInputFile, and when reading fails.
 std::string ReadInputFile(const std::string& path);
 
+// Opens `path` to be read in pieces (a streamed log, a bag's storage file):
+// without blocking and without a size limit, as the file is never held whole.
+// Throws std::invalid_argument as CheckInputFile when it is not a regular file
+// (a directory, FIFO, device, socket), checked before and after opening, so a
+// FIFO swapped in between does not hang it. Returns the open file descriptor
+// (O_RDONLY | O_NONBLOCK, which a regular file ignores); the caller closes it.
+int OpenStreamedInputFile(const std::string& path);
+
 // The longest line idbench reads [bytes]: 64 KiB, room for the 1024 columns
 // a joint log may have at 64 characters each (a double needs at most 24), or
 // IDBENCH_MAX_LINE_KB kibibytes when that is set.

@@ -24,13 +24,18 @@ bool IsRosbag2Path(const std::string& path);
 // convention), velocity → qd when every message has it, effort → tau [N m]
 // (required for TorqueColumns::kRequired, else kept when every message has
 // it). Time: header.stamp when every message's stamp is nonzero, else the
-// bag's receive time; a note says which. records are message indices (from
+// bag's receive time; a note says which. t [s] counts from the first
+// message's time (t = 0 there), taken as integer nanoseconds until then, so
+// stamps after the epoch keep their nanoseconds. records are message indices (from
 // 0, counting the topic's messages only).
 // Opening reads the bag once to check it, so Next does not throw; memory
 // holds one message (db3) or one chunk (MCAP), whatever the bag's length.
 // Throws std::invalid_argument "path: what", or "path: message N: what"
 // (with the topic and the joint where they matter), for: an unreadable or
-// damaged file (truncated, a chunk CRC mismatch, not a bag), no or several
+// damaged file (truncated, a chunk CRC mismatch, a chunk's uncompressed_size
+// beyond what its records can give, not a bag), a path that is not a regular
+// file (a FIFO, a directory named .mcap) or a directory without metadata.yaml,
+// a metadata.yaml field of the wrong kind, no or several
 // JointState topics without format.topic (listing them), a topic of another
 // type, a malformed message (arrays of different lengths), a joint of the
 // model missing from a message, a position outside its limits or not finite,
