@@ -111,10 +111,12 @@ TEST(HomePoseTest, UrLikeDesignWithClearanceImproves) {
   options.max_evaluations = 100;
   const DesignResult result = DesignExcitation(regressor, UrLimits(model), options);
   EXPECT_TRUE(result.check.feasible()) << result.check.Explain();
-  // The start grows joint by joint after the common scale-down (cond ≈ 720
-  // rather than ≈ 7000 before): the search still takes it down tenfold.
-  EXPECT_LT(result.final.cond, 0.1 * result.initial.cond);
-  EXPECT_LT(result.final.cond, 100.0);
+  // The start grows joint by joint after the common scale-down (cond ≈ 930
+  // rather than ≈ 7000 before): the search still takes it down eightfold.
+  // (Since the base link is an obstacle, issue 35 — the upper arm 3 mm above
+  // it at q = 0 is held there — it reaches 116; 41 without it.)
+  EXPECT_LT(result.final.cond, 0.15 * result.initial.cond);
+  EXPECT_LT(result.final.cond, 150.0);
   EXPECT_EQ(result.starts[0].feasible_at, 0);
 }
 

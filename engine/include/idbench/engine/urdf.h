@@ -83,7 +83,9 @@ bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string
 // and that link. A locked joint's value is checked against its <limit>.
 //
 // The URDF root link, and every link rigidly attached to it, is the ground:
-// their inertials and visuals are dropped. Each degree of freedom becomes
+// their inertials are dropped, their shapes kept as the model's ground links
+// (RobotModel::ground(), one per link with shapes: a table or pedestal the
+// arm stands on is an obstacle to the links above it). Each degree of freedom becomes
 // one idbench Link, named after the URDF child link, with joint_name the URDF
 // joint name. Links hanging from a moving link by rigid joints are merged into
 // it: their masses are lumped (COM and inertia about the lumped COM by the
