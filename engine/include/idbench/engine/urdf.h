@@ -148,7 +148,8 @@ UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& opti
 // a <joint> with origin X_PJ, axis, <limit> and <dynamics> (when friction is
 // nonzero). Joints with infinite q limits are written as continuous; an
 // infinite velocity or effort is written as 0 (= not given). An empty
-// joint_name is replaced by "<link name>_joint" (made unique).
+// joint_name is replaced by "<link name>_joint" (made unique). The ground
+// links (RobotModel::ground) hang from the fresh root by fixed joints.
 // Every number is written with 17 significant digits, so that
 // LoadUrdfString(WriteUrdf(m)) reproduces m to rounding (~1e-15 relative),
 // except for what URDF cannot express (see the top of this file).
