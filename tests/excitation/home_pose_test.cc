@@ -96,7 +96,8 @@ TEST(HomePoseTest, PairsAreAskedTheRoomTheJointsCanGive) {
 // The case: the UR-like arm with the default 1 cm clearance, the
 // defaults and acceleration limits 3/3/5/5/5/5 gets a design that improves
 // on its start and is feasible at 1 kHz (one start of 100 evaluations here;
-// the CLI's 4 × 300 reached cond 37.3 before the base link was an obstacle, BENCHMARKS.md; 45.6 now, docs/commands/design.md), with the CLI's default
+// the CLI's 4 × 300 reached cond 37.3 before the base link was an obstacle,
+// BENCHMARKS.md; 45.6 now, docs/commands/design.md), with the CLI's default
 // friction terms Fv, Fc, Ia. Before the home asked only the room the joints
 // can give and starts kept off the clearance boundary, no start improved
 // (cond 1405). (With Fv, Fc alone this seed's first start still does not
