@@ -72,7 +72,7 @@ Eigen::Vector3d MountedGravity(const RobotModel& model, const BasePose& pose) {
 
 RobotModel MountRobot(const RobotModel& model, const BasePose& pose) {
   if (std::string why; !pose.IsValid(&why)) throw std::invalid_argument(why);
-  return RobotModel(model.name(), model.links(), MountedGravity(model, pose));
+  return RobotModel(model.name(), model.links(), MountedGravity(model, pose), model.ground());
 }
 
 bool IsMountedAt(const RobotModel& model, const BasePose& pose) {

@@ -65,8 +65,21 @@ double PointSegmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, 
 
 }  // namespace
 
+ClearanceOther ClearancePair::other() const {
+  return link_b >= 0        ? ClearanceOther::kLink
+         : obstacle >= 0    ? ClearanceOther::kObstacle
+         : ground_link >= 0 ? ClearanceOther::kGroundLink
+                            : ClearanceOther::kFloor;
+}
+
 std::string ClearancePair::Other(const RobotModel& model) const {
-  return link_b >= 0 ? model.link(link_b).name : obstacle >= 0 ? obstacle_name : std::string("ground");
+  switch (other()) {
+    case ClearanceOther::kLink: return model.link(link_b).name;
+    case ClearanceOther::kObstacle: return obstacle_name;
+    case ClearanceOther::kGroundLink: return model.ground().at(static_cast<size_t>(ground_link)).name;
+    case ClearanceOther::kFloor: break;
+  }
+  return "ground";
 }
 
 std::string ClearancePair::Name(const RobotModel& model) const { return model.link(link_a).name + "–" + Other(model); }
@@ -81,7 +94,8 @@ struct ClearanceModel::Impl {
     double capsule_radius = 0.0;
   };
   std::vector<std::vector<LinkShape>> shapes;  // per link
-  std::vector<LinkShape> obstacles;            // X_BG is X_RO: the obstacle in the base frame
+  std::vector<std::vector<LinkShape>> obstacles;     // one shape each; X_BG is X_RO: the obstacle in the base frame
+  std::vector<std::vector<LinkShape>> ground_links;  // per RobotModel::ground() link; X_BG in the base frame
   Eigen::Vector3d n_R = Eigen::Vector3d::UnitZ();  // the floor's normal in R (up)
   double floor_h = 0.0;                            // [m] height of R's origin above the floor
 
@@ -174,21 +188,32 @@ struct ClearanceModel::Impl {
     Eigen::Vector3d a0, a1, b0, b1;
     Segment(k, pair.link_a, sa, &a0, &a1);
     if (!sb) return std::min(n_R.dot(a0), n_R.dot(a1)) + floor_h - sa.capsule_radius - kBoundTolerance;
-    Segment(k, pair.obstacle >= 0 ? -1 : pair.link_b, *sb, &b0, &b1);
+    Segment(k, pair.link_b, *sb, &b0, &b1);
     return SegmentDistance(a0, a1, b0, b1) - sa.capsule_radius - sb->capsule_radius - kBoundTolerance;
+  }
+
+  // The other side's shapes: a link's (placed by its pose), an obstacle's or
+  // a ground link's (placed in R); null for the floor.
+  const std::vector<LinkShape>* OtherShapes(const ClearancePair& pair) const {
+    switch (pair.other()) {
+      case ClearanceOther::kLink: return &shapes[static_cast<size_t>(pair.link_b)];
+      case ClearanceOther::kObstacle: return &obstacles[static_cast<size_t>(pair.obstacle)];
+      case ClearanceOther::kGroundLink: return &ground_links[static_cast<size_t>(pair.ground_link)];
+      case ClearanceOther::kFloor: break;
+    }
+    return nullptr;
   }
 
   // The pair's lower bound: the least over its shape pairs.
   double PairBound(const KinematicsData<double>& k, const ClearancePair& pair) const {
     double bound = std::numeric_limits<double>::infinity();
+    const std::vector<LinkShape>* others = OtherShapes(pair);
     for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
-      if (pair.obstacle >= 0) {
-        bound = std::min(bound, Bound(k, pair, sa, &obstacles[static_cast<size_t>(pair.obstacle)]));
-      } else if (pair.link_b < 0) {
+      if (!others) {
         bound = std::min(bound, Bound(k, pair, sa, nullptr));
-      } else {
-        for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) bound = std::min(bound, Bound(k, pair, sa, &sb));
+        continue;
       }
+      for (const LinkShape& sb : *others) bound = std::min(bound, Bound(k, pair, sa, &sb));
     }
     return bound;
   }
@@ -201,30 +226,21 @@ struct ClearanceModel::Impl {
     Clearance best;
     best.distance = std::numeric_limits<double>::infinity();
     double bound = std::numeric_limits<double>::infinity();
+    // A shape placed by its link's pose, or (link < 0) fixed in R.
     auto placed = [&](int link, const LinkShape& s) {
+      if (link < 0) return ToBt(s.X_BG.linear(), s.X_BG.translation());
       const size_t i = static_cast<size_t>(link);
       return ToBt(k.R_WB[i] * s.X_BG.linear(), k.p_WBo_W[i] + k.R_WB[i] * s.X_BG.translation());
     };
     const bool prune = std::isfinite(at_least);
+    const std::vector<LinkShape>* others = OtherShapes(pair);
     for (const LinkShape& sa : shapes[static_cast<size_t>(pair.link_a)]) {
-      if (pair.obstacle >= 0) {
-        const LinkShape& so = obstacles[static_cast<size_t>(pair.obstacle)];
-        const double lower = prune ? Bound(k, pair, sa, &so) : -std::numeric_limits<double>::infinity();
-        if (lower >= std::min(at_least, best.distance)) {
-          bound = std::min(bound, lower);
-          continue;
-        }
-        const Clearance c = Pair(sa.shape.get(), placed(pair.link_a, sa), so.shape.get(),
-                                 ToBt(so.X_BG.linear(), so.X_BG.translation()));
-        if (c.distance < best.distance) best = c;
-        continue;
-      }
-      if (pair.link_b < 0) {  // exact and cheap: no bound needed
+      if (!others) {  // the floor: exact and cheap, no bound needed
         const Clearance c = Ground(sa.shape.get(), placed(pair.link_a, sa));
         if (c.distance < best.distance) best = c;
         continue;
       }
-      for (const LinkShape& sb : shapes[static_cast<size_t>(pair.link_b)]) {
+      for (const LinkShape& sb : *others) {
         const double lower = prune ? Bound(k, pair, sa, &sb) : -std::numeric_limits<double>::infinity();
         if (lower >= std::min(at_least, best.distance)) {
           bound = std::min(bound, lower);
@@ -316,20 +332,28 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, co
   std::string why;
   if (!scene.IsValid(&why)) throw std::invalid_argument("scene: " + why);
   if (!base.IsValid(&why)) throw std::invalid_argument(why);
-  impl_->shapes.resize(static_cast<size_t>(model.n_links()));
-  for (int i = 0; i < model.n_links(); ++i) {
-    for (const Shape& s : model.link(i).CollisionShapes()) {
+  // Each link's and each ground link's shapes (meshes without vertices skipped).
+  auto convex_shapes = [](const std::vector<Shape>& from) {
+    std::vector<Impl::LinkShape> out;
+    for (const Shape& s : from) {
       if (s.kind == Shape::Kind::kMesh && (s.mesh == nullptr || s.mesh->vertices.empty())) continue;
-      impl_->shapes[static_cast<size_t>(i)].push_back(Impl::Convex(s, s.X_BG));
+      out.push_back(Impl::Convex(s, s.X_BG));
     }
-  }
+    return out;
+  };
+  for (const Link& link : model.links()) impl_->shapes.push_back(convex_shapes(link.CollisionShapes()));
+  for (const GroundLink& link : model.ground()) impl_->ground_links.push_back(convex_shapes(link.CollisionShapes()));
   // The cell in the base frame R.
   const Eigen::Isometry3d X_WR = base.X_WR(), X_RW = X_WR.inverse();
   impl_->n_R = X_WR.linear().transpose() * Eigen::Vector3d::UnitZ();
   impl_->floor_h = X_WR.translation().z();
-  for (const Obstacle& o : scene.obstacles) impl_->obstacles.push_back(Impl::Convex(o.shape, X_RW * o.X_WO));
-  // Candidate pairs: every pair of links with shapes, and each with the
-  // ground, but those in contact by construction (link_clearance.h).
+  for (const Obstacle& o : scene.obstacles) {
+    impl_->obstacles.emplace_back();
+    impl_->obstacles.back().push_back(Impl::Convex(o.shape, X_RW * o.X_WO));
+  }
+  // Candidate pairs: every pair of links with shapes, each link with the
+  // cell and with the ground links, but those in contact by construction and
+  // those out of reach (link_clearance.h).
   KinematicsData<double> home(model);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
   ComputeKinematicsT<double>(model, zero, zero, zero, &home);
@@ -342,33 +366,83 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, co
     }
     return true;
   };
+  // The farthest point of a link's shapes (as GJK sees them) from its origin.
+  auto shapes_radius = [&](int link) {
+    double r = 0.0;
+    for (const Impl::LinkShape& sh : impl_->shapes[static_cast<size_t>(link)]) {
+      r = std::max({r, (sh.X_BG * sh.e0).norm() + sh.capsule_radius, (sh.X_BG * sh.e1).norm() + sh.capsule_radius});
+    }
+    return r;
+  };
+  // Whether ground link g is out of link a's reach: at any pose, every point
+  // of a is within shapes_radius + the hinge-to-hinge lengths of the origin
+  // of its chain's first link, a point fixed in R; the ground link's
+  // capsules are farther than that (and the clearance) from it.
+  auto out_of_reach = [&](int a, int g, double* apart) {
+    double reach = shapes_radius(a);
+    int first = a;
+    for (; model.link(first).parent >= 0; first = model.link(first).parent) {
+      reach += model.link(first).X_PJ.translation().norm();
+    }
+    const Eigen::Vector3d o_R = model.link(first).X_PJ.translation();
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Impl::LinkShape& sh : impl_->ground_links[static_cast<size_t>(g)]) {
+      nearest = std::min(nearest, PointSegmentDistance(o_R, sh.X_BG * sh.e0, sh.X_BG * sh.e1) - sh.capsule_radius);
+    }
+    *apart = nearest - reach;
+    return *apart > min_clearance;
+  };
+  // Link a's candidates: the obstacles, the floor, the ground links, the links before it.
+  auto candidates = [&](int a) {
+    std::vector<ClearancePair> out;
+    ClearancePair pair;
+    pair.link_a = a;
+    for (int o = 0; o < static_cast<int>(scene.obstacles.size()); ++o) {
+      pair.obstacle = o, pair.obstacle_name = scene.ObstacleName(o);
+      out.push_back(pair);
+    }
+    pair.obstacle = -1, pair.obstacle_name.clear();
+    if (scene.floor) out.push_back(pair);
+    for (int g = 0; g < static_cast<int>(impl_->ground_links.size()); ++g) {
+      if (impl_->ground_links[static_cast<size_t>(g)].empty()) continue;
+      pair.ground_link = g;
+      out.push_back(pair);
+    }
+    pair.ground_link = -1;
+    for (int b = 0; b < a; ++b) {
+      if (impl_->shapes[static_cast<size_t>(b)].empty()) continue;
+      pair.link_b = b;
+      out.push_back(pair);
+    }
+    return out;
+  };
   char buf[160];
   for (int a = 0; a < model.n_links(); ++a) {
     if (impl_->shapes[static_cast<size_t>(a)].empty()) continue;
-    // Obstacles first (−1 − o), then the floor (−1), then the links.
-    for (int b = -1 - static_cast<int>(scene.obstacles.size()); b < a; ++b) {
-      if (b >= 0 && impl_->shapes[static_cast<size_t>(b)].empty()) continue;
-      if (b == -1 && !scene.floor) continue;
-      ClearancePair pair;
-      pair.link_a = a;
-      pair.link_b = std::max(b, -1);
-      if (b < -1) {
-        pair.obstacle = -2 - b;
-        pair.obstacle_name = scene.ObstacleName(pair.obstacle);
-      }
-      if (b >= 0 && model.link(a).parent == b) {
+    for (ClearancePair& pair : candidates(a)) {
+      const ClearanceOther other = pair.other();
+      const bool hinged = other == ClearanceOther::kLink ? model.link(a).parent == pair.link_b
+                                                         : other == ClearanceOther::kGroundLink && model.link(a).parent < 0;
+      if (hinged) {
         excluded_.push_back(pair.Name(model) + ": joined by joint '" + model.link(a).joint_name + "'");
         continue;
       }
+      if (double apart = 0.0; other == ClearanceOther::kGroundLink && out_of_reach(a, pair.ground_link, &apart)) {
+        std::snprintf(buf, sizeof buf, ": out of reach (over %.3g m apart at any pose)", apart);
+        excluded_.push_back(pair.Name(model) + buf);
+        continue;
+      }
       const double d = impl_->Compute(home, pair).distance;
-      if (d <= kTouching && b >= 0) {
+      if (d <= kTouching && other == ClearanceOther::kLink) {
         std::snprintf(buf, sizeof buf, ": in contact at q = 0 (%.3g m), by construction", d);
         excluded_.push_back(pair.Name(model) + buf);
         continue;
       }
-      if (d <= kTouching && height_fixed(a)) {
-        std::snprintf(buf, sizeof buf, ": on the %s at q = 0 (%.3g m) and no joint raises it (a base on %s)",
-                      pair.obstacle >= 0 ? "obstacle" : "ground", d, pair.obstacle >= 0 ? "it" : "the floor");
+      // Only the floor's distance is the same at every pose of a link that
+      // turns about the vertical: an obstacle or a ground link beside it is not.
+      if (d <= kTouching && other == ClearanceOther::kFloor && height_fixed(a)) {
+        std::snprintf(buf, sizeof buf, ": on the ground at q = 0 (%.3g m) and no joint raises it (a base on the floor)",
+                      d);
         excluded_.push_back(pair.Name(model) + buf);
         continue;
       }
@@ -376,24 +450,28 @@ ClearanceModel::ClearanceModel(const RobotModel& model, double min_clearance, co
       pair.reach.assign(static_cast<size_t>(model.n_dof()), 0.0);
       for (int side = 0; side < 2; ++side) {
         const int link = side == 0 ? a : pair.link_b;
-        const int other = side == 0 ? pair.link_b : a;
+        const int other_link = side == 0 ? pair.link_b : a;
         if (link < 0) continue;
         // The farthest point of the link's shapes from its origin, then from
         // each joint up its chain (adding the fixed hinge-to-hinge lengths).
-        double r = 0.0;
-        for (const Impl::LinkShape& sh : impl_->shapes[static_cast<size_t>(link)]) {
-          r = std::max({r, (sh.X_BG * sh.e0).norm() + sh.capsule_radius, (sh.X_BG * sh.e1).norm() + sh.capsule_radius});
-        }
+        double r = shapes_radius(link);
         for (int j = link; j >= 0; j = model.link(j).parent) {
           bool shared = false;  // a joint on the other side's chain too
-          for (int o = other; o >= 0; o = model.link(o).parent) shared = shared || o == j;
+          for (int o = other_link; o >= 0; o = model.link(o).parent) shared = shared || o == j;
           if (!shared) pair.reach[static_cast<size_t>(j)] += r;
           r += model.link(j).X_PJ.translation().norm();
         }
       }
       // An obstacle is where the cell puts it, not a part of the robot that
-      // q = 0 may overlap by construction: its pairs keep the full clearance.
-      pair.minimum = pair.obstacle >= 0 ? min_clearance : std::min(min_clearance, d - kHomeTolerance);
+      // q = 0 may overlap by construction: its pairs keep the full clearance,
+      // but for a link resting on it at q = 0 that no joint raises (a base
+      // on a table top, a link beside a post), held at its distance there.
+      // Every other pair may not come closer than it is at q = 0.
+      const bool by_epa = d <= kTouching && other != ClearanceOther::kFloor;  // a penetration depth
+      const double held = d - (by_epa ? kContactTolerance : kHomeTolerance);
+      pair.minimum = other != ClearanceOther::kObstacle       ? std::min(min_clearance, held)
+                     : d <= kTouching && height_fixed(a) ? held
+                                                         : min_clearance;
       pairs_.push_back(pair);
     }
   }

@@ -16,8 +16,8 @@ void Check(bool ok, const std::string& model, const Link& link, const std::strin
 
 }  // namespace
 
-RobotModel::RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3d g_W)
-    : name_(std::move(name)), links_(std::move(links)), g_W_(g_W) {
+RobotModel::RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3d g_W, std::vector<GroundLink> ground)
+    : name_(std::move(name)), links_(std::move(links)), g_W_(g_W), ground_(std::move(ground)) {
   if (links_.empty()) throw std::invalid_argument("robot '" + name_ + "': no links");
   children_.assign(links_.size() + 1, {});
   for (int i = 0; i < n_links(); ++i) {

@@ -100,6 +100,7 @@ class UrdfChainBuilder {
     // joint, each hanging from the previous one.
     std::vector<Link> links;
     Group group = CollectGroup(root, "");
+    std::vector<GroundLink> ground = ReadGround(group);
     while (group.next_joint != nullptr) {
       const urdf::Joint& joint = *group.next_joint;
       const urdf::LinkConstSharedPtr child = urdf_.getLink(joint.child_link_name);
@@ -117,7 +118,7 @@ class UrdfChainBuilder {
     if (!locked_.empty()) warnings_.push_back(source_ + ": " + LockedWarning(root->name, tip->name));
 
     try {
-      RobotModel model(urdf_.getName(), std::move(links));
+      RobotModel model(urdf_.getName(), std::move(links), RobotModel::StandardGravity_W(), std::move(ground));
       for (std::string& w : InertiaWarnings(model)) warnings_.push_back(source_ + ": " + w);
       for (const Link& link : model.links()) {
         const std::optional<CenterOfMassGeometryCheck> check = CheckCenterOfMassInGeometry(link);
@@ -484,6 +485,37 @@ class UrdfChainBuilder {
     }
   }
 
+  // The visuals and collisions of `member` (a link held rigidly to a chain
+  // link or to the ground), placed by X_BL, appended to *shapes and *collisions.
+  void ReadShapes(const urdf::Link& member, const Eigen::Isometry3d& X_BL, std::vector<Shape>* shapes,
+                  std::vector<Shape>* collisions) {
+    const std::string where = "link " + Quote(member.name) + ": ";
+    for (const urdf::VisualSharedPtr& visual : UrdfShapeReader::Visuals(member)) {
+      if (visual->geometry == nullptr) continue;
+      if (auto shape = shapes_.ReadShape(*visual->geometry, X_BL * ToIsometry(visual->origin), where)) {
+        shapes->push_back(std::move(*shape));
+      }
+    }
+    for (const urdf::CollisionSharedPtr& collision : UrdfShapeReader::Collisions(member)) {
+      if (collision->geometry == nullptr) continue;
+      if (auto shape = shapes_.ReadShape(*collision->geometry, X_BL * ToIsometry(collision->origin), where)) {
+        collisions->push_back(std::move(*shape));
+      }
+    }
+  }
+
+  // The ground group's links with shapes (the root's frame is the base frame).
+  std::vector<GroundLink> ReadGround(const Group& group) {
+    std::vector<GroundLink> ground;
+    for (const auto& [member, X_RL] : group.members) {
+      GroundLink link;
+      link.name = member->name;
+      ReadShapes(*member, X_RL, &link.shapes, &link.collision_shapes);
+      if (!link.shapes.empty() || !link.collision_shapes.empty()) ground.push_back(std::move(link));
+    }
+    return ground;
+  }
+
   // Lumped mass properties and shapes of the group hanging from `moving`.
   void ReadBody(const urdf::Link& moving, const Group& group, Link* link) {
     std::vector<PointInertia> parts;
@@ -529,18 +561,7 @@ class UrdfChainBuilder {
         part.I_Lcm_B = X_BI.linear() * I_Lcm_I * X_BI.linear().transpose();
         parts.push_back(part);
       }
-      for (const urdf::VisualSharedPtr& visual : UrdfShapeReader::Visuals(*member)) {
-        if (visual->geometry == nullptr) continue;
-        if (auto shape = shapes_.ReadShape(*visual->geometry, X_BL * ToIsometry(visual->origin), where)) {
-          link->shapes.push_back(std::move(*shape));
-        }
-      }
-      for (const urdf::CollisionSharedPtr& collision : UrdfShapeReader::Collisions(*member)) {
-        if (collision->geometry == nullptr) continue;
-        if (auto shape = shapes_.ReadShape(*collision->geometry, X_BL * ToIsometry(collision->origin), where)) {
-          link->collision_shapes.push_back(std::move(*shape));
-        }
-      }
+      ReadShapes(*member, X_BL, &link->shapes, &link->collision_shapes);
     }
 
     // The lumped body needs a mass.

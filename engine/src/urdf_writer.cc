@@ -83,6 +83,12 @@ std::string WriteUrdf(const RobotModel& model) {
                                   Quote(link.joint_name) + "; URDF needs unique names");
     }
   }
+  for (const GroundLink& link : model.ground()) {
+    if (!link_names.insert(link.name).second) {
+      throw std::invalid_argument("WriteUrdf: ground link " + Quote(link.name) +
+                                  ": duplicate link name; URDF needs unique names");
+    }
+  }
   std::string ground = "base";
   if (link_names.contains(ground)) ground = "world";
   ground = UniqueName(ground, link_names);
@@ -100,6 +106,20 @@ std::string WriteUrdf(const RobotModel& model) {
       << "     rotor inertia, acceleration limits, gravity. -->\n"
       << "<robot" << Attribute("name", model.name()) << ">\n"
       << "  <link" << Attribute("name", ground) << "/>\n";
+  // The ground links (a table, a pedestal), held to the root where they are:
+  // their shapes are placed in the root's frame.
+  for (const GroundLink& link : model.ground()) {
+    out << "  <link" << Attribute("name", link.name) << ">\n";
+    for (const Shape& shape : link.shapes) out << ShapeElement("visual", shape);
+    for (const Shape& shape : link.collision_shapes) out << ShapeElement("collision", shape);
+    const std::string joint = UniqueName(ground + "_" + link.name, joint_names);
+    joint_names.insert(joint);
+    out << "  </link>\n"
+        << "  <joint" << Attribute("name", joint) << " type=\"fixed\">\n"
+        << "    <parent" << Attribute("link", ground) << "/>\n"
+        << "    <child" << Attribute("link", link.name) << "/>\n"
+        << "  </joint>\n";
+  }
 
   for (int i = 0; i < model.n_links(); ++i) {
     const Link& link = model.link(i);

@@ -55,11 +55,10 @@ std::string ExplainViolations(const FeasibilityCheck& check, bool at_pose) {
 }
 
 // "obstacles[2], a box 2 × 2 × 0.05 m at (0, 0, -0.026) m" for the scene's
-// obstacle named `name` ("" when the scene has none of that name: the floor).
-std::string DescribeObstacle(const Cell& scene, const std::string& name) {
-  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-    if (scene.ObstacleName(static_cast<int>(i)) != name) continue;
-    const Obstacle& o = scene.obstacles[i];
+// obstacle i ("" when the scene has none of that index).
+std::string DescribeObstacle(const Cell& scene, int i) {
+  if (i >= 0 && static_cast<size_t>(i) < scene.obstacles.size()) {
+    const Obstacle& o = scene.obstacles[static_cast<size_t>(i)];
     const Eigen::Vector3d& s = o.shape.size;
     const Eigen::Vector3d p = o.X_WO.translation();
     const std::string shape = o.shape.kind == Shape::Kind::kBox        ? Format("a box %g", s.x()) + Format(" × %g", s.y()) + Format(" × %g m", s.z())
@@ -79,7 +78,8 @@ std::string FeasibilityCheck::Explain() const { return ExplainViolations(*this, 
 const ConstraintMargin* FeasibilityCheck::ClosestObstacle() const {
   const ConstraintMargin* closest = nullptr;
   for (const ConstraintMargin& m : margins) {
-    if (!m.obstacle.empty() && (!closest || m.value < closest->value)) closest = &m;
+    const bool cell = m.other == ClearanceOther::kFloor || m.other == ClearanceOther::kObstacle;
+    if (m.quantity == "clearance" && cell && (!closest || m.value < closest->value)) closest = &m;
   }
   return closest;
 }
@@ -123,7 +123,9 @@ FeasibilityCheck CheckTrajectoryLimits(const RobotModel& model, const std::vecto
     m.limit = clearance->pairs()[i].minimum;
     m.held_at_home = m.limit < clearance->min_clearance();
     const ClearancePair& pair = clearance->pairs()[i];
-    if (pair.link_b < 0) m.obstacle = pair.Other(model);
+    m.other = pair.other();
+    if (m.other != ClearanceOther::kLink) m.obstacle = pair.Other(model);
+    m.obstacle_index = pair.obstacle;
     m.link = model.link(pair.link_a).name;
     m.value = kInf;  // the closest distance so far
     m.margin = kInf;
@@ -224,7 +226,7 @@ DesignInfeasibility ExplainInfeasibility(const std::string& summary, Feasibility
 DesignStatus InfeasibilityStatus(const DesignInfeasibility& infeasibility) {
   if (!infeasibility.before_search) return DesignStatus::kInfeasible;
   for (const ConstraintMargin& m : infeasibility.check.margins) {
-    if (m.margin < 0.0 && !m.obstacle.empty() && m.obstacle != "ground") return DesignStatus::kNoRoom;
+    if (m.margin < 0.0 && m.other == ClearanceOther::kObstacle) return DesignStatus::kNoRoom;
   }
   return DesignStatus::kNoMotionPossible;
 }
@@ -239,9 +241,9 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
   };
   const double ramp = options.ramp_seconds, motion_end = ramp + options.period_duration();
   bool in_motion = false;  // a violation outside the ramps
-  std::vector<std::string> obstacles;            // the scene's obstacles too close, in order
-  std::map<std::string, std::string> too_close;  // obstacle -> "link (distance m), ..."
-  std::map<std::string, double> limit;           // obstacle -> the clearance asked [m]
+  std::vector<int> obstacles;            // the scene's obstacles too close (indices), in order
+  std::map<int, std::string> too_close;  // obstacle -> "link (distance m), ..."
+  std::map<int, double> limit;           // obstacle -> the clearance asked [m]
   for (const ConstraintMargin& m : check.margins) {
     if (m.margin >= 0.0) continue;
     const std::string joint = "joint " + std::to_string(m.joint + 1);
@@ -252,17 +254,18 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
       continue;
     }
     in_motion = true;
-    if (m.quantity == "clearance" && !m.obstacle.empty()) {
-      if (m.obstacle == "ground") {
-        add(Format("`clearance` (now %g m), a `home` pose or a base_pose with ", options.clearance) + m.link +
-            " further from the floor, or \"floor\": false in the scene");
-        continue;
-      }
+    if (m.quantity == "clearance" && m.other == ClearanceOther::kFloor) {
+      add(Format("`clearance` (now %g m), a `home` pose or a base_pose with ", options.clearance) + m.link +
+          " further from the floor, or \"floor\": false in the scene");
+    } else if (m.quantity == "clearance" && m.other == ClearanceOther::kObstacle) {
       // Per obstacle: every link that comes too close to it, on one line (below).
-      auto& links = too_close[m.obstacle];
-      if (links.empty()) obstacles.push_back(m.obstacle);
+      auto& links = too_close[m.obstacle_index];
+      if (links.empty()) obstacles.push_back(m.obstacle_index);
       links += (links.empty() ? "" : ", ") + m.link + Format(" (%.3g m)", m.value);
-      limit[m.obstacle] = m.limit;
+      limit[m.obstacle_index] = m.limit;
+    } else if (m.quantity == "clearance" && m.other == ClearanceOther::kGroundLink) {
+      add(Format("`clearance` (now %g m), or a `home` pose with ", options.clearance) + m.link +
+          " further from the robot file's fixed link '" + m.obstacle + "' (the ground it stands on)");
     } else if (m.quantity == "clearance") {
       add(Format("`clearance` (now %g m), or a `home` pose with the links further apart", options.clearance));
     } else if (m.motor >= 0 && m.quantity == "tau") {
@@ -280,10 +283,13 @@ std::vector<std::string> RelaxationAdvice(const FeasibilityCheck& check, const D
           " in the `limits` file, or fewer `harmonics`, a lower `f0` or a longer `duration`");
     }
   }
-  for (const std::string& name : obstacles) {
-    const std::string what = DescribeObstacle(options.scene, name);
-    add("the scene's obstacle '" + name + "'" + (what.empty() ? "" : " (" + what + ")") + ": " + too_close[name] +
-        Format(" closer than the %.3g m asked", limit[name]) + (before_search ? " at the home pose" : "") +
+  for (const int i : obstacles) {
+    const std::string what = DescribeObstacle(options.scene, i);
+    const std::string name = i >= 0 && static_cast<size_t>(i) < options.scene.obstacles.size()
+                                 ? options.scene.ObstacleName(i)
+                                 : "obstacle " + std::to_string(i);
+    add("the scene's obstacle '" + name + "'" + (what.empty() ? "" : " (" + what + ")") + ": " + too_close[i] +
+        Format(" closer than the %.3g m asked", limit[i]) + (before_search ? " at the home pose" : "") +
         ": move or remove it, or a base_pose further from it");
   }
   if (!before_search && (in_motion || advice.empty())) {

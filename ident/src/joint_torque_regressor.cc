@@ -152,7 +152,7 @@ RobotModel ModelWithStandardParameters(const RobotModel& model, const FrictionMo
       if (friction.rotor_inertia) dyn.rotor_inertia = m.rotor_inertia * N * N;
     }
   }
-  return RobotModel(model.name(), std::move(links), model.gravity_W());
+  return RobotModel(model.name(), std::move(links), model.gravity_W(), model.ground());
 }
 
 namespace {

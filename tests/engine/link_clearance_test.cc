@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -438,8 +439,9 @@ TEST(LinkClearanceTest, CapsuleAndReachBoundsNeverExceedTheGjkDistance) {
   const RobotModel ur = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/ur10e_like/ur10e_like.urdf").model;
   const RobotModel panda = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/panda_like/panda_like.urdf").model;
   const RobotModel puma = MakePuma560();
+  const RobotModel table_arm = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/table_arm/table_arm.urdf").model;
   int bounded = 0, checked = 0;
-  for (const RobotModel* model : {&puma, &ur, &panda}) {
+  for (const RobotModel* model : {&puma, &ur, &panda, &table_arm}) {
     const ClearanceModel clearance(*model, 0.01, model == &ur ? cell : Cell());
     const int n = model->n_dof();
     KinematicsData<double> k(*model), k2(*model);
@@ -464,6 +466,172 @@ TEST(LinkClearanceTest, CapsuleAndReachBoundsNeverExceedTheGjkDistance) {
   }
   EXPECT_GT(checked, 5000);
   EXPECT_GT(bounded, checked / 4);  // the capsules are tight enough to bound most pairs above 0
+}
+
+// ---- The robot file's fixed links and contact at q = 0 (issue 35) ----
+
+// The least of the exact point–box distances (negative inside) from the 8
+// corners of a box (edges `size`, centre c_W, axes R_WG) to an axis-aligned box.
+double CornersToBox(const Eigen::Matrix3d& R_WG, const Eigen::Vector3d& c_W, const Eigen::Vector3d& size,
+                    const Eigen::Vector3d& box_centre_W, const Eigen::Vector3d& box_size) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d sign(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1);
+    const Eigen::Vector3d p = c_W + R_WG * (0.5 * sign.cwiseProduct(size)) - box_centre_W;
+    const Eigen::Vector3d d = p.cwiseAbs() - 0.5 * box_size;
+    least = std::min(least, d.maxCoeff() > 0.0 ? d.cwiseMax(0.0).norm() : d.maxCoeff());
+  }
+  return least;
+}
+
+// An arm on a pedestal on a table (tests/data/table_arm): the root link and
+// the links fixed to it are the model's ground, and obstacles to every link
+// not hinged on them; the distances to the table are the exact ones (less
+// the 1 mm inflation of each shape), inside it too; a fixed link out of reach
+// (a lamp 5 m away) makes no pair.
+TEST(LinkClearanceTest, FixedLinksOfTheRobotFileAreObstacles) {
+  const RobotModel model = LoadUrdfFile(std::string(IDBENCH_SOURCE_DIR) + "/tests/data/table_arm/table_arm.urdf").model;
+  ASSERT_EQ(model.ground().size(), 3u);
+  EXPECT_EQ(model.ground()[0].name, "table");
+  EXPECT_EQ(model.ground()[1].name, "lamp");  // depth first, in the file's order of joints
+  EXPECT_EQ(model.ground()[2].name, "pedestal");
+  const ClearanceModel clearance(model, 0.02);
+  std::vector<std::string> names;
+  for (const ClearancePair& p : clearance.pairs()) names.push_back(p.Name(model));
+  EXPECT_EQ(names, (std::vector<std::string>{"l1–ground", "l2–ground", "l2–table", "l2–pedestal", "l3–ground",
+                                             "l3–table", "l3–pedestal", "l3–l1"}));
+  const std::vector<std::string> excluded = {
+      "l1–table: joined by joint 'j1'", "l1–lamp: joined by joint 'j1'", "l1–pedestal: joined by joint 'j1'",
+      "l2–lamp: out of reach", "l2–l1: joined by joint 'j2'", "l3–lamp: out of reach", "l3–l2: joined by joint 'j3'"};
+  ASSERT_EQ(clearance.excluded().size(), excluded.size());
+  for (size_t i = 0; i < excluded.size(); ++i) {
+    EXPECT_EQ(clearance.excluded()[i].rfind(excluded[i], 0), 0u) << clearance.excluded()[i];
+  }
+  const int l2_table = 2, l3_table = 5;
+  EXPECT_EQ(clearance.pairs()[l2_table].other(), ClearanceOther::kGroundLink);
+  // l2 swung down by j2 into the table, and l3 folded down into it: the
+  // box corners (own kinematics: l2 turns about y at (0, 0, 0.75)) against the table.
+  const Eigen::Vector3d table_centre(0, 0, 0.25), table_size(2.0, 2.0, 0.5);
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);
+  int inside = 0;
+  for (const double q2 : {1.2, 1.8, 2.2, 2.5}) {
+    for (const double q3 : {-1.5, 0.0, 1.5}) {
+      const Eigen::Vector3d q(0.3, q2, q3);
+      const Eigen::Matrix3d R_W2 = Eigen::AngleAxisd(q[0], Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                                   Eigen::AngleAxisd(q[1], Eigen::Vector3d::UnitY()).toRotationMatrix();
+      const Eigen::Matrix3d R_W3 = R_W2 * Eigen::AngleAxisd(q[2], Eigen::Vector3d::UnitY()).toRotationMatrix();
+      const Eigen::Vector3d o2(0, 0, 0.75), o3 = o2 + R_W2 * Eigen::Vector3d(0, 0, 0.4);
+      const double exact2 = CornersToBox(R_W2, o2 + R_W2 * Eigen::Vector3d(0, 0, 0.2), {0.06, 0.06, 0.4}, table_centre, table_size);
+      const double exact3 = CornersToBox(R_W3, o3 + R_W3 * Eigen::Vector3d(0, 0, 0.15), {0.05, 0.05, 0.3}, table_centre, table_size);
+      ComputeKinematicsT<double>(model, q, zero, zero, &k);
+      // Over the table top, the nearest point of a box is a corner, and so is
+      // the deepest of a box poking into it. Deeper in, the table's nearest
+      // face may be another one: separating takes at least the corners' depth.
+      const double d2 = clearance.ComputePair(k, l2_table).distance, d3 = clearance.ComputePair(k, l3_table).distance;
+      if (exact2 > -0.05) EXPECT_NEAR(d2, exact2 - 2e-3, 1e-4) << q.transpose();
+      if (exact3 > -0.05) EXPECT_NEAR(d3, exact3 - 2e-3, 1e-4) << q.transpose();
+      EXPECT_LE(d2, exact2 - 2e-3 + 1e-4) << q.transpose();
+      EXPECT_LE(d3, exact3 - 2e-3 + 1e-4) << q.transpose();
+      inside += (exact2 < -0.02) + (exact3 < -0.02);
+    }
+  }
+  EXPECT_GE(inside, 4);  // poses inside the table are among them
+}
+
+// A first link turning about the vertical, touching a post at q = 0 (a SCARA
+// beside a column): its pair is kept, held at its distance at q = 0, and
+// turning towards the post violates it; its distance to the floor, which no
+// such turn changes, is the only pair left out.
+TEST(LinkClearanceTest, AVerticalJointTouchingAnObstacleAtHomeIsHeldThere) {
+  Link arm;
+  arm.name = "arm";
+  arm.inertia.mass = 1.0;
+  arm.inertia.I_Bcm_B = 0.01 * Eigen::Matrix3d::Identity();
+  Shape bar;
+  bar.kind = Shape::Kind::kBox;
+  bar.size = Eigen::Vector3d(0.5, 0.1, 0.1);
+  bar.X_BG.translation() = Eigen::Vector3d(0.25, 0, 0.05);  // resting on the floor
+  arm.shapes.push_back(bar);
+  const RobotModel model("scara", {arm});
+  Cell cell;
+  Obstacle post;
+  post.name = "post";
+  post.shape.kind = Shape::Kind::kCylinder;
+  post.shape.size = Eigen::Vector3d(0.05, 0.05, 1.0);
+  post.X_WO.translation() = Eigen::Vector3d(0.4, 0.1, 0.5);  // its side touches the bar's at y = 0.05
+  cell.obstacles = {post};
+  const ClearanceModel clearance(model, 0.01, cell);
+  ASSERT_EQ(clearance.pairs().size(), 1u);
+  ASSERT_EQ(clearance.excluded().size(), 1u);
+  EXPECT_EQ(clearance.excluded()[0].rfind("arm–ground: on the ground at q = 0", 0), 0u) << clearance.excluded()[0];
+  const ClearancePair& pair = clearance.pairs()[0];
+  EXPECT_EQ(pair.Name(model), "arm–post");
+  EXPECT_NEAR(pair.home_distance, -2e-3, 1e-4);  // touching: the two 1 mm inflations overlap
+  EXPECT_DOUBLE_EQ(pair.minimum, pair.home_distance - ClearanceModel::kContactTolerance);
+  KinematicsData<double> k(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(1);
+  for (const double q : {-0.3, -0.1, 0.1, 0.3}) {
+    ComputeKinematicsT<double>(model, Eigen::VectorXd::Constant(1, q), zero, zero, &k);
+    const double d = clearance.ComputePair(k, 0).distance;
+    // Turning away opens a gap; turning towards the post sweeps the bar into it.
+    if (q < 0) EXPECT_GT(d, pair.minimum + 0.01) << q;
+    if (q > 0) EXPECT_LT(d, pair.minimum - 0.01) << q;
+  }
+  // On a table top instead (a base standing on it, no floor): turning keeps
+  // the distance there, which EPA measures the same to kContactTolerance.
+  Obstacle table;
+  table.name = "table";
+  table.shape.kind = Shape::Kind::kBox;
+  table.shape.size = Eigen::Vector3d(2.0, 2.0, 0.5);
+  table.X_WO.translation() = Eigen::Vector3d(0.1, -0.2, -0.25);
+  cell.obstacles = {table};
+  cell.floor = false;
+  const ClearanceModel on_table(model, 0.01, cell);
+  ASSERT_EQ(on_table.pairs().size(), 1u);
+  const double minimum = on_table.pairs()[0].minimum;
+  for (int step = 0; step <= 600; ++step) {
+    ComputeKinematicsT<double>(model, Eigen::VectorXd::Constant(1, -3.0 + 0.01 * step), zero, zero, &k);
+    EXPECT_NEAR(on_table.ComputePair(k, 0).distance, on_table.pairs()[0].home_distance, 1e-9) << step;
+  }
+  EXPECT_LT(minimum, on_table.pairs()[0].home_distance);
+}
+
+// The KUKA LWR4+ file (../shared/data/kuka_lwr4, skipped when absent) stands
+// on a 1.2 × 0.74 × 1.0 m table, its root link `box`: every link above the
+// first is kept from it, and a pose folding the forearm down beside the base
+// puts a link inside it, which the clearance sees.
+TEST(LinkClearanceTest, KukaLwr4IsKeptFromItsTable) {
+  const std::filesystem::path path = std::filesystem::path(IDBENCH_SOURCE_DIR) /
+                                     "../shared/data/kuka_lwr4/lwr_description/urdf/kuka_lwr4.urdf";
+  if (!std::filesystem::exists(path)) {
+    GTEST_SKIP() << path << " is absent (../shared/data/kuka_lwr4 beside the checkout; not part of the project)";
+  }
+  const RobotModel model = LoadUrdfFile(path.string()).model;
+  ASSERT_GE(model.ground().size(), 1u);
+  EXPECT_EQ(model.ground()[0].name, "box");
+  const ClearanceModel clearance(model, 0.0);
+  std::vector<int> table_pairs;  // per link, its pair with the table (−1: none)
+  for (int a = 0; a < model.n_links(); ++a) {
+    table_pairs.push_back(-1);
+    for (size_t i = 0; i < clearance.pairs().size(); ++i) {
+      const ClearancePair& p = clearance.pairs()[i];
+      if (p.link_a == a && p.other() == ClearanceOther::kGroundLink && p.Other(model) == "box") table_pairs[a] = static_cast<int>(i);
+    }
+  }
+  EXPECT_EQ(table_pairs[0], -1);  // lwr_1_link turns on the base
+  for (int a = 1; a < 7; ++a) EXPECT_GE(table_pairs[a], 0) << model.link(a).name;
+  // Shoulder down to horizontal, elbow folded down: the wrist's frame origin
+  // (own check: its height against the table top at z = 1 m, over the table).
+  const Eigen::VectorXd q = (Eigen::VectorXd(7) << 0, -1.5708, 0, 1.5708, 0, 0, 0).finished();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(7);
+  KinematicsData<double> k(model);
+  ComputeKinematicsT<double>(model, q, zero, zero, &k);
+  const Eigen::Vector3d p_wrist = k.p_WBo_W[5];
+  ASSERT_LT(p_wrist.z(), 1.0 - 0.05) << p_wrist.transpose();
+  ASSERT_LT(std::abs(p_wrist.x()), 0.6) << p_wrist.transpose();
+  ASSERT_LT(std::abs(p_wrist.y()), 0.37) << p_wrist.transpose();
+  EXPECT_LT(clearance.ComputePair(k, table_pairs[5]).distance, -(1.0 - p_wrist.z()) + 0.05);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
@@ -81,6 +82,27 @@ TEST(UrdfTest, WriterEscapesNamesAndKeepsTheGroundNameUnique) {
   const std::string xml = WriteUrdf(expected);
   EXPECT_NE(xml.find("<link name=\"world_1\"/>"), std::string::npos) << xml;
   ExpectModelsNear(LoadUrdfString(xml).model, expected, 1e-12);
+}
+
+// The ground links (a table, a pedestal: issue 35) are written as fixed
+// links under the root and read back with the same shapes where they were.
+TEST(UrdfTest, RoundTripKeepsTheGroundLinks) {
+  const RobotModel expected = LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf").model;
+  const RobotModel loaded = LoadUrdfString(WriteUrdf(expected)).model;
+  ExpectModelsNear(loaded, expected, 1e-12);
+  ASSERT_EQ(loaded.ground().size(), expected.ground().size());
+  for (const GroundLink& b : expected.ground()) {  // urdfdom orders the root's children by joint name
+    const auto same = [&](const GroundLink& g) { return g.name == b.name; };
+    const auto found = std::find_if(loaded.ground().begin(), loaded.ground().end(), same);
+    ASSERT_NE(found, loaded.ground().end()) << b.name;
+    const GroundLink& a = *found;
+    ASSERT_EQ(a.CollisionShapes().size(), b.CollisionShapes().size()) << b.name;
+    for (size_t k = 0; k < b.CollisionShapes().size(); ++k) {
+      EXPECT_EQ(a.CollisionShapes()[k].kind, b.CollisionShapes()[k].kind) << b.name;
+      EXPECT_TRUE(a.CollisionShapes()[k].size.isApprox(b.CollisionShapes()[k].size, 1e-12)) << b.name;
+      EXPECT_TRUE(a.CollisionShapes()[k].X_BG.isApprox(b.CollisionShapes()[k].X_BG, 1e-12)) << b.name;
+    }
+  }
 }
 
 TEST(UrdfTest, WriterRejectsOneSidedLimits) {

@@ -96,7 +96,8 @@ TEST(HomePoseTest, PairsAreAskedTheRoomTheJointsCanGive) {
 // The issue's case: the UR-like arm with the default 1 cm clearance, the
 // defaults and acceleration limits 3/3/5/5/5/5 gets a design that improves
 // on its start and is feasible at 1 kHz (one start of 100 evaluations here;
-// the CLI's 4 × 300 reach cond 37.3, BENCHMARKS.md), with the CLI's default
+// the CLI's 4 × 300 reached cond 37.3 before the base link was an obstacle,
+// BENCHMARKS.md; 45.6 now, docs/commands/design.md), with the CLI's default
 // friction terms Fv, Fc, Ia. Before the home asked only the room the joints
 // can give and starts kept off the clearance boundary, no start improved
 // (cond 1405). (With Fv, Fc alone this seed's first start still does not
@@ -111,10 +112,12 @@ TEST(HomePoseTest, UrLikeDesignWithClearanceImproves) {
   options.max_evaluations = 100;
   const DesignResult result = DesignExcitation(regressor, UrLimits(model), options);
   EXPECT_TRUE(result.check.feasible()) << result.check.Explain();
-  // The start grows joint by joint after the common scale-down (cond ≈ 720
-  // rather than ≈ 7000 before): the search still takes it down tenfold.
-  EXPECT_LT(result.final.cond, 0.1 * result.initial.cond);
-  EXPECT_LT(result.final.cond, 100.0);
+  // The start grows joint by joint after the common scale-down (cond ≈ 930
+  // rather than ≈ 7000 before): the search still takes it down eightfold.
+  // (Since the base link is an obstacle, issue 35 — the upper arm 3 mm above
+  // it at q = 0 is held there — it reaches 116; 41 without it.)
+  EXPECT_LT(result.final.cond, 0.15 * result.initial.cond);
+  EXPECT_LT(result.final.cond, 150.0);
   EXPECT_EQ(result.starts[0].feasible_at, 0);
 }
 

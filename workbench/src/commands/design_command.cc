@@ -147,7 +147,7 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
     if (!options.quiet) {
       std::string line;
       for (const std::string& e : excluded) line += "\n  " + e;
-      if (!excluded.empty()) std::fprintf(stderr, "clearance: not checked (in contact by construction):%s\n", line.c_str());
+      if (!excluded.empty()) std::fprintf(stderr, "clearance: not checked (joined, in contact by construction or out of reach):%s\n", line.c_str());
       line.clear();
       for (const std::string& h : held) line += "\n  " + h;
       if (!held.empty()) {

@@ -1,6 +1,7 @@
 // Clearance of a robot's links: the distance between the shapes of two links
 // that no joint connects, from each link to the floor (the plane z = 0 of the
-// world) and to each obstacle of the cell (cell.h), by Bullet's GJK (and EPA when shapes overlap: negative distance) on
+// world), to each obstacle of the cell (cell.h) and to each ground link of the
+// robot (RobotModel::ground(): the table or pedestal of its file), by Bullet's GJK (and EPA when shapes overlap: negative distance) on
 // each link's collision shapes (Link::CollisionShapes: its <collision>
 // geometry, else what is drawn): cylinders, boxes, spheres, and meshes as
 // their convex hulls. Every shape but a sphere is checked 1 mm inflated (its
@@ -12,20 +13,29 @@
 //
 // Each pair is held at least its own minimum distance apart: min_clearance,
 // or, for a pair already closer than that at the home pose q = 0 (the robot
-// file's zero pose), its distance there (less 1 µm, kHomeTolerance) — it may
-// not get closer than it starts. No pair is dropped for being close. Only pairs in contact by
-// construction are left out, and ClearanceModel::excluded() names each once
-// with the reason:
-//  - parent and child (joined by a joint);
-//  - two links whose shapes touch or overlap at q = 0 (distance ≤ 0 with the
-//    1 mm inflation: a true gap under 2 mm; wrist links sharing a centre);
-//  - a link on the ground at q = 0 that no joint can raise or lower (every
+// file's zero pose), its distance there (less 1 µm, kHomeTolerance; less
+// kContactTolerance when two shapes touch or overlap there, a penetration
+// depth by EPA) — it may not get closer than it starts. No pair is dropped for being
+// close. Only pairs whose distance cannot fall below their minimum are left
+// out, and ClearanceModel::excluded() names each once with the reason:
+//  - parent and child (joined by a joint), and a link hinged on the ground
+//    (its parent is −1) with every ground link;
+//  - two moving links whose shapes touch or overlap at q = 0 (distance ≤ 0
+//    with the 1 mm inflation: a true gap under 2 mm; wrist links sharing a
+//    centre);
+//  - a link on the floor at q = 0 that no joint can raise or lower (every
 //    joint from the ground to it turns about the vertical: a base on the
-//    floor). A link on the ground at q = 0 that joints can move keeps its
-//    distance there as its minimum. A link on an obstacle at q = 0 that no
-//    joint raises is left out the same way (a base standing on a table top);
-//    every other obstacle pair keeps min_clearance, never its distance at
-//    q = 0 (the cell is not the robot: a pose inside it is a violation).
+//    floor), whose distance to the floor no motion changes. A link on the
+//    floor at q = 0 that joints can move keeps its distance there as its
+//    minimum;
+//  - a ground link out of a link's reach: farther from the origin of the
+//    link's chain than any point of the link can be, plus min_clearance.
+// A link touching an obstacle at q = 0 that no joint raises (a base standing
+// on a table top, a first link beside a post) is held at its distance there:
+// turning about the vertical may still sweep it into the obstacle. Every
+// other obstacle pair keeps min_clearance, never its distance at q = 0 (the
+// cell is not the robot: a pose inside it is a violation). A ground link is
+// a part of the robot: its pairs are held as those between links.
 //
 // Frames. Kinematics run in the robot's base frame R (what RobotModel and
 // KinematicsData call W); the cell is given in the world and placed in R by
@@ -47,11 +57,21 @@
 
 namespace idbench {
 
+// What a pair's link a is kept from.
+enum class ClearanceOther {
+  kLink,        // another moving link (ClearancePair::link_b)
+  kFloor,       // the floor (the plane z = 0 of the world)
+  kObstacle,    // an obstacle of the cell (ClearancePair::obstacle)
+  kGroundLink,  // a ground link of the robot (ClearancePair::ground_link)
+};
+
 struct ClearancePair {
   int link_a = 0;
-  int link_b = -1;    // −1: the floor or an obstacle (not a link)
-  int obstacle = -1;  // with link_b = −1: the scene's obstacle index; −1: the floor
+  int link_b = -1;       // −1: the floor, an obstacle or a ground link (not a moving link)
+  int obstacle = -1;     // with link_b = −1: the scene's obstacle index
+  int ground_link = -1;  // with link_b = −1: the index in RobotModel::ground(); both −1: the floor
   std::string obstacle_name;  // Cell::ObstacleName(obstacle)
+  ClearanceOther other() const;
   double minimum = 0.0;        // [m] the least distance allowed: min_clearance, or the distance
                                // at q = 0 less kHomeTolerance when the pair starts closer
   double home_distance = 0.0;  // [m] at q = 0
@@ -61,7 +81,7 @@ struct ClearancePair {
   // distance at q' is at least the distance at q less Σ_j reach_j |q'_j − q_j|.
   std::vector<double> reach;
   std::string Name(const RobotModel& model) const;  // "link2–link5", "link4–ground", "link4–table"
-  // The other side's name: a link's, "ground" or the obstacle's.
+  // The other side's name: a link's (a ground link's), "ground" (the floor) or the obstacle's.
   std::string Other(const RobotModel& model) const;
 };
 
@@ -76,6 +96,11 @@ class ClearanceModel {
   // [m] a pair held at its distance at q = 0 may come this much closer: GJK's
   // accuracy, so that a pair whose distance no joint changes meets its minimum.
   static constexpr double kHomeTolerance = 1e-6;
+  // [m] the same for a pair whose shapes touch or overlap at q = 0: their
+  // distance is a penetration depth by EPA, whose stopping tolerance is 1e-4
+  // (Bullet's EPA_ACCURACY; a face resting on a face measures alike to 1e-12 m
+  // at every turn about the vertical, LinkClearanceTest).
+  static constexpr double kContactTolerance = 1e-4;
 
   // The links against each other, the scene's floor (when scene.floor) and
   // its obstacles, the base at `base` in the world. Throws

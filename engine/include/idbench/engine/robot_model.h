@@ -74,14 +74,32 @@ struct Link {
   const std::vector<Shape>& CollisionShapes() const { return collision_shapes.empty() ? shapes : collision_shapes; }
 };
 
+// A part of the ground: a link of the robot file that no joint moves (its
+// root, a table or pedestal the arm stands on, and every link held to the
+// root by fixed joints). Not a degree of freedom and without inertia; its
+// shapes are placed in the base frame (X_BG is the shape in the frame of the
+// root, which is the base frame R). Link clearance (link_clearance.h) keeps
+// every moving link but those hinged to the ground away from them.
+struct GroundLink {
+  std::string name;                     // the robot file's link name
+  std::vector<Shape> shapes;            // what is drawn (URDF <visual>)
+  std::vector<Shape> collision_shapes;  // what clearance checks (URDF <collision>); empty: `shapes`
+
+  const std::vector<Shape>& CollisionShapes() const { return collision_shapes.empty() ? shapes : collision_shapes; }
+};
+
 class RobotModel {
  public:
   // Validates and builds the model. Throws std::invalid_argument naming the
   // offending link when: no links, a parent index not smaller than the link's
   // own index, an axis that is not unit length, mass <= 0, an inertia that is
   // not symmetric positive definite, or limits with lo >= hi.
-  RobotModel(std::string name, std::vector<Link> links,
-             Eigen::Vector3d g_W = Eigen::Vector3d(0.0, 0.0, -9.80665));
+  // `ground`: the fixed links of the robot file with shapes (none for a
+  // model without them).
+  RobotModel(std::string name, std::vector<Link> links, Eigen::Vector3d g_W = StandardGravity_W(),
+             std::vector<GroundLink> ground = {});
+  // [m/s²] standard gravity along −z of W.
+  static Eigen::Vector3d StandardGravity_W() { return Eigen::Vector3d(0.0, 0.0, -9.80665); }
 
   const std::string& name() const { return name_; }
   int n_links() const { return static_cast<int>(links_.size()); }
@@ -89,6 +107,8 @@ class RobotModel {
   const Link& link(int i) const { return links_.at(static_cast<size_t>(i)); }
   const std::vector<Link>& links() const { return links_; }
   const Eigen::Vector3d& gravity_W() const { return g_W_; }
+  // The links no joint moves (GroundLink), in the robot file's order.
+  const std::vector<GroundLink>& ground() const { return ground_; }
   // Indices of the links whose parent is link i (i = -1: the ground).
   const std::vector<int>& children(int i) const {
     return children_.at(static_cast<size_t>(i + 1));
@@ -98,6 +118,7 @@ class RobotModel {
   std::string name_;
   std::vector<Link> links_;
   Eigen::Vector3d g_W_;
+  std::vector<GroundLink> ground_;
   std::vector<std::vector<int>> children_;  // indexed by parent + 1
 };
 

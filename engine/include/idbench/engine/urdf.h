@@ -91,7 +91,9 @@ bool AddJointLock(const std::string& text, UrdfLoadOptions* options, std::string
 // and that link. A locked joint's value is checked against its <limit>.
 //
 // The URDF root link, and every link rigidly attached to it, is the ground:
-// their inertials and visuals are dropped. Each degree of freedom becomes
+// their inertials are dropped, their shapes kept as the model's ground links
+// (RobotModel::ground(), one per link with shapes: a table or pedestal the
+// arm stands on is an obstacle to the links above it). Each degree of freedom becomes
 // one idbench Link, named after the URDF child link, with joint_name the URDF
 // joint name. Links hanging from a moving link by rigid joints are merged into
 // it: their masses are lumped (COM and inertia about the lumped COM by the
@@ -154,7 +156,8 @@ UrdfLoadResult LoadUrdfFile(const std::string& path, const UrdfLoadOptions& opti
 // a <joint> with origin X_PJ, axis, <limit> and <dynamics> (when friction is
 // nonzero). Joints with infinite q limits are written as continuous; an
 // infinite velocity or effort is written as 0 (= not given). An empty
-// joint_name is replaced by "<link name>_joint" (made unique).
+// joint_name is replaced by "<link name>_joint" (made unique). The ground
+// links (RobotModel::ground) hang from the fresh root by fixed joints.
 // Every number is written with 17 significant digits, so that
 // LoadUrdfString(WriteUrdf(m)) reproduces m to rounding (~1e-15 relative),
 // except for what URDF cannot express (see the top of this file).

@@ -89,7 +89,11 @@ struct ConstraintMargin {
   double margin = 0.0;   // limit − value (for q_min: value − limit); < 0 is a violation
   bool held_at_home = false;  // clearance: limit is the pair's distance at q = 0, closer than
                               // the clearance asked (link_clearance.h)
-  std::string obstacle;       // clearance to the cell: "ground" or the obstacle's name; "" between links
+  std::string obstacle;       // clearance to what is not a moving link: "ground" (the floor), the obstacle's
+                              // or the ground link's name; "" between moving links
+  ClearanceOther other = ClearanceOther::kLink;  // clearance: what `obstacle` is (the floor is told by
+                                                 // this, never by its name)
+  int obstacle_index = -1;    // clearance to a scene obstacle: its index in scene.obstacles
   std::string link;           // clearance: the robot's link of the pair
   int motor = -1;             // an actuator limit's motor (0-based; quantity "qd" or "tau" of θ̇m, τm); −1: a joint's
   std::string driven;         // motor: the joints it drives, "joint_5, joint_6"
@@ -104,8 +108,8 @@ struct FeasibilityCheck {
   // joint_6) qd: |θ̇m| = 210 rad/s at t = 3.41 s exceeds the limit 200 rad/s
   // by 10 rad/s"; "" if feasible.
   std::string Explain() const;
-  // The clearance margin to the cell (floor or obstacle) whose distance came
-  // lowest; nullptr when none was checked.
+  // The clearance margin to the cell (the floor or an obstacle; not a ground
+  // link of the robot) whose distance came lowest; nullptr when none was checked.
   const ConstraintMargin* ClosestObstacle() const;
   // "closest obstacle: wall, 0.0312 m from wrist_3_link at t = 2.41 s (minimum 0.01 m)"; "" when none.
   std::string ClosestObstacleLine() const;
