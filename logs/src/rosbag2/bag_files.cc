@@ -6,7 +6,9 @@
 #include <stdexcept>
 
 #include "db3_reader.h"
+#include "idbench/engine/input_file.h"
 #include "mcap_reader.h"
+#include "yaml_input.h"
 
 namespace idbench::internal {
 namespace {
@@ -20,7 +22,7 @@ bool EndsWith(const std::string& s, const std::string& tail) {
 BagFiles FromMetadata(const fs::path& directory, const std::string& metadata_path) {
   YAML::Node info;
   try {
-    info = YAML::LoadFile(metadata_path)["rosbag2_bagfile_information"];
+    info = LoadYamlWithoutAliases(ReadInputFile(metadata_path), metadata_path)["rosbag2_bagfile_information"];
   } catch (const YAML::Exception& e) {
     throw std::invalid_argument(metadata_path + ": " + e.what());
   }
