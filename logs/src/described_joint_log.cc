@@ -70,7 +70,15 @@ LogPart OpenPart(const JointLogDescription& description, size_t i, const RobotMo
                                ? file.path
                                : (std::filesystem::path(description.source).parent_path() / relative).string();
   const std::string field = ".files[" + std::to_string(i) + "]";
-  const std::string folder = relative.is_absolute() ? "" : std::filesystem::path(path).parent_path().string();
+  // The folder a relative path is taken in, made absolute for the message
+  // ("d.json" given from the current folder; an error leaves it as given).
+  std::error_code error;
+  const std::filesystem::path parent = std::filesystem::path(description.source).parent_path();
+  const std::filesystem::path absolute = std::filesystem::absolute(parent.empty() ? "." : parent, error);
+  std::string folder = relative.is_absolute() ? ""
+                       : error                ? parent.string()
+                                              : absolute.lexically_normal().string();
+  if (folder.size() > 1 && folder.back() == '/') folder.pop_back();  // "/cwd/." normalises to "/cwd/"
   // A file that cannot be read: the description's field names it, and the
   // folder a relative path was taken in (a symlinked description's own).
   std::optional<LogPart> opened;
