@@ -75,8 +75,9 @@ struct Field {
   std::string Shown() const {
     // NaN and ±inf (from YAML: JSON has none) as such; dump() writes null.
     if (value.is_number_float() && !std::isfinite(value.get<double>())) return Shortest(value.get<double>());
-    std::string text = value.dump();
-    return text.size() > 64 ? text.substr(0, 64) + "…" : text;
+    // Invalid UTF-8 (YAML passes any byte) as U+FFFD: dump() would throw.
+    const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+    return PrintableText(text, 64);
   }
 
   // Every key one of `known`, listed quoted as written in a description (a

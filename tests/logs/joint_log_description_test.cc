@@ -84,6 +84,9 @@ TEST(JointLogDescriptionTest, RateIsFiniteAndWithinItsRange) {
   // Both ends of the range are allowed.
   EXPECT_EQ(ParseJointLogDescription(R"({"rate": 1, "files": [{"path": "q.csv"}]})", "d.json", false).rate_hz, 1.0);
   EXPECT_EQ(ParseJointLogDescription(R"({"rate": 1e6, "files": [{"path": "q.csv"}]})", "d.json", false).rate_hz, 1e6);
+  // A value that is not UTF-8 (YAML passes any byte) is shown, not thrown as
+  // nlohmann's type_error (1c4dd0f: exit 1, "[json.exception.type_error.316]").
+  EXPECT_EQ(Refusal("rate: \"\xff\"\nfiles: [{path: q.csv}]\n", true), "d.yaml: " + expected + "\"\xef\xbf\xbd\"");
   // NaN elsewhere is shown as nan too.
   EXPECT_EQ(Refusal("rate: 100\nfiles: [{path: q.csv}]\ndrive_gains: [1, nan]\n", true),
             "d.yaml: .drive_gains[1]: expected a finite number, got nan");
