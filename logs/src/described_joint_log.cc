@@ -2,6 +2,7 @@
 // TableLogSource, with the description's options merged with the caller's.
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "csv_fields.h"
@@ -69,7 +70,39 @@ LogPart OpenPart(const JointLogDescription& description, size_t i, const RobotMo
                                ? file.path
                                : (std::filesystem::path(description.source).parent_path() / relative).string();
   const std::string field = ".files[" + std::to_string(i) + "]";
-  LogPart part(LineReader::FromFile(path));
+  // The folder a relative path is taken in, made absolute for the message
+  // ("d.json" given from the current folder; an error leaves it as given).
+  std::error_code error;
+  const std::filesystem::path parent = std::filesystem::path(description.source).parent_path();
+  const std::filesystem::path absolute = std::filesystem::absolute(parent.empty() ? "." : parent, error);
+  std::string folder = relative.is_absolute() ? ""
+                       : error                ? parent.string()
+                                              : absolute.lexically_normal().string();
+  if (folder.size() > 1 && folder.back() == '/') folder.pop_back();  // "/cwd/." normalises to "/cwd/"
+  // A file that cannot be read: the description's field names it, and the
+  // folder a relative path was taken in (a symlinked description's own).
+  std::optional<LogPart> opened;
+  try {
+    opened.emplace(LineReader::FromFile(path));
+  } catch (const std::invalid_argument& e) {
+    std::string why = e.what();  // "path: why"
+    if (why.starts_with(path + ": ")) why = why.substr(path.size() + 2);
+    throw std::invalid_argument(description.source + ": " + field + ".path: '" + file.path + "'" +
+                                (folder.empty() ? "" : ", taken in the description's folder " + folder) + ": " + why);
+  }
+  LogPart part = std::move(*opened);
+  // Lines to skip must leave some: past the end the count is wrong (not the file empty).
+  if (file.skip > 0) {
+    std::string_view line;
+    while (part.lines.line_number() < file.skip && part.lines.Next(&line)) {
+    }
+    if (part.lines.line_number() < file.skip || !part.lines.Next(&line)) {
+      throw std::invalid_argument(description.source + ": " + field + ".skip: skips " + std::to_string(file.skip) +
+                                  " lines, but " + path + " has " + std::to_string(part.lines.line_number()) +
+                                  ": nothing is left to read");
+    }
+    part.lines.Rewind();
+  }
   part.label = field + " (" + file.path + ")";
   part.named = !file.columns.empty();
   const ColumnMessages messages{path, part.named, 0, description.source + ": " + field + ".columns"};
@@ -132,8 +165,22 @@ std::unique_ptr<JointLogSource> OpenDescribedJointLog(const JointLogDescription&
   for (size_t p = 0; p < parts.size(); ++p) {
     for (const auto& [name, column] : parts[p].columns.column_of) {
       if (const auto [at, added] = part_of.emplace(name, p); !added) {
-        throw std::invalid_argument(source + ": column '" + name + "' is in both " + parts[at->second].label +
-                                    " and " + parts[p].label + ": name each column in one file");
+        // Written as named in each file: qm1 and q1 are one quantity on two sides.
+        const LogPart& first = parts[at->second];
+        const std::string& first_name = first.columns.names[static_cast<size_t>(first.columns.column_of.at(name))];
+        const std::string& this_name = parts[p].columns.names[column];
+        if (first_name != this_name) {
+          const bool first_actuator = first_name != name;  // qm1 is kept under q1
+          const std::string kind = name.substr(0, name.find_first_of("0123456789")) + "*";
+          const auto side = [&](bool actuator, const std::string& n, const LogPart& part) {
+            return (actuator ? "on the actuator side ('" : "on the joint side ('") + n + "' in " + part.label + ")";
+          };
+          throw std::invalid_argument(source + ": columns " + kind + " " + side(first_actuator, first_name, first) +
+                                      " and " + side(!first_actuator, this_name, parts[p]) +
+                                      ": give each kind on one side");
+        }
+        throw std::invalid_argument(source + ": column '" + name + "' is in both " + first.label + " and " +
+                                    parts[p].label + ": name each column in one file");
       }
       all.column_of.emplace(name, static_cast<int>(column));
     }

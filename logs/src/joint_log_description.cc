@@ -8,8 +8,10 @@
 #include <stdexcept>
 
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/engine/printable_text.h"
 #include "number_format.h"
+#include "yaml_input.h"
 
 namespace idbench {
 namespace {
@@ -71,11 +73,15 @@ struct Field {
   Field operator[](const std::string& key) const { return {source, path + "." + key, value.at(key)}; }
   Field at(size_t i) const { return {source, path + "[" + std::to_string(i) + "]", value.at(i)}; }
   std::string Shown() const {
-    std::string text = value.dump();
-    return text.size() > 64 ? text.substr(0, 64) + "…" : text;
+    // NaN and ±inf (from YAML: JSON has none) as such; dump() writes null.
+    if (value.is_number_float() && !std::isfinite(value.get<double>())) return Shortest(value.get<double>());
+    // Invalid UTF-8 (YAML passes any byte) as U+FFFD: dump() would throw.
+    const std::string text = value.dump(-1, ' ', false, json::error_handler_t::replace);
+    return PrintableText(text, 64);
   }
 
-  // Every key one of `known`.
+  // Every key one of `known`, listed quoted as written in a description (a
+  // front end respells bare field names as its options: time_window).
   void Keys(std::initializer_list<const char*> known) const {
     if (!value.is_object()) Fail("expected an object {...}, got " + Shown());
     for (const auto& [key, item] : value.items()) {
@@ -83,7 +89,7 @@ struct Field {
       std::string list;
       for (const char* k : known) {
         ok = ok || key == k;
-        list += (list.empty() ? "" : ", ") + std::string(k);
+        list += (list.empty() ? "\"" : ", \"") + std::string(k) + "\"";
       }
       if (!ok) {
         throw std::invalid_argument(source + ": " + path + "." + PrintableText(key) + ": unknown key; expected " + list);
@@ -241,19 +247,13 @@ JointLogDescription ParseJointLogDescription(const std::string& text, const std:
   json document;
   if (yaml) {
     try {
-      document = FromYaml(YAML::Load(text), source);
+      document = FromYaml(internal::LoadYamlWithoutAliases(text, source), source);
     } catch (const YAML::Exception& e) {
       throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
                                   ": not valid YAML: " + e.msg);
     }
   } else {
-    try {
-      document = json::parse(text);
-    } catch (const json::parse_error& e) {
-      std::string what = e.what();
-      if (const size_t at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-      throw std::invalid_argument(source + ": not valid JSON: " + what);
-    }
+    document = ParseJsonInput(text, source);
   }
 
   // Every key known, every value of its type and within its bounds.
@@ -266,10 +266,11 @@ JointLogDescription ParseJointLogDescription(const std::string& text, const std:
   JointLogDescription out;
   out.source = source;
   if (document.contains("rate")) {
-    const double rate = top["rate"].Number();
-    if (!(rate > 0.0 && rate <= JointLogDescription::kMaxRateHz)) {
-      top["rate"].Fail("expected a rate in Hz, above 0 and at most " + Shortest(JointLogDescription::kMaxRateHz) +
-                       ", got " + Shortest(rate));
+    const Field field = top["rate"];
+    const double rate = field.value.is_number() ? field.value.get<double>() : NAN;
+    if (!(rate >= JointLogDescription::kMinRateHz && rate <= JointLogDescription::kMaxRateHz)) {
+      field.Fail("expected a sampling rate in Hz, " + Shortest(JointLogDescription::kMinRateHz) + " to " +
+                 Shortest(JointLogDescription::kMaxRateHz) + ", got " + field.Shown());
     }
     out.rate_hz = rate;
   }

@@ -12,6 +12,7 @@
 
 #include "column_names.h"
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 
 namespace idbench {
 
@@ -57,7 +58,7 @@ bool IsRecordedJointLogPath(const std::string& path) {
   if (path.ends_with(".yaml") || path.ends_with(".yml")) return true;
   try {
     if (path.ends_with(".json")) {
-      const nlohmann::json j = nlohmann::json::parse(ReadInputFile(path), nullptr, /*allow_exceptions=*/false);
+      const nlohmann::json j = ParseJsonInput(ReadInputFile(path), path);
       return j.is_object() && j.contains("files");
     }
     if (!path.ends_with(".csv")) return false;

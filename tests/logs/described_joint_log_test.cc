@@ -46,6 +46,13 @@ std::string Number(double v) {
   return text;
 }
 
+// `line` n times, each ended by '\n'.
+std::string Lines(const std::string& line, int n) {
+  std::string out;
+  for (int k = 0; k < n; ++k) out += line + "\n";
+  return out;
+}
+
 class DescribedJointLogTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -241,9 +248,9 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
     std::string text, expected;
   };
   const std::vector<Case> cases = {
-      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "rat": 1})", d + ": .rat: unknown key; expected rate, files"},
-      {R"({"rate": 100, "files": [{"path": "q.csv", "stide": 6}]})", d + ": .files[0].stide: unknown key; expected path"},
-      {R"({"rate": 0, "files": [)" + q + "]}", d + ": .rate: expected a rate in Hz, above 0 and at most 1e+06, got 0"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "rat": 1})", d + ": .rat: unknown key; expected \"rate\", \"files\""},
+      {R"({"rate": 100, "files": [{"path": "q.csv", "stide": 6}]})", d + ": .files[0].stide: unknown key; expected \"path\""},
+      {R"({"rate": 0, "files": [)" + q + "]}", d + ": .rate: expected a sampling rate in Hz, 1 to 1e+06, got 0"},
       {R"({"rate": 100, "files": []})", d + ": .files: expected a list of 1 to 16 files, got 0 files"},
       {R"({"rate": 100, "files": [)" + q + R"(, {"path": "odd.txt", "layout": "one-value-per-line", "stride": 2000, "columns": "_"}]})",
        d + ": .files[1].stride: expected a whole number 1 to 1024, got 2000"},
@@ -260,7 +267,7 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
            "transmission"},
       {R"({"files": [)" + q + "," + tau + "]}", d + ": no time: give .rate"},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reductions": [1]}})",
-       d + ": .transmission.reductions: unknown key; expected reduction, actuator_from_joint, joint_offset"},
+       d + ": .transmission.reductions: unknown key; expected \"reduction\", \"actuator_from_joint\", \"joint_offset\""},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"joint_offset": [0]}})",
        d + ": .transmission: expected \"reduction\": [N1, ...] (gear ratios) or \"actuator_from_joint\""},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, 0, 1, 1, 1]}})",
@@ -280,7 +287,7 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "angle_unit": "grad"})", d + ": .angle_unit: expected \"rad\" or \"deg\", got \"grad\""},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "time_window": [2, 1]})", d + ": .time_window: expected [T0, T1] [s] with T0 < T1"},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "drive_gains": [1, 0]})", d + ": .drive_gains: joint 2: expected a gain of magnitude"},
-      {R"({"rate": 100, "files": [{"path": "none.csv"}]})", (dir_ / "none.csv").string() + ": cannot read the file"},
+      {R"({"rate": 100, "files": [{"path": "none.csv"}]})", d + ": .files[0].path: 'none.csv', taken in the description's folder " + dir_.string() + ": cannot read the file (No such file or directory)"},
       {R"({"rate": 100, "files": [)", d + ": not valid JSON: parse error at line 1, column 25"},
   };
   for (const Case& c : cases) {
@@ -294,6 +301,78 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
     ParseRecordedJointLog("t,qm1,qm2,qm3,qm4,qm5,qm6\n0,0,0,0,0,0,0\n", puma, "m.csv", {}, TorqueColumns::kRequired);
   });
   EXPECT_EQ(header.find("m.csv:1: column 2 ('qm1'): motor position (an actuator-side column)"), 0u) << header;
+}
+
+// Issue 35 item 20: a file that cannot be read names the description, the
+// field and the folder its relative path was taken in: the folder of the
+// description as given (a symlink's own), not of the file it points to. On
+// 1c4dd0f: "nope.csv: cannot read the file", nothing else.
+TEST_F(DescribedJointLogTest, UnreadableFileNamesTheFieldAndTheFolder) {
+  fs::create_directories(dir_ / "real");
+  Write("real/q.csv", "q1,q2,q3,q4,q5,q6\n0,0,0,0,0,0\n");
+  Write("real/d.json", R"({"rate": 100, "files": [{"path": "q.csv"}, {"path": "nope.csv"}]})");
+  fs::create_symlink(dir_ / "real" / "d.json", dir_ / "link.json");
+  const std::string link = (dir_ / "link.json").string();
+  EXPECT_EQ(ExpectInvalid([&] { OpenJointLog(link, MakePuma560(), {}, TorqueColumns::kRequired); }),
+            link + ": .files[0].path: 'q.csv', taken in the description's folder " + dir_.string() +
+                ": cannot read the file (No such file or directory)");
+  const std::string real = (dir_ / "real" / "d.json").string();
+  EXPECT_EQ(ExpectInvalid([&] { OpenJointLog(real, MakePuma560(), {}, TorqueColumns::kRequired); }),
+            real + ": .files[1].path: 'nope.csv', taken in the description's folder " + (dir_ / "real").string() +
+                ": cannot read the file (No such file or directory)");
+  // An absolute path is named as it is.
+  const fs::path absolute = Write("abs.json", R"({"rate": 100, "files": [{"path": ")" + (dir_ / "gone.csv").string() + R"("}]})");
+  EXPECT_EQ(ExpectInvalid([&] { OpenJointLog(absolute.string(), MakePuma560(), {}, TorqueColumns::kRequired); }),
+            absolute.string() + ": .files[0].path: '" + (dir_ / "gone.csv").string() +
+                "': cannot read the file (No such file or directory)");
+}
+
+// Issue 35 item 27: positions on the actuator side (qm*) in one file and on
+// the joint side (q*) in another are named as written, each with its side
+// (1c4dd0f: "column 'q1' is in both ...", a name neither file has twice).
+TEST_F(DescribedJointLogTest, ActuatorAndJointSideOfOneKindInTwoFilesAreNamedBySide) {
+  Write("motor.csv", Lines("0,0,0,0,0,0", 3));
+  Write("q.csv", Lines("0,0,0,0,0,0", 3));
+  Write("tau.csv", Lines("1,1,1,1,1,1", 3));
+  const std::string motor_file = R"({"path": "motor.csv", "columns": "qm1..qm6"})",
+                    joint_file = R"({"path": "q.csv", "columns": "q1..q6"})",
+                    tau_file = R"({"path": "tau.csv", "columns": "tau1..tau6"})";
+  const auto refusal = [&](const std::string& files) {
+    const fs::path desc = Write("d.json", R"({"rate": 100, "transmission": {"reduction": [1, 2, 3, 4, 5, 6]}, "files": [)" +
+                                              files + "]}");
+    return ExpectInvalid([&] { OpenJointLog(desc.string(), MakePuma560(), {}, TorqueColumns::kRequired); });
+  };
+  const std::string d = (dir_ / "d.json").string();
+  EXPECT_EQ(refusal(motor_file + "," + joint_file + "," + tau_file),
+            d + ": columns q* on the actuator side ('qm1' in .files[0] (motor.csv)) and on the joint side "
+                "('q1' in .files[1] (q.csv)): give each kind on one side");
+  EXPECT_EQ(refusal(tau_file + "," + joint_file + "," + motor_file),
+            d + ": columns q* on the joint side ('q1' in .files[1] (q.csv)) and on the actuator side ('qm1' in "
+                ".files[2] (motor.csv)): give each kind on one side");
+}
+
+// Issue 35 item 28: "skip" past the end of a 601-line file names the field,
+// the count and the file's lines (1c4dd0f: "empty file"), for both layouts;
+// a skip leaving one line reads it.
+TEST_F(DescribedJointLogTest, SkipPastTheEndNamesTheFieldAndTheLineCount) {
+  const std::string q_path = Write("q.csv", "q1,q2,q3,q4,q5,q6\n" + Lines("0,0,0,0,0,0", 600)).string(),
+                    one_path = Write("one.txt", Lines("1", 601 * 6)).string();
+  Write("tau.csv", Lines("1,1,1,1,1,1", 600));
+  const RobotModel puma = MakePuma560();
+  const auto open = [&](const std::string& text) {
+    const fs::path desc = Write("d.json", text);
+    return ExpectInvalid([&] { OpenJointLog(desc.string(), puma, {}, TorqueColumns::kRequired); });
+  };
+  const std::string d = (dir_ / "d.json").string();
+  EXPECT_EQ(open(R"({"rate": 100, "files": [{"path": "q.csv", "skip": 1000000}, {"path": "tau.csv", "columns": "tau1..tau6"}]})"),
+            d + ": .files[0].skip: skips 1000000 lines, but " + q_path + " has 601: nothing is left to read");
+  EXPECT_EQ(open(R"({"rate": 100, "files": [{"path": "q.csv", "skip": 601}, {"path": "tau.csv", "columns": "tau1..tau6"}]})"),
+            d + ": .files[0].skip: skips 601 lines, but " + q_path + " has 601: nothing is left to read");
+  EXPECT_EQ(open(R"({"rate": 100, "files": [{"path": "q.csv"}, {"path": "one.txt", "layout": "one-value-per-line", "stride": 6, "columns": "tau1..tau6", "skip": 5000}]})"),
+            d + ": .files[1].skip: skips 5000 lines, but " + one_path + " has 3606: nothing is left to read");
+  // Skipping all but the last line leaves it to read.
+  const fs::path last = Write("last.json", R"({"rate": 100, "files": [{"path": "q.csv", "skip": 600, "columns": "q1..q6"}, {"path": "tau.csv", "columns": "tau1..tau6"}]})");
+  EXPECT_NO_THROW(OpenJointLog(last.string(), puma, {}, TorqueColumns::kRequired));
 }
 
 }  // namespace

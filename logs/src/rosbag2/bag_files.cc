@@ -10,6 +10,7 @@
 #include "idbench/engine/input_file.h"
 #include "idbench/engine/printable_text.h"
 #include "mcap_reader.h"
+#include "yaml_input.h"
 
 namespace idbench::internal {
 namespace {
@@ -38,8 +39,8 @@ constexpr std::size_t kMaxBagFiles = 10'000;
 BagFiles FromMetadata(const fs::path& directory, const std::string& metadata_path) {
   YAML::Node info;
   try {
-    // Read as an input file: a FIFO is refused, not waited on.
-    info = YAML::Load(ReadInputFile(metadata_path))["rosbag2_bagfile_information"];
+    // Read as an input file (a FIFO is refused, not waited on), aliases refused before expansion.
+    info = LoadYamlWithoutAliases(ReadInputFile(metadata_path), metadata_path)["rosbag2_bagfile_information"];
   } catch (const YAML::Exception& e) {
     throw std::invalid_argument(metadata_path + ": " + e.what());
   }

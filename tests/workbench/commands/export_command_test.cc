@@ -103,5 +103,25 @@ TEST_F(ExportCommandTest, RefusesAModelNotFitToLoadUnlessAsked) {
                                         " bytes), written unverified: " + exported.refused);
 }
 
+// identified.json is read as every JSON input is (json_input.h, issue 35
+// items 3 and 9): a repeated key (1c4dd0f kept the last) and deep nesting
+// are refused naming the file and the key path.
+TEST_F(ExportCommandTest, RepeatedKeysAndDeepNestingAreRefused) {
+  export_.identified = (dir_ / "identified.json").string();
+  const auto refusal = [&](const std::string& text) {
+    std::ofstream(export_.identified) << text;
+    try {
+      RunExport(model_, export_);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no std::invalid_argument");
+  };
+  EXPECT_EQ(refusal(R"({"friction": ["viscous"], "friction": []})"),
+            export_.identified + ": .friction: key repeated in one object (each key may be given once)");
+  const std::string deep = refusal("{\"friction\": " + std::string(100'000, '[') + std::string(100'000, ']') + "}");
+  EXPECT_EQ(deep.rfind(export_.identified + ": .friction[0][0]", 0), 0u) << deep;
+}
+
 }  // namespace
 }  // namespace idbench

@@ -59,13 +59,16 @@ TEST(LimitsFileTest, BrokenFilesAreOneMessageNamingTheFile) {
   const auto refusal = [&](const std::string& text) {
     return ExpectInvalid([&] { ParseLimitsJson(text, puma, "l.json"); });
   };
-  EXPECT_EQ(refusal(R"({"joints": [{"qd_max": 1e999}, {}, {}, {}, {}, {}]})").rfind("l.json: not valid JSON (", 0), 0u);
+  EXPECT_EQ(refusal(R"({"joints": [{"qd_max": 1e999}, {}, {}, {}, {}, {}]})").rfind("l.json: not valid JSON: ", 0), 0u);
   EXPECT_NE(refusal(R"({"joints": [{"qd_max": 1e999}, {}, {}, {}, {}, {}]})").find("number overflow"),
             std::string::npos);
   EXPECT_EQ(refusal(R"({"joints": [{"q\u0001": 1}, {}, {}, {}, {}, {}]})"),
             "l.json: joints[0].q\\x01: unknown key (q_min, q_max, qd_max, qdd_max, tau_max)");
   EXPECT_EQ(refusal(R"({"joints": [{}, {"qd_max": 0}, {}, {}, {}, {}]})"), "l.json: joints[1].qd_max: must be > 0, got 0");
   EXPECT_EQ(refusal(R"({"joints": []})"), "l.json: \"joints\" has 0 entries, robot 'puma560' has 6 joints");
+  // Issue 35 item 9: qd_max 1 then 100 (1c4dd0f designed at 100 rad/s).
+  EXPECT_EQ(refusal(R"({"joints": [{}, {"qd_max": 1, "qd_max": 100}, {}, {}, {}, {}]})"),
+            "l.json: .joints[1].qd_max: key repeated in one object (each key may be given once)");
 }
 
 }  // namespace

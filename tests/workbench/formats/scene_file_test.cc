@@ -79,7 +79,10 @@ TEST(SceneFileTest, RefusalsNameTheFileAndTheField) {
                 .rfind("scene.json: .obstacles[0].size: expected finite sizes in (0, 100] m", 0),
             0u);
   EXPECT_EQ(refusal("[1, 2]").rfind("scene.json: expected an object", 0), 0u);
-  EXPECT_EQ(refusal("{").rfind("scene.json: not valid JSON (", 0), 0u);
+  EXPECT_EQ(refusal("{").rfind("scene.json: not valid JSON: ", 0), 0u);
+  // Issue 35 item 9: a key given twice (1c4dd0f kept the last).
+  EXPECT_EQ(refusal(R"({"obstacles": [{"type": "sphere", "radius": 0.1, "radius": 0.5, "pose": [0, 0, 0, 0, 0, 0]}]})"),
+            "scene.json: .obstacles[0].radius: key repeated in one object (each key may be given once)");
   // The bound on the count: Cell::kMaxObstacles.
   std::string many = R"({"obstacles": [)";
   for (int i = 0; i <= Cell::kMaxObstacles; ++i) many += (i ? "," : "") + sphere;

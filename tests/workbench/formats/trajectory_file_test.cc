@@ -295,5 +295,19 @@ TEST(TrajectoryFileTest, OutOfRangeNumbersManyHarmonicsAndUnusableMotionsAreRefu
   std::filesystem::remove(path);
 }
 
+// Issue 35 items 3 and 9: 100 000 nested arrays (200 KB; on 1c4dd0f the
+// message showing the value overflowed the stack) and a repeated key (the
+// last one silently won) are refused, each naming the key path.
+TEST(TrajectoryFileTest, DeepNestingAndRepeatedKeysAreRefused) {
+  const std::string deep = "{\"family\": " + std::string(100'000, '[') + std::string(100'000, ']') + "}";
+  const std::string what = ExpectInvalid([&] { ParseTrajectoryJson(deep, 6, "t.json"); });
+  EXPECT_EQ(what.rfind("t.json: .family[0][0]", 0), 0u) << what;
+  EXPECT_NE(what.find(": more than 64 nested arrays and objects"), std::string::npos) << what;
+  EXPECT_EQ(ExpectInvalid([&] {
+              ParseTrajectoryJson(R"({"family": "constant-acceleration", "duration": 1, "duration": 100})", 6, "t.json");
+            }),
+            "t.json: .duration: key repeated in one object (each key may be given once)");
+}
+
 }  // namespace
 }  // namespace idbench

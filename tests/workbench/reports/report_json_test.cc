@@ -107,8 +107,14 @@ TEST_F(ReportJsonTest, MissingOrMistypedKeyIsNamedWithTheFile) {
   general.erase("accel_deg_s2");
   EXPECT_EQ(Error(general.dump()), "");
 
-  EXPECT_EQ(Error("{\"robot\": ").substr(0, 27), "run/results.json: not JSON:");
-  EXPECT_EQ(Error("").substr(0, 27), "run/results.json: not JSON:");
+  EXPECT_EQ(Error("{\"robot\": ").substr(0, 33), "run/results.json: not valid JSON:");
+  EXPECT_EQ(Error("").substr(0, 33), "run/results.json: not valid JSON:");
+  // Issue 35 items 3 and 9, as for every JSON input (json_input.h).
+  EXPECT_EQ(Error("{\"robot\": \"puma560\", \"robot\": \"paper6r\"}"),
+            "run/results.json: .robot: key repeated in one object (each key may be given once)");
+  EXPECT_NE(Error("{\"robot\": " + std::string(100'000, '[') + std::string(100'000, ']') + "}")
+                .find(": more than 64 nested arrays and objects"),
+            std::string::npos);
 }
 
 }  // namespace

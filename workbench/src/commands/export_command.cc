@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/workbench/formats/atomic_file.h"
@@ -168,12 +169,7 @@ ExportReport RunExport(const RobotModel& model, const ExportOptions& options,
                                 "model (MountRobot)");
   }
   const std::string& path = options.identified;
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(ReadInputFile(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(path + ": not JSON: " + e.what());
-  }
+  const nlohmann::json json = ParseJsonInput(ReadInputFile(path), path);
   auto field = [&](const nlohmann::json& object, const char* name) -> const nlohmann::json& {
     if (!object.is_object() || !object.contains(name))
       throw std::invalid_argument(path + ": no field '" + name + "': expected the identified.json `identify` writes");

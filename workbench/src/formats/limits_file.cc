@@ -6,6 +6,7 @@
 
 #include "number_format.h"
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/engine/printable_text.h"
 
 namespace idbench {
@@ -21,12 +22,7 @@ namespace {
 // The limits document: an object with a "joints" array and, optionally, an "actuators" array.
 nlohmann::json ParseLimitsDocument(const std::string& text, const std::string& source) {
   using nlohmann::json;
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {  // a syntax error, or a number out of range (1e999)
-    throw std::invalid_argument(source + ": not valid JSON (" + PrintableText(e.what(), 200) + ")");
-  }
+  json doc = ParseJsonInput(text, source);
   if (!doc.is_object() || !doc.contains("joints") || !doc["joints"].is_array()) {
     throw std::invalid_argument(source + ": expected an object with a \"joints\" array");
   }

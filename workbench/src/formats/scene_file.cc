@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/engine/printable_text.h"
 #include "idbench/engine/triangle_mesh.h"
 #include "idbench/engine/urdf.h"
@@ -132,12 +133,7 @@ Obstacle ReadObstacle(const json& item, const std::string& where, const std::str
 }  // namespace
 
 Cell ParseSceneJson(const std::string& text, const std::string& source, const std::string& base_dir) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    throw std::invalid_argument(source + ": not valid JSON (" + PrintableText(e.what(), 200) + ")");
-  }
+  const json doc = ParseJsonInput(text, source);
   if (!doc.is_object()) throw std::invalid_argument(source + ": expected an object {\"floor\", \"obstacles\"}");
   Cell scene;
   for (const auto& [key, value] : doc.items()) {

@@ -11,6 +11,7 @@
 #include "idbench/excitation/constant_acceleration.h"
 #include "idbench/excitation/fourier_series.h"
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/engine/resource_limits.h"
 #include "idbench/logs/joint_log_csv_reader.h"
 #include "idbench/logs/joint_log_csv_writer.h"
@@ -169,12 +170,7 @@ std::string FormatTrajectoryJson(const Trajectory& trajectory) {
 }
 
 std::unique_ptr<Trajectory> ParseTrajectoryJson(const std::string& text, int n_dof, const std::string& source) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // a syntax error, or a number out of range (1e999)
-    throw std::invalid_argument(source + ": not valid JSON: " + PrintableText(e.what(), 200));
-  }
+  const json j = ParseJsonInput(text, source);
   if (!j.is_object()) throw std::invalid_argument(source + ": expected a JSON object, got " + std::string(j.type_name()));
   const KeyReader keys(j, source);
   const json& family = keys.Get("family");

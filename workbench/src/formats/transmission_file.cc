@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "idbench/engine/input_file.h"
+#include "idbench/engine/json_input.h"
 #include "idbench/logs/joint_log_description.h"
 
 namespace idbench {
@@ -30,7 +31,9 @@ std::optional<Transmission> ReadTransmissionArg(const std::string& spec, const s
     const bool yaml = !path.ends_with(".json");
     bool described = false;
     if (!yaml) {
-      const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
+      // Checked as written (before the wrapping below), so that a syntax
+      // error, depth or repeated key is reported at its own place.
+      const nlohmann::json document = ParseJsonInput(text, path);
       described = document.is_object() && document.contains("files");
     } else {
       described = text.starts_with("files:") || text.find("\nfiles:") != std::string::npos;

@@ -3,17 +3,12 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "idbench/engine/printable_text.h"
+#include "idbench/engine/json_input.h"
 
 namespace idbench {
 
 RunOptions RunOptionsFromResultsJson(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(source + ": not JSON: " + PrintableText(e.what(), 200));
-  }
+  const nlohmann::json j = ParseJsonInput(text, source);
   const auto get = [&](const char* key, auto* value) {
     if (!j.contains(key)) throw std::invalid_argument(source + ": key '" + key + "': missing");
     try {

@@ -47,7 +47,10 @@ struct JointLogDescription {
   static constexpr int kMaxFiles = 16;
   static constexpr int kMaxStride = JointLogFormat::kMaxColumns;
   static constexpr int kMaxSkip = 1'000'000;
-  static constexpr double kMaxRateHz = 1e6;  // [Hz]
+  // [Hz] A log for identification is sampled at 100 Hz to 10 kHz; below 1 Hz
+  // the filters' cutoffs and the resampling grid lose their meaning.
+  static constexpr double kMinRateHz = 1.0;
+  static constexpr double kMaxRateHz = 1e6;
   static constexpr int kMaxBytes = 1 << 20;  // a description is a few lines
 };
 
