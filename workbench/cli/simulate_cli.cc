@@ -47,9 +47,7 @@ int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load,
   }
   // Motor side: the CSV and, beside it, the description that names its transmission.
   const MotorSideLog log = SimulateMotorSideLog(model, *transmission, options);
-  std::filesystem::path description = path;
-  description.replace_extension(".json");
-  if (description == path) return context.UsageError("--out: a motor-side log's CSV cannot end in .json (its description does)");
+  const std::filesystem::path description = options.Outputs().back();
   WriteFileAtomically(path, FormatMotorSideLogCsv(log));
   WriteFileAtomically(description, FormatMotorSideLogDescription(log, path.filename().string()));
   const int n_samples = log.motor.n_samples();

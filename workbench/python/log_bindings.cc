@@ -40,7 +40,13 @@ PreparedLog PrepareLogArgument(const py::object& log, const std::string& source,
   std::map<std::string, Eigen::MatrixXd> arrays;
   for (const auto& [key, value] : log.cast<py::dict>()) {
     if (value.is_none()) continue;
-    arrays[py::str(key).cast<std::string>()] = value.cast<RowMatrix>();
+    const std::string name = py::str(key).cast<std::string>();
+    try {
+      arrays[name] = value.cast<RowMatrix>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(source + "['" + name + "']: expected an array of numbers, got " +
+                           std::string(py::str(py::type::of(value).attr("__name__"))));
+    }
   }
   return PrepareRecordedJointLog(RecordedJointLogFromArrays(arrays, model, source, options.format, options.torques),
                                  source, options);

@@ -23,7 +23,19 @@ Robot LoadRobotForPython(const std::string& name_or_path, const std::map<std::st
 BasePose BasePoseArgument(const py::object& value) {
   BasePose pose;
   if (value.is_none()) return pose;
-  const std::vector<double> xyz_rpy = value.cast<std::vector<double>>();
+  // A wrong type is a TypeError naming the keyword (pybind11's cast_error
+  // would be a RuntimeError naming C++ types).
+  const auto wrong_type = [&] {
+    return py::type_error("base_pose: expected a sequence of 6 numbers (x, y, z, roll, pitch, yaw) [m, rad], got " +
+                          std::string(py::str(py::type::of(value).attr("__name__"))));
+  };
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) throw wrong_type();
+  std::vector<double> xyz_rpy;
+  try {
+    xyz_rpy = value.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw wrong_type();
+  }
   if (xyz_rpy.size() != 6) {
     throw std::invalid_argument("base_pose: expected (x, y, z, roll, pitch, yaw), got " + std::to_string(xyz_rpy.size()) +
                                 " values");

@@ -85,6 +85,42 @@ TEST_F(HostileInputCliTest, OutputsThatAreNotFilesAreRefusedAndKept) {
   EXPECT_FALSE(fs::exists(dir_ / "nowhere"));
 }
 
+// Issue 35 item 7: `simulate --transmission … --out X.csv` writes its
+// description X.json: never over its own inputs — a design's trajectory.json
+// beside the log, the transmission file — nor a CSV over its trajectory;
+// each is refused before the run (exit 2) and left byte for byte.
+TEST_F(HostileInputCliTest, SimulateNeverWritesOverItsOwnInputs) {
+  const Result design = Run("simulate --robot puma560 --duration 0.5 --rate 100 --out " + (dir_ / "motion.csv").string());
+  ASSERT_EQ(design.exit_code, 0) << design.err;
+  const std::string motion_csv = Slurp(dir_ / "motion.csv");
+  // A trajectory file as JSON: the CSV's samples are a trajectory too; here the description would replace it.
+  const fs::path trajectory = Write("run.json", "{}");  // contents unread: the check comes first
+  const fs::path transmission = Write("gear.json", R"({"reduction": [100, 100, 100, 50, 50, 50]})");
+  struct Case { std::string args, message; fs::path kept; std::string kept_text; };
+  const Case cases[] = {
+      {"--trajectory " + trajectory.string() + " --transmission " + transmission.string() + " --out " +
+           (dir_ / "run.csv").string(),
+       "--out: its description '" + (dir_ / "run.json").string() + "' would overwrite the trajectory file '" +
+           trajectory.string() + "'",
+       trajectory, "{}"},
+      {"--transmission " + transmission.string() + " --out " + (dir_ / "." / "gear.csv").string(),
+       "--out: its description '" + (dir_ / "." / "gear.json").string() + "' would overwrite the transmission file '" +
+           transmission.string() + "'",
+       transmission, R"({"reduction": [100, 100, 100, 50, 50, 50]})"},
+      {"--trajectory " + (dir_ / "motion.csv").string() + " --out " + (dir_ / "motion.csv").string(),
+       "--out: '" + (dir_ / "motion.csv").string() + "' would overwrite the trajectory file '" +
+           (dir_ / "motion.csv").string() + "'",
+       dir_ / "motion.csv", motion_csv},
+  };
+  for (const Case& c : cases) {
+    const Result r = Run("simulate --robot puma560 --duration 0.5 --rate 100 " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_EQ(Slurp(c.kept), c.kept_text) << c.kept;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "run.csv"));
+}
+
 // Item 2: a symlink is written through (the link stays, its file gets the
 // log), and a file's mode is kept.
 TEST_F(HostileInputCliTest, SymlinksAreWrittenThroughAndModesKept) {

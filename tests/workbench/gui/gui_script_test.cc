@@ -69,6 +69,17 @@ TEST(GuiScriptTest, ParsesDropAndDrag) {
   EXPECT_EQ(steps[2].value, "0.25 1");
 }
 
+// Issue 35 item 23: a '#' inside a word is part of it (run#3.csv), one at
+// the start of a line or after a blank starts a comment.
+TEST(GuiScriptTest, AHashInsideAPathIsNotAComment) {
+  const std::vector<ScriptStep> steps = ParseGuiScript(
+      "# a comment line\ndrop /data/run#3.csv # the third run\nset log.data /d/a#b.csv\t# tab before\n  #indented\n", "s");
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0].target, "/data/run#3.csv");
+  EXPECT_EQ(steps[1].target, "log.data");
+  EXPECT_EQ(steps[1].value, "/d/a#b.csv");
+}
+
 TEST(BackgroundJobTest, HandsResultsBackOnCollect) {
   BackgroundJob job;
   int applied = 0;

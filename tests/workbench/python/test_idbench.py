@@ -187,6 +187,19 @@ def test_simulate_colours_the_torque_noise_to_its_band(puma):
         idbench.simulate(puma, "general", duration=1.0, tau_noise=[0.1], tau_noise_bandwidth=600.0)
 
 
+def test_wrong_types_are_type_errors_naming_the_keyword(puma):
+    # Issue 35 item 24: a string where a sequence of numbers goes was a RuntimeError "Unable to cast Python
+    # instance..."; now a TypeError naming the keyword, and the next call works.
+    log = idbench.simulate(puma, "general", duration=2.0, rate=100.0)
+    with pytest.raises(TypeError, match=r"^base_pose: expected a sequence of 6 numbers .* got str$"):
+        idbench.identify(puma, log, base_pose="0,0,0,0,0,0")
+    with pytest.raises(TypeError, match=r"^base_pose: expected a sequence of 6 numbers .* got dict$"):
+        idbench.identify(puma, log, base_pose={"x": 0})
+    with pytest.raises(TypeError, match=r"\['q'\]: expected an array of numbers, got str$"):
+        idbench.identify(puma, dict(log, q="nope"))
+    assert idbench.identify(puma, log, base_pose=(0, 0, 0, 0, 0, 0)).fit_relative_error < 1e-3
+
+
 def test_errors_carry_the_command_lines_messages_in_keywords(puma, tmp_path):
     code, _, err = cli("identify", "--robot", "puma560", "--data", "missing.csv", cwd=tmp_path)
     assert code != 0

@@ -21,7 +21,13 @@ std::vector<ScriptStep> ParseGuiScript(const std::string& text, const std::strin
   std::istringstream in(text);
   std::string raw;
   for (int line = 1; std::getline(in, raw); ++line) {
-    const std::string content = Trim(raw.substr(0, raw.find('#')));
+    // A comment starts at a '#' that begins the line or follows a blank, so
+    // a path like run#3.csv keeps its '#'.
+    size_t comment = raw.find('#');
+    while (comment != std::string::npos && comment > 0 && raw[comment - 1] != ' ' && raw[comment - 1] != '\t') {
+      comment = raw.find('#', comment + 1);
+    }
+    const std::string content = Trim(raw.substr(0, comment));
     if (content.empty()) continue;
     auto fail = [&](const std::string& what) {
       throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);

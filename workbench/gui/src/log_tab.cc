@@ -377,6 +377,8 @@ void GuiApp::Impl::DrawLogResults() {
     const bool parameters = ImGui::BeginTabItem("Parameters");
     widgets.Record("tab.log.parameters");
     if (parameters) {
+      // How σ was computed (batch means, n_eff), as identify prints it under its table.
+      ImGui::TextColored(kDimColor, "%s", SigmaMethodText(ident.linear).c_str());
       const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                                     ImGuiTableFlags_Resizable;
       if (ImGui::BeginTable("log_parameters", 6, flags, ImVec2(0, ImGui::GetContentRegionAvail().y))) {

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "idbench/engine/input_file.h"
 #include "idbench/logs/joint_log_csv_writer.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
@@ -32,7 +33,28 @@ bool SimulateOptions::IsValid(std::string* why) const {
     return fail("paper_accel_deg_s2: must be > 0 deg/s^2, got " + std::to_string(paper_accel_deg_s2));
   if (!base_pose.IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputFile(out, "out", &out_why)) return fail(out_why);
+  const std::vector<std::string> outputs = Outputs();
+  if (outputs.size() > 1 && outputs[1] == out) {
+    return fail("out: a motor-side log's CSV cannot end in .json (its description does), got '" + out + "'");
+  }
+  // An input the run would overwrite (its own trajectory, a design's
+  // trajectory.json beside the log, the transmission file).
+  const std::pair<const char*, const std::string*> inputs[] = {
+      {"robot", &robot}, {"trajectory", &trajectory}, {"transmission", &transmission}};
+  for (size_t k = 0; k < outputs.size(); ++k) {
+    for (const auto& [field, path] : inputs) {
+      if (path->empty() || !IsSameFile(outputs[k], *path)) continue;
+      return fail(std::string("out: ") + (k == 0 ? "'" + out + "'" : "its description '" + outputs[k] + "'") +
+                  " would overwrite the " + field + " file '" + *path + "'");
+    }
+  }
   return true;
+}
+
+std::vector<std::string> SimulateOptions::Outputs() const {
+  std::vector<std::string> outputs{out};
+  if (!transmission.empty()) outputs.push_back(std::filesystem::path(out).replace_extension(".json").string());
+  return outputs;
 }
 
 namespace {

@@ -38,7 +38,12 @@ struct SimulateOptions {
   std::vector<double> motor_rotor_inertia;  // Ia_k [kg m²]
 
   SimulationOptions simulation() const;
-  // Checks what does not need the robot; *why names the bad option.
+  // The files simulate writes: out and, with a transmission, its log
+  // description beside it (out with the extension .json).
+  std::vector<std::string> Outputs() const;
+  // Checks what does not need the robot, and that no output is one of the
+  // inputs (robot, trajectory or transmission file, however spelled: it would
+  // be overwritten); *why names the bad option.
   bool IsValid(std::string* why) const;
 };
 
