@@ -80,6 +80,7 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
   AddSeedFlag(command, &compare.seed);
   context->AddSpellings(kLogReadingSpellings);
   AddLogReadingFlags(command, &compare.format, nullptr, nullptr, &compare.filter, &compare.max_gap_s);
+  AddDriveGainsFlag(command, &compare.format);
   AddOutFlag(command, &compare.out_dir, "Output directory for compare.json and compare.csv")->capture_default_str();
   AddReportFlag(command, &flags->report);
   return {command, [flags, context] {

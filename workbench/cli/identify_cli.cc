@@ -143,8 +143,7 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
                       "Score only T0 <= t <= T1 of --validate: T0,T1 [s] (the whole file's error is shown beside)")
       ->delimiter(',');
   // Currents and a part of the log (docs/formats/joint-logs.md).
-  command->add_option("--drive-gains", identify.format.drive_gains,
-                      "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
+  AddDriveGainsFlag(command, &identify.format);
   command->add_option("--time-window", identify.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
       ->delimiter(',');
   AddPlausibilityFlags(command, flags.get());

@@ -4,6 +4,11 @@
 
 namespace idbench::cli {
 
+void AddDriveGainsFlag(CLI::App* command, JointLogFormat* format) {
+  command->add_option("--drive-gains", format->drive_gains,
+                      "Drive gains K1,...,Kn [N m/A]: tau = K*i from the current columns i1..in")->delimiter(',');
+}
+
 void AddFilterFlags(CLI::App* command, LogFilterOptions* filter) {
   command->add_option("--filter-cutoff", filter->cutoff_hz, "Butterworth cutoff for logs without qd/qdd [Hz]")
       ->capture_default_str();

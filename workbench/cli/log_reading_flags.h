@@ -23,6 +23,10 @@ inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-uni
                                                      {"filter.order", "--filter-order"},
                                                      {"filter.decimation", "--decimate"}};
 
+// --drive-gains K1,...,Kn: tau = K·i from a log's current columns (identify,
+// payload and compare read current logs alike).
+void AddDriveGainsFlag(CLI::App* command, JointLogFormat* format);
+
 // --filter-cutoff, --filter-order: the low-pass that estimates qd, qdd from q.
 void AddFilterFlags(CLI::App* command, LogFilterOptions* filter);
 

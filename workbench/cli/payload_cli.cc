@@ -28,7 +28,8 @@ constexpr FieldFlag kPayloadSpellings[] = {{"unloaded_time_window", "--unloaded-
 int PayloadCommand(const PayloadOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
   std::string why;
   if (!options.IsValid(&why)) return context.UsageError(why);
-  const RobotModel model = LoadRobotOrThrow(options.robot, load);
+  // Mounted as base_pose says (gravity in its base frame), as identify does.
+  const RobotModel model = MountRobot(LoadRobotOrThrow(options.robot, load), options.base_pose);
   if (!options.IsValidFor(model, &why)) return context.UsageError(why);
   const PayloadSummary summary = RunPayload(model, options);
   context.PrintWarnings(summary.warnings);
@@ -73,6 +74,8 @@ CliCommand AddPayloadCommand(CLI::App* app, CliContext* context) {
   command->add_option("--link", payload.payload_link, "URDF link carrying the payload (default: the chain's last)");
   AddLogReadingFlags(command, &payload.format, &payload.friction, &payload.coulomb_smoothing, &payload.filter,
                      &payload.max_gap_s);
+  AddDriveGainsFlag(command, &payload.format);
+  AddBasePoseFlag(command, &payload.base_pose);
   command->add_option("--time-window", payload.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
       ->delimiter(',');
   command->add_option("--unloaded-time-window", payload.unloaded_time_window,

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/excitation/builtin_motions.h"
@@ -95,6 +96,40 @@ TEST_F(PayloadCliTest, OneLogSubtractsTheRobotFile) {
   ExpectPayload(j, mass_, com_, inertia_);
   EXPECT_TRUE(j["unloaded"].is_null());
   EXPECT_TRUE(fs::exists(dir_ / "p" / "payload.urdf.xml"));
+}
+
+// Issue 35 item 33: payload reads logs as identify does. A log of motor
+// currents (i = τ/K, a header of i1..i6) with --drive-gains, and logs of a
+// ceiling-mounted robot (gravity along the world's −z seen from its base)
+// with --base-pose, give the payload to 1e-6; without --base-pose the
+// ceiling's logs give a wrong one.
+TEST_F(PayloadCliTest, CurrentLogsAndMountedRobotsAreReadAsIdentifyReadsThem) {
+  const auto motion = MakeBuiltinMotion("general", 6, {.duration = 10.0});
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
+  const Eigen::VectorXd gains = (Eigen::VectorXd(6) << 31.5, 55.0, 28.0, 7.5, 6.2, 4.1).finished();
+  const fs::path currents = dir_ / "currents.csv";
+  std::ofstream(currents) << testing::JointLogCsvText(testing::SyntheticJointLog(Loaded(), *motion, t),
+                                                      {"t", "q", "qd", "qdd", "i"}, true, gains);
+  Result r = Run("payload --robot puma560 --data " + currents.string() +
+                 " --drive-gains 31.5,55,28,7.5,6.2,4.1 --out " + (dir_ / "i").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  ExpectPayload(ReadJson(dir_ / "i" / "payload.json"), mass_, com_, inertia_);
+
+  const BasePose ceiling{{0.0, 0.0, 2.5, M_PI, 0.0, 0.0}};
+  const fs::path mounted = dir_ / "ceiling.csv";
+  std::ofstream(mounted) << testing::JointLogCsvText(testing::SyntheticJointLog(MountRobot(Loaded(), ceiling), *motion, t),
+                                                     {"t", "q", "qd", "qdd", "tau"}, true);
+  r = Run("payload --robot puma560 --data " + mounted.string() + " --base-pose 0,0,2.5,3.141592653589793,0,0 --out " +
+          (dir_ / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const nlohmann::json j = ReadJson(dir_ / "c" / "payload.json");
+  ExpectPayload(j, mass_, com_, inertia_);
+  EXPECT_NEAR(j["base_pose"][3].get<double>(), M_PI, 1e-15);
+  r = Run("payload --robot puma560 --data " + mounted.string() + " --out " + (dir_ / "u").string());
+  const double unmounted_mass = ReadJson(dir_ / "u" / "payload.json")["mass"].is_number()
+                                    ? ReadJson(dir_ / "u" / "payload.json")["mass"].get<double>()
+                                    : NAN;
+  EXPECT_FALSE(std::abs(unmounted_mass - mass_) < 0.05 * mass_) << "mass " << unmounted_mass << " without --base-pose";
 }
 
 // Only joint 6 turns: Ixx, Ixy, Iyy are not identifiable: named with their

@@ -86,6 +86,7 @@ bool PayloadOptions::IsValid(std::string* why) const {
     return fail("max_relative_sigma: expected a fraction > 0, got " + Shortest(max_relative_sigma));
   if (!(max_projection_distance > 0.0) || !std::isfinite(max_projection_distance))
     return fail("max_projection_distance: expected a number of sigma > 0, got " + Shortest(max_projection_distance));
+  if (!base_pose.IsValid(why)) return false;
   if (!preparation(false).IsValid(why) || !preparation(true).IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
@@ -93,6 +94,10 @@ bool PayloadOptions::IsValid(std::string* why) const {
 
 bool PayloadOptions::IsValidFor(const RobotModel& model, std::string* why) const {
   if (!format.IsValidFor(model.n_dof(), why)) return false;
+  if (!IsMountedAt(model, base_pose)) {
+    if (why) *why = "base_pose: the model's gravity is not the world's -z seen from this base; mount the model (MountRobot)";
+    return false;
+  }
   if (payload_link.empty() || FindLink(model, payload_link) >= 0) return true;
   std::string names;
   for (const Link& link : model.links()) names += (names.empty() ? "'" : ", '") + link.name + "'";
@@ -246,6 +251,7 @@ std::string FormatPayloadJson(const RobotModel& model, const PayloadOptions& opt
       {"frames", "com in the link's frame [m]; inertia [kg m2] about the centre of mass, link axes: Ixx, Ixy, Ixz, "
                  "Iyy, Iyz, Izz"},
       {"robot", model.name()},
+      {"base_pose", options.base_pose.xyz_rpy},
       {"command", options.command_line},
       {"method", e.two_logs ? "loaded and unloaded logs (the robot's base parameters estimated from both)"
                             : "loaded log, the robot file's model subtracted"},

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "idbench/engine/base_pose.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/ident/payload_estimator.h"
 #include "idbench/workbench/commands/log_preparation.h"
@@ -23,7 +24,8 @@ struct PayloadOptions {
   std::string loaded_log;           // log with the payload: t, q, (qd, qdd), tau (required)
   std::string unloaded_log;         // log of the same motion without it; empty: the robot file's model is subtracted
   std::string payload_link;         // URDF name of the link carrying the payload; empty: the last link of the chain
-  JointLogFormat format;            // columns and angle unit, for both logs
+  JointLogFormat format;            // columns, angle unit and drive gains, for both logs
+  BasePose base_pose;               // the robot's base in the world: the model must be mounted so (MountRobot)
   std::vector<double> time_window;           // {T0, T1} [s] of the loaded log; empty: all of it
   std::vector<double> unloaded_time_window;  // {T0, T1} [s] of the unloaded log; empty: all of it
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // the robot's joint terms (two logs)
