@@ -60,15 +60,20 @@ TEST(McapReaderTest, ReadsEveryChunkCompression) {
   }
 }
 
-std::string Error(const std::string& file) {
+// The message reading every /joint_states message of `path` throws
+// (std::invalid_argument), or "(no error)".
+std::string ReadingError(const std::string& path) {
   try {
-    McapReader reader((kBags / file).string());
+    McapReader reader(path);
     CountMessages(reader, "/joint_states");
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
   return "(no error)";
 }
+
+// The same for a fixture of tests/data/bags.
+std::string Error(const std::string& file) { return ReadingError((kBags / file).string()); }
 
 TEST(McapReaderTest, RefusesACrcMismatchAndATruncatedFile) {
   EXPECT_EQ(Error("bad_crc.mcap"),
@@ -122,13 +127,7 @@ TEST(McapReaderTest, RefusesAnUncompressedSizeItsRecordsCannotGive) {
   ASSERT_LT(records * McapReader::kMaxZstdRatio, (std::uint64_t{1} << 31) - 1);
   const std::string path = Patched("joint_states_zstd.mcap", kChunk + 25, (std::uint64_t{1} << 31) - 1, 8,
                                    "idbench_mcap_huge_chunk.mcap");
-  std::string error = "(no error)";
-  try {
-    McapReader reader(path);
-    CountMessages(reader, "/joint_states");
-  } catch (const std::invalid_argument& e) {
-    error = e.what();
-  }
+  const std::string error = ReadingError(path);
   EXPECT_EQ(error, "Chunk record at offset 4642: uncompressed_size 2147483647 bytes, but " + std::to_string(records) +
                        " bytes of zstd records give at most " + std::to_string(records * 32768) +
                        " (the file is damaged)");
@@ -158,13 +157,7 @@ TEST(McapReaderTest, NamesAnUncompressedSizeTheRecordsDoNotGive) {
     const std::uint64_t ratio = compression == "lz4" ? McapReader::kMaxLz4Ratio : McapReader::kMaxZstdRatio;
     for (const std::uint64_t wrong : {size + 1, records * ratio, size - 1}) {
       const std::string path = Patched(fixture, chunk + 25, wrong, 8, "idbench_mcap_wrong_size.mcap");
-      std::string error = "(no error)";
-      try {
-        McapReader reader(path);
-        CountMessages(reader, "/joint_states");
-      } catch (const std::invalid_argument& e) {
-        error = e.what();
-      }
+      const std::string error = ReadingError(path);
       const std::string expected = where + gives + (wrong > size ? std::to_string(size) : std::to_string(wrong) +
                                                     " bytes and does not end") ;
       EXPECT_EQ(error.substr(0, expected.size()), expected) << error;
