@@ -513,6 +513,48 @@ TEST(HeadlessGuiTest, ViewportFollowsTheTimelineAndShowsFrames) {
   fs::remove_all(gui.session().out_dir);
 }
 
+// Issue 35 item 34: while the Log tab is open the 3D view replays the log
+// being identified (the robot as logged, at the log plot's time cursor), not
+// the session's motion; the robot combo shows a loaded URDF as such. Truth:
+// the general motion the log was written from, at one of its sample times.
+TEST(HeadlessGuiTest, ViewportReplaysTheLogOfTheLogTab) {
+  const fs::path out = HeadlessGuiDir("replay");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const std::string log = WriteSyntheticLog(session, out / "run.csv", 4.0);  // 401 samples, 0 to 4 s
+  const std::unique_ptr<Trajectory> logged = MakeBuiltinMotion("general", 6, {.duration = 4.0});
+  RunScript(gui, "click tab.experiment\nset experiment.motion paper\nframes 1\nclick tab.log\nset log.data " + log +
+                     "\nframes 2\n");
+  gui.app().WaitForLogPlot();
+  RunScript(gui, "frames 1\nset timeline.time 1.37\nframes 2\n");
+  EXPECT_DOUBLE_EQ(gui.app().time(), 1.37);
+  const Eigen::VectorXd shown = gui.app().shown_q();
+  const Eigen::VectorXd truth = logged->At(1.37).q;
+  EXPECT_LE((shown - truth).cwiseAbs().maxCoeff(), 1e-9) << shown.transpose() << "\n" << truth.transpose();
+  // Not the session's motion at that instant.
+  EXPECT_GT((shown - session.current_motion()->At(1.37).q).cwiseAbs().maxCoeff(), 1e-3);
+  // Between two samples: linear between them.
+  RunScript(gui, "set timeline.time 2.005\nframes 1\n");
+  const Eigen::VectorXd between = 0.5 * (logged->At(2.0).q + logged->At(2.01).q);
+  EXPECT_LE((gui.app().shown_q() - between).cwiseAbs().maxCoeff(), 1e-9);
+  // The timeline spans the log; another tab shows the motion again.
+  RunScript(gui, "set timeline.time 99\nframes 1\n");
+  EXPECT_DOUBLE_EQ(gui.app().time(), 4.0);
+  RunScript(gui, "click tab.experiment\nframes 2\nset timeline.time 1.37\nframes 1\n");
+  EXPECT_LE((gui.app().shown_q() - session.current_motion()->At(1.37).q).cwiseAbs().maxCoeff(), 1e-12);
+
+  // A URDF loaded: the combo says so instead of the built-in it showed.
+  EXPECT_EQ(gui.app().robot_combo(), "paper6r");
+  const std::string urdf = (fs::path(IDBENCH_SOURCE_DIR) / "engine/robots/paper6r.urdf").string();
+  RunScript(gui, "set robot.urdf " + urdf + "\nclick robot.load_urdf\nframes 2\n");
+  EXPECT_EQ(session.robot_source(), urdf) << session.last_error();
+  EXPECT_EQ(gui.app().robot_combo(), "(URDF file)");
+  RunScript(gui, "set robot.builtin puma560\nclick robot.load_builtin\nframes 2\n");
+  EXPECT_EQ(session.robot_source(), "puma560");
+  EXPECT_EQ(gui.app().robot_combo(), "puma560");
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // Issue 20: a design that is not usable (here: one evaluation per start, so
 // no start improves on where it began) is never exported as a motion a robot
 // would run; `idbench design` writes only design.json for it too.

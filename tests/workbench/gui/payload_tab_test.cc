@@ -102,6 +102,41 @@ TEST(PayloadTabTest, EstimatesAsTheLibraryAndRecoversTheTruth) {
   if (!HasFailure()) fs::remove_all(out);
 }
 
+// Issue 35 item 33: the tab reads its logs with the session's one set of
+// log-reading options: the Log tab's drive gains turn currents into torques,
+// and the Design tab's base pose mounts the robot, as `idbench payload
+// --drive-gains --base-pose` does. Truth: the payload the logs (currents
+// i = τ / k of the PUMA rolled 0.4 rad on its base) were simulated with.
+TEST(PayloadTabTest, ReadsCurrentsOnTheMountedBaseWithTheSessionsOptions) {
+  const fs::path out = PayloadTabDir("mounted");
+  const BasePose pose{{0.1, -0.2, 0.3, 0.4, 0.0, 0.2}};
+  const Eigen::VectorXd gains = (Eigen::VectorXd(6) << 2.0, 3.0, 1.5, 0.5, 0.25, 0.2).finished();
+  const RobotModel loaded = MountRobot(testing::WithPayload(MakePuma560(), kMass, kCom, Inertia()), pose);
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0);
+  JointLog log = testing::SyntheticJointLog(loaded, *MakeBuiltinMotion("general", 6, {.duration = 10.0}), t);
+  log.tau = log.tau * gains.cwiseInverse().asDiagonal();  // currents [A]
+  std::string csv = FormatJointLogCsv(log);
+  const size_t header_end = csv.find('\n');
+  for (size_t at = csv.find("tau"); at < header_end; at = csv.find("tau", at)) csv.replace(at, 3, "i");
+  const std::string path = (out / "currents.csv").string();
+  std::ofstream(path) << csv;
+
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "paper6r", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click tab.design\nset design.base_pose 0.1,-0.2,0.3,0.4,0,0.2\nclick tab.log\n"
+                 "set log.drive_gains 2,3,1.5,0.5,0.25,0.2\nclick tab.payload\nset payload.robot puma560\n"
+                 "set payload.data " + path + "\nset payload.friction viscous,coulomb\nclick payload.run\n"
+                 "wait payload 300\nframes 2\n");
+  ASSERT_TRUE(session.payload_summary().has_value()) << session.last_error();
+  const PayloadSummary& shown = *session.payload_summary();
+  EXPECT_TRUE(shown.good()) << shown.message;
+  EXPECT_NEAR(shown.estimate.body.mass, kMass, 1e-6);
+  EXPECT_LE((shown.estimate.body.p_BoPcm_B - kCom).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_EQ(session.payload_estimated_with().base_pose.xyz_rpy, pose.xyz_rpy);
+  EXPECT_EQ(session.payload_estimated_with().format.drive_gains, std::vector<double>(gains.data(), gains.data() + 6));
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // Only the wrist's last joint turns: the motion does not determine the
 // payload's inertia; the tab says so instead of numbers, and the export
 // writes payload.json only, with an error saying why.

@@ -18,12 +18,19 @@
 namespace idbench::gui {
 
 GuiApp::GuiApp(const SessionOptions& options, GlProcLoader loader) : impl_(std::make_unique<Impl>(options, loader)) {
-  // The combo starts at the robot the session opened (when it is a built-in).
-  const std::vector<std::string> names = BuiltinRobotNames();
-  const std::string& source = impl_->session.robot_source();
-  impl_->robot_choice = std::find(names.begin(), names.end(), source) != names.end() ? source : names.front();
-  if (std::find(names.begin(), names.end(), source) == names.end()) impl_->log_robot_path = source;
+  impl_->ShowLoadedRobot();
   RegisterRecentFilesSettings(&impl_->recent_files);  // read from imgui.ini at the first frame
+}
+
+void GuiApp::Impl::ShowLoadedRobot() {
+  const std::vector<std::string> names = BuiltinRobotNames();
+  const std::string& source = session.robot_source();
+  if (std::find(names.begin(), names.end(), source) != names.end()) {
+    robot_choice = source;
+  } else {
+    robot_choice = kUrdfChoice;  // not a built-in: the combo says so, the path fields hold the file
+    log_robot_path = urdf_path = source;
+  }
 }
 
 void GuiApp::WaitForLogPlot() { impl_->CollectLogOverview(true); }
@@ -69,9 +76,9 @@ void GuiApp::Frame(double dt_seconds) {
   m.session.Poll();
   m.SyncMotion();
   if (m.playing) {
-    if (const Trajectory* motion = m.session.current_motion()) {
+    if (m.ReplaysLog() || m.session.current_motion()) {
       m.t += dt_seconds * m.speed;
-      if (m.t > motion->duration()) m.t = 0.0;
+      if (m.t > m.TimelineEnd()) m.t = m.TimelineStart();
     } else {
       m.playing = false;
     }
@@ -100,6 +107,10 @@ void GuiApp::Frame(double dt_seconds) {
                            Tab{"tab.export", "Export", &Impl::DrawExportTab}}) {
       const bool open = ImGui::BeginTabItem(tab.label);
       m.widgets.Record(tab.name);
+      if (tab.draw == &Impl::DrawLogTab) {  // the view replays the log from the next frame
+        if (open != m.log_tab_open) m.t = 0.0, m.playing = false;
+        m.log_tab_open = open;
+      }
       if (open) {
         (m.*tab.draw)();
         ImGui::EndTabItem();
@@ -116,7 +127,7 @@ void GuiApp::Frame(double dt_seconds) {
   m.NoteRecentFile("log.validate", m.session.identify.validate, typing);
   m.registry.EndFrame();
   if (m.pending_robot) {
-    if (m.session.LoadRobot(*m.pending_robot)) m.t = 0.0, m.playing = false;
+    if (m.session.LoadRobot(*m.pending_robot)) m.t = 0.0, m.playing = false, m.ShowLoadedRobot();
     m.pending_robot.reset();
   }
 }
@@ -126,6 +137,8 @@ const WidgetRegistry& GuiApp::widgets() const { return impl_->registry; }
 GuiLayout& GuiApp::layout() { return impl_->layout; }
 double GuiApp::time() const { return impl_->t; }
 bool GuiApp::playing() const { return impl_->playing; }
+Eigen::VectorXd GuiApp::shown_q() const { return impl_->CurrentQ(); }
+const std::string& GuiApp::robot_combo() const { return impl_->robot_choice; }
 
 std::optional<std::string> GuiApp::TakeScreenshotRequest() {
   std::optional<std::string> request;

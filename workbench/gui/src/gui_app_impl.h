@@ -36,12 +36,25 @@ struct GuiApp::Impl {
   GuiLayout layout;
 
   // Robot panel
-  std::string robot_choice;   // the built-in picked in the combo
+  std::string robot_choice;   // the built-in picked in the combo, or kUrdfChoice when a URDF is loaded
   std::string urdf_path;
+  static constexpr const char* kUrdfChoice = "(URDF file)";
+  // The panel's fields show the robot the session has (a built-in in the
+  // combo, a URDF in the path fields).
+  void ShowLoadedRobot();
   std::optional<std::string> pending_robot;  // to load at the end of the frame
 
-  // Viewport and timeline
-  double t = 0.0;             // [s]
+  // Viewport and timeline. While the Log tab is open and its plot has read
+  // the log, the view replays the log (the robot as logged, at the plot's
+  // time cursor t); otherwise it plays the current motion from t = 0.
+  double t = 0.0;             // [s] on the shown source's time axis
+  bool log_tab_open = false;  // the Log tab was drawn last frame
+  bool ReplaysLog() const { return log_tab_open && overview.n_samples() >= 2; }
+  double TimelineStart() const;  // [s] the shown source's first instant
+  double TimelineEnd() const;    // [s] and its last
+  std::string fitted_source;     // the source FitView fitted the camera to
+  // "log <path>" while the log is replayed, else the motion's name.
+  std::string ShownSource() const { return ReplaysLog() ? "log " + overview_key.substr(0, overview_key.find('\n')) : session.motion; }
   bool playing = false;
   double speed = 1.0;
   CameraView view;
@@ -107,11 +120,10 @@ struct GuiApp::Impl {
   std::optional<std::string> screenshot_request;
   size_t shown_messages = 0;  // the messages panel scrolls to a new one
 
-  Eigen::VectorXd CurrentQ() const {
-    const Trajectory* motion = session.current_motion();
-    if (!motion) return Eigen::VectorXd::Zero(session.model().n_dof());
-    return motion->At(std::clamp(t, 0.0, motion->duration())).q;
-  }
+  // q [rad] shown at the timeline's t: the log's (its plot's bucket means,
+  // linear between the buckets' middles) or the motion's.
+  Eigen::VectorXd CurrentQ() const { return QAt(t); }
+  Eigen::VectorXd QAt(double time) const;
 
   // A button that starts a job, with what the job is doing beside it while it runs.
   bool JobButton(const std::string& name, const char* label, bool enabled, bool running, const char* doing) {

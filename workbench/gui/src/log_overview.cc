@@ -4,7 +4,8 @@
 // between its min and max with a line through the means: LogEnvelope). A
 // drag across it chooses the time window (IdentifyOptions::time_window, the
 // log.time_window field), a click without a drag clears it (the whole log);
-// the window is drawn shaded.
+// the window is drawn shaded, and the 3D view's time cursor as a dark line
+// (the view replays this log while the tab is open).
 #include <imgui.h>
 
 #include <algorithm>
@@ -112,6 +113,10 @@ void GuiApp::Impl::DrawLogOverview() {
     draw->AddLine(ImVec2(b, p0.y), ImVec2(b, p1.y), IM_COL32(70, 130, 230, 200));
   }
   draw->AddRect(p0, p1, IM_COL32(150, 150, 160, 255));
+  if (ReplaysLog()) {  // the 3D view's instant: the robot there is as logged at this t
+    const float x = static_cast<float>(std::clamp(axis.PixelAt(t), axis.x0, axis.x1));
+    draw->AddLine(ImVec2(x, p0.y), ImVec2(x, p1.y), IM_COL32(20, 20, 20, 220), 1.5f);
+  }
   const double lo = overview.min().minCoeff(), hi = overview.max().maxCoeff();
   const double span = hi > lo ? hi - lo : 1.0;
   const float top = p0.y + 16.0f, height = size.y - 20.0f;

@@ -2,9 +2,11 @@
 // the payload and optionally an unloaded one of the same motion, the link
 // carrying it and the robot's friction terms; Estimate runs RunPayload on
 // session.payload (the command line's options struct, so the same numbers)
-// on a worker thread, then shows the mass, centre of mass and inertia with σ
-// and each quantity's status (the ones the motion does not determine as "not
-// identifiable", never as numbers) and the verdict. Export writes
+// on a worker thread (the logs read with the Log tab's options, the robot at
+// the Design tab's base pose: one set of log-reading options), then shows
+// the mass, centre of mass and inertia with σ and each quantity's status (the
+// ones the motion does not determine as "not identifiable", never as
+// numbers) and the verdict. Export writes
 // payload.json and payload.urdf.xml through the library's PayloadFiles.
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -107,6 +109,8 @@ void GuiApp::Impl::DrawPayloadTab() {
                 "estimating..."))
     session.StartPayload();
   if (!payload_text_error.empty()) ImGui::TextColored(kErrorColor, "%s", payload_text_error.c_str());
+  ImGui::TextColored(kDimColor, "logs read with the Log tab's columns, angle unit and drive gains; "
+                                "the robot mounted at the Design tab's base pose");
   ImGui::Separator();
   DrawPayloadResults();
 }

@@ -25,7 +25,7 @@ void GuiApp::Impl::DrawRobotPanel() {
   widgets.Combo("robot.builtin", "##builtin", &robot_choice, BuiltinRobotNames());
   ImGui::SameLine();
   // Loading replaces the model this frame draws from: done after the panels.
-  if (widgets.Button("robot.load_builtin", "Load", idle)) pending_robot = robot_choice;
+  if (widgets.Button("robot.load_builtin", "Load", idle && robot_choice != kUrdfChoice)) pending_robot = robot_choice;
   ImGui::SameLine();
   ImGui::SetNextItemWidth(std::max(120.0f, ImGui::GetContentRegionAvail().x - 110));
   widgets.InputText("robot.urdf", "##urdf", &urdf_path);

@@ -224,6 +224,7 @@ std::string Session::WriteDesignedTrajectory() {
 void Session::StartSimulate() {
   SimulateOptions options = simulate;
   options.robot = robot_source_;
+  options.base_pose = design.design.base_pose;  // the session's one mounting (the Design tab's base pose)
   try {
     if (motion == "designed") {
       if (!design_report_) return Error("simulate: no designed motion yet; run the design or pick a built-in motion");
@@ -254,17 +255,21 @@ void Session::StartSimulate() {
 void Session::StartIdentify() {
   IdentifyOptions options = identify;
   options.robot = robot_source_;
+  options.base_pose = design.design.base_pose;  // the session's one mounting (the Design tab's base pose)
   if (options.data.empty()) return Error("identify: no joint log yet; simulate first, or open a recorded log in the Log tab");
   // The checks of `idbench identify`, against the loaded robot too.
   std::string why;
   if (!options.IsValid(&why) || !options.format.IsValidFor(model_->n_dof(), &why) ||
       !options.plausibility.IsValidFor(*model_, &why))
     return Error("identify: " + why);
+  // Mounted as the command line mounts it (gravity seen from the base); the
+  // report keeps references to it, so the session keeps it with the report.
+  auto mounted = std::make_shared<const RobotModel>(MountRobot(*model_, options.base_pose));
   {
     const std::lock_guard<std::mutex> lock(identify_progress_mutex_);
     identify_progress_ = {0.0, "starting"};
   }
-  StartJob(JobKind::kIdentify, [this, model = model_, options](const std::atomic<bool>& stop) {
+  StartJob(JobKind::kIdentify, [this, model = mounted, options](const std::atomic<bool>& stop) {
     // RunIdentify's stages fill 90 % of the bar, the predicted torques the rest.
     constexpr double kIdentifyShare = 0.9;
     auto show = [this](double fraction, const std::string& stage) {
@@ -295,9 +300,10 @@ void Session::StartIdentify() {
       return cancelled;
     }
     show(1.0, "done");
-    return std::function<void()>([this, report, options, fit, held_out] {
+    return std::function<void()>([this, model, report, options, fit, held_out] {
       identify_report_ = std::move(*report);
       identified_with_ = options;
+      identified_model_ = model;
       fit_torques_ = std::move(*fit);
       if (held_out) held_out_torques_ = std::move(*held_out);
       else held_out_torques_.reset();
@@ -389,7 +395,7 @@ void Session::StartReport() {
   if (!identify_report_) return Error("report: nothing identified yet");
   // "truth" only for the log the GUI simulated itself; a recorded one is "measured".
   const LogOrigin origin = identified_with_.data == simulated_log_ ? LogOrigin::kSimulated : LogOrigin::kRecorded;
-  StartJob(JobKind::kReport, [this, model = model_, options = identified_with_, report = *identify_report_,
+  StartJob(JobKind::kReport, [this, model = identified_model_, options = identified_with_, report = *identify_report_,
                               dir = out_dir, origin](const std::atomic<bool>&) {
     EnsureOutputDirectory(dir);
     WriteFilesAtomically(FormatReportFiles(MakeIdentifyReportContent(*model, options, report, origin), dir));
@@ -505,14 +511,15 @@ bool Session::ExportIdentifiedModel() {
   // As `idbench identify` writes them: the diagnostics always, the robot model when the verdict allows.
   const IdentifyOptions& options = identified_with_;
   const IdentifyReport& report = *identify_report_;
-  if (!Export("identified.json", [&] { return FormatIdentifiedJson(*model_, options, report); })) return false;
+  const RobotModel& model = *identified_model_;
+  if (!Export("identified.json", [&] { return FormatIdentifiedJson(model, options, report); })) return false;
   if (!WritesRobotModel(options, report)) {  // the verdict refuses it (issue 20)
     Error("export: " + RefusedModelMessage(options, report));
     return false;
   }
-  return Export("identified.urdf", [&] { return FormatIdentifiedUrdf(*model_, options, report); }) &&
-         Export("identified.xml", [&] { return FormatIdentifiedMjcf(*model_, options, report); }) &&
-         Export("joints.yaml", [&] { return FormatJointDynamicsYaml(*model_, options, report); });
+  return Export("identified.urdf", [&] { return FormatIdentifiedUrdf(model, options, report); }) &&
+         Export("identified.xml", [&] { return FormatIdentifiedMjcf(model, options, report); }) &&
+         Export("joints.yaml", [&] { return FormatJointDynamicsYaml(model, options, report); });
 }
 
 // ---- Messages -------------------------------------------------------------

@@ -12,13 +12,19 @@
 namespace idbench::gui {
 
 void Session::StartPayload() {
-  const PayloadOptions options = payload;
+  // The logs are read as the Log tab reads them (columns, angle unit, drive
+  // gains) on the session's one mounting (the Design tab's base pose): one
+  // table of log-reading options, as the command line's flags are one.
+  PayloadOptions options = payload;
+  options.format = identify.format;
+  options.base_pose = design.design.base_pose;
   std::string why;
   if (!options.IsValid(&why)) return Error("payload: " + why);
   StartJob(JobKind::kPayload, [this, options](const std::atomic<bool>&) {
-    // The identified robot is the payload's own (not the session's robot).
+    // The identified robot is the payload's own (not the session's robot),
+    // mounted as payload's command line mounts it.
     UrdfLoadResult loaded = idbench::LoadRobot(options.robot);
-    auto model = std::make_shared<const RobotModel>(std::move(loaded.model));
+    auto model = std::make_shared<const RobotModel>(MountRobot(loaded.model, options.base_pose));
     std::string problem;
     if (!options.IsValidFor(*model, &problem)) throw std::invalid_argument(problem);
     auto summary = std::make_shared<PayloadSummary>(RunPayload(*model, options));

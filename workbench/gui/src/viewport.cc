@@ -18,15 +18,44 @@
 
 namespace idbench::gui {
 
+double GuiApp::Impl::TimelineStart() const { return ReplaysLog() ? overview.t_begin(0) : 0.0; }
+
+double GuiApp::Impl::TimelineEnd() const {
+  if (ReplaysLog()) return overview.t_end(overview.n_buckets() - 1);
+  const Trajectory* motion = session.current_motion();
+  return motion ? motion->duration() : 0.0;
+}
+
+Eigen::VectorXd GuiApp::Impl::QAt(double time) const {
+  if (ReplaysLog()) {
+    // The buckets' means at their middles (one sample per bucket up to
+    // kMaxOverviewBuckets samples: the log's own q), linear between them.
+    const Eigen::Index n = overview.n_buckets();
+    auto middle = [&](Eigen::Index k) { return 0.5 * (overview.t_begin(k) + overview.t_end(k)); };
+    if (time <= middle(0)) return overview_mean.row(0).transpose();
+    if (time >= middle(n - 1)) return overview_mean.row(n - 1).transpose();
+    Eigen::Index lo = 0, hi = n - 1;  // middle(lo) < time <= middle(hi)
+    while (hi - lo > 1) {
+      const Eigen::Index mid = (lo + hi) / 2;
+      (middle(mid) < time ? lo : hi) = mid;
+    }
+    const double a = (time - middle(lo)) / (middle(hi) - middle(lo));
+    return ((1.0 - a) * overview_mean.row(lo) + a * overview_mean.row(hi)).transpose();
+  }
+  const Trajectory* motion = session.current_motion();
+  if (!motion) return Eigen::VectorXd::Zero(session.model().n_dof());
+  return motion->At(std::clamp(time, 0.0, motion->duration())).q;
+}
+
 // Rebuilds the built-in motion when its name or duration was edited (by a
-// widget or a script), and keeps the timeline inside the motion.
+// widget or a script), and keeps the timeline inside the shown source.
 void GuiApp::Impl::SyncMotion() {
   const std::string key = session.motion + "/" + std::to_string(session.builtin_duration);
   if (key != shown_motion_key) {
     if (session.motion != "designed" || session.design_report()) session.SelectMotion(session.motion);
     shown_motion_key = key;
   }
-  if (const Trajectory* motion = session.current_motion()) t = std::clamp(t, 0.0, motion->duration());
+  if (ReplaysLog() || session.current_motion()) t = std::clamp(t, TimelineStart(), TimelineEnd());
 }
 
 // Reads the cell again when design.scene was edited (an unreadable or
@@ -53,14 +82,15 @@ void GuiApp::Impl::SyncScene() {
 // while it plays, and the cell's obstacles beside it.
 void GuiApp::Impl::FitView() {
   const RobotModel& model = session.model();
-  const Trajectory* motion = session.current_motion();
+  const bool shows_motion = ReplaysLog() || session.current_motion();
   const Eigen::Isometry3d X_WR = session.design.design.base_pose.X_WR();
   RobotData data(model);
   motion_points_W.clear();
-  const int n_poses = motion ? 9 : 1;
+  const int n_poses = shows_motion ? 9 : 1;
   for (int k = 0; k < n_poses; ++k) {
-    const Eigen::VectorXd q = motion ? motion->At(motion->duration() * k / (n_poses - 1)).q
-                                     : Eigen::VectorXd::Zero(model.n_dof());
+    const double t0 = TimelineStart(), t1 = TimelineEnd();
+    const Eigen::VectorXd q = shows_motion ? QAt(t0 + (t1 - t0) * k / (n_poses - 1))
+                                           : Eigen::VectorXd::Zero(model.n_dof());
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
     ComputeKinematics(model, q, zero, zero, &data);
     const std::vector<Eigen::Vector3d> points = BuildRobotScene(model, data, X_WR).BoundingPoints();
@@ -75,6 +105,7 @@ void GuiApp::Impl::FitView() {
   motion_points_W.insert(motion_points_W.end(), near.begin(), near.end());
   floor = FitFloor(motion_points_W);
   fitted_motion_version = session.motion_version();
+  fitted_source = ShownSource();
 }
 
 // Markers on demand, sized by the robot and long enough to stick out of the
@@ -112,9 +143,9 @@ void GuiApp::Impl::DrawViewport() {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(W * layout.left_fraction, H * layout.viewport_fraction));
   ImGui::Begin("3D view", nullptr, kPanelFlags);
-  const Trajectory* motion = session.current_motion();
+  const bool has_timeline = ReplaysLog() || session.current_motion();
   SyncScene();
-  if (fitted_motion_version != session.motion_version()) FitView();
+  if (fitted_motion_version != session.motion_version() || fitted_source != ShownSource()) FitView();
 
   // The image fills the window above the timeline row.
   const float timeline_height = ImGui::GetFrameHeightWithSpacing() + 4.0f;
@@ -167,7 +198,7 @@ void GuiApp::Impl::DrawViewport() {
   }
 
   // Timeline: play/pause, speed, scrubber.
-  if (widgets.Button("timeline.play", playing ? "Pause" : "Play", motion != nullptr)) playing = !playing;
+  if (widgets.Button("timeline.play", playing ? "Pause" : "Play", has_timeline)) playing = !playing;
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::DragScalar("##speed", ImGuiDataType_Double, &speed, 0.01f, nullptr, nullptr, "x%.2f");
@@ -177,12 +208,11 @@ void GuiApp::Impl::DrawViewport() {
   ImGui::SameLine();
   widgets.Checkbox("view.frames", "frames", &show_frames);
   ImGui::SameLine();
-  const double duration = motion ? motion->duration() : 0.0;
+  const double start = TimelineStart(), end = has_timeline ? TimelineEnd() : 0.0;
   ImGui::SetNextItemWidth(-1);
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, "t = %.2f / %.2f s (%s)", t, duration, session.motion.c_str());
-  const double start = 0.0;
-  ImGui::SliderScalar("##time", ImGuiDataType_Double, &t, &start, &duration, overlay);
+  char overlay[256];
+  std::snprintf(overlay, sizeof overlay, "t = %.2f / %.2f s (%s)", t, end, ShownSource().c_str());
+  ImGui::SliderScalar("##time", ImGuiDataType_Double, &t, &start, &end, overlay);
   widgets.Record("timeline.time", [this](const std::string& text, std::string* why) {
     return internal::ParseDouble(text, &t, why);
   });

@@ -42,9 +42,14 @@ class GuiApp {
   const WidgetRegistry& widgets() const;
   GuiLayout& layout();
 
-  // Timeline: the shown instant of the current motion [s].
+  // Timeline: the shown instant [s] of the current motion, or of the log
+  // while the Log tab is open (the view replays it), and the q drawn there.
   double time() const;
   bool playing() const;
+  Eigen::VectorXd shown_q() const;
+  // What the robot panel's combo shows: the loaded built-in's name, or
+  // "(URDF file)" when the robot came from a URDF.
+  const std::string& robot_combo() const;
 
   // A screenshot the Export panel asked for: its path, once.
   std::optional<std::string> TakeScreenshotRequest();

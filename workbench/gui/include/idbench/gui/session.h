@@ -207,6 +207,7 @@ class Session {
   std::optional<JointLog> log_;
   std::optional<IdentifyReport> identify_report_;
   IdentifyOptions identified_with_;   // the options of identify_report_
+  std::shared_ptr<const RobotModel> identified_model_;  // the robot mounted at identified_with_.base_pose
   std::string simulated_log_;         // the log Simulate last wrote: its report may speak of a truth
   std::optional<TorqueSeries> fit_torques_, held_out_torques_;
   std::optional<CompareReport> compare_report_;
