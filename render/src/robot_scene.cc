@@ -102,6 +102,17 @@ Scene BuildRobotScene(const RobotModel& model, const RobotData& data, const Eige
   Scene scene;
   const bool mounted = !X_WR.isApprox(Eigen::Isometry3d::Identity(), 1e-12);
   const double stand_in = StandInRadius(model, data);
+  // The ground links (a table, a pedestal the arm stands on), in R; drawn
+  // from their visual shapes, or the collision ones when they have none.
+  bool has_ground_shapes = false;
+  for (const GroundLink& link : model.ground()) {
+    for (const Shape& shape : link.shapes.empty() ? link.CollisionShapes() : link.shapes) {
+      if (shape.kind == Shape::Kind::kMesh && shape.mesh == nullptr) continue;
+      scene.primitives.push_back({shape.kind, shape.kind == Shape::Kind::kMesh ? Eigen::Vector3d::Ones() : shape.size,
+                                  shape.mesh, shape.X_BG, kPedestalColor});
+      has_ground_shapes = true;
+    }
+  }
   for (int i = 0; i < model.n_links(); ++i) {
     const Link& link = model.link(i);
     Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
@@ -135,9 +146,10 @@ Scene BuildRobotScene(const RobotModel& model, const RobotData& data, const Eige
         scene.primitives.push_back(ball);
       }
     }
-    // A grey pedestal from the ground (z = 0) up to a base joint above it.
+    // A grey pedestal from the ground (z = 0) up to a base joint above it,
+    // unless the robot file has its own.
     const double base_height = link.parent < 0 ? X_WB.translation().z() : 0.0;
-    if (!mounted && base_height > 0.05 && LinkRadius(link, stand_in) > 0.0) {
+    if (!mounted && !has_ground_shapes && base_height > 0.05 && LinkRadius(link, stand_in) > 0.0) {
       ScenePrimitive pedestal;
       pedestal.kind = Shape::Kind::kCylinder;
       pedestal.color = kPedestalColor;

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "idbench/engine/paper6r.h"
+#include "idbench/engine/urdf.h"
 
 namespace idbench {
 namespace {
@@ -95,6 +98,40 @@ TEST(RobotSceneTest, LinksWithoutShapesGetRodsBetweenTheirJoints) {
   EXPECT_EQ(balls, 1);
   EXPECT_GE(rods, 4);  // joints that coincide get no rod
   EXPECT_FALSE(scene.BoundingPoints().empty());
+}
+
+// The ground links (issue 35: the table and pedestal the arm stands on) are
+// drawn where the URDF puts them, carried by the base pose; the stand-in
+// pedestal is not added under them. Truth: table_arm.urdf's shapes.
+TEST(RobotSceneTest, GroundLinksAreDrawnWhereTheRobotFilePutsThem) {
+  const RobotModel model = LoadUrdfFile(IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf").model;
+  RobotData data(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.n_dof());
+  ComputeKinematics(model, zero, zero, zero, &data);
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.translation() = Eigen::Vector3d(1.0, 2.0, 0.0);
+  X_WR.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Scene scene = BuildRobotScene(model, data, X_WR);
+  auto find = [&](Shape::Kind kind, const Eigen::Vector3d& size) -> const ScenePrimitive* {
+    for (const ScenePrimitive& p : scene.primitives)
+      if (p.kind == kind && (p.size - size).norm() < 1e-12) return &p;
+    return nullptr;
+  };
+  const ScenePrimitive* table = find(Shape::Kind::kBox, Eigen::Vector3d(2, 2, 0.5));
+  ASSERT_NE(table, nullptr);
+  EXPECT_LT((table->X_WG.translation() - X_WR * Eigen::Vector3d(0, 0, 0.25)).norm(), 1e-12);
+  const ScenePrimitive* pedestal = find(Shape::Kind::kCylinder, Eigen::Vector3d(0.06, 0.06, 0.1));
+  ASSERT_NE(pedestal, nullptr);  // collision shape only: drawn from it
+  EXPECT_LT((pedestal->X_WG.translation() - X_WR * Eigen::Vector3d(0, 0, 0.55)).norm(), 1e-12);
+  const ScenePrimitive* lamp = find(Shape::Kind::kSphere, Eigen::Vector3d(0.1, 0.1, 0.1));
+  ASSERT_NE(lamp, nullptr);
+  EXPECT_LT((lamp->X_WG.translation() - X_WR * Eigen::Vector3d(5, 0, 2)).norm(), 1e-12);
+  // Upright, no stand-in pedestal joins them (the first joint is 0.6 m up).
+  const Scene upright = BuildRobotScene(model, data);
+  int cylinders_from_floor = 0;
+  for (const ScenePrimitive& p : upright.primitives)
+    cylinders_from_floor += p.kind == Shape::Kind::kCylinder && std::abs(p.X_WG.translation().z() - 0.3) < 1e-12;
+  EXPECT_EQ(cylinders_from_floor, 0);
 }
 
 // Mounted: every primitive of the upright scene carried by X_WR (no

@@ -134,6 +134,8 @@ TEST(MjcfWriterTest, MujocoLoadsTheKukaWithItsMeshesAndAgrees) {
   int meshes = 0;
   for (const Link& link : model.links())
     for (const Shape& shape : link.shapes) meshes += shape.kind == Shape::Kind::kMesh ? 1 : 0;
+  for (const GroundLink& link : model.ground())  // the table the arm stands on
+    for (const Shape& shape : link.shapes) meshes += shape.kind == Shape::Kind::kMesh ? 1 : 0;
   ASSERT_GT(meshes, 0);
   auto m = LoadInMujoco(WriteMjcf(model), "kuka_meshes");
   ASSERT_TRUE(m);
@@ -144,6 +146,43 @@ TEST(MjcfWriterTest, MujocoLoadsTheKukaWithItsMeshesAndAgrees) {
   std::printf("kuka_lwr4: %d meshes; max relative difference %.3g (file), %.3g (drive values)\n", meshes, plain, driven);
   EXPECT_LE(plain, 1e-9);
   EXPECT_LE(driven, 1e-9);
+}
+
+// The ground links (issue 35: the table and pedestal an arm stands on) are
+// bodies welded to the world with their shapes where the URDF has them;
+// MuJoCo's inverse dynamics is unchanged by them. Truth: table_arm.urdf.
+TEST(MjcfWriterTest, GroundLinksAreStaticBodiesWithTheirShapes) {
+  const RobotModel model = LoadRobot(IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf").model;
+  ASSERT_EQ(model.ground().size(), 3u);
+  auto m = LoadInMujoco(WriteMjcf(model), "table_arm");
+  ASSERT_TRUE(m);
+  auto body = [&](const char* name) {
+    const int id = mj_name2id(m.get(), mjOBJ_BODY, name);
+    EXPECT_GE(id, 0) << name;
+    return id;
+  };
+  const int table = body("table"), pedestal = body("pedestal"), lamp = body("lamp");
+  ASSERT_GE(table, 0);
+  ASSERT_GE(pedestal, 0);
+  ASSERT_GE(lamp, 0);
+  for (int id : {table, pedestal, lamp}) EXPECT_EQ(m->body_weldid[id], 0);  // welded to the world: no joint
+  // The table: a 2 x 2 x 0.5 m box centred 0.25 m up, drawn and colliding (two geoms).
+  ASSERT_EQ(m->body_geomnum[table], 2);
+  for (int g = m->body_geomadr[table]; g < m->body_geomadr[table] + 2; ++g) {
+    EXPECT_EQ(m->geom_type[g], mjGEOM_BOX);
+    EXPECT_NEAR(m->geom_size[3 * g + 0], 1.0, 1e-12);
+    EXPECT_NEAR(m->geom_size[3 * g + 2], 0.25, 1e-12);
+    EXPECT_NEAR(m->geom_pos[3 * g + 2], 0.25, 1e-12);
+  }
+  // The lamp: a sphere of 0.1 m at (5, 0, 2), collision only (contacts on).
+  ASSERT_EQ(m->body_geomnum[lamp], 1);
+  const int g = m->body_geomadr[lamp];
+  EXPECT_EQ(m->geom_type[g], mjGEOM_SPHERE);
+  EXPECT_NEAR(m->geom_pos[3 * g + 0], 5.0, 1e-12);
+  EXPECT_NEAR(m->geom_pos[3 * g + 2], 2.0, 1e-12);
+  EXPECT_NE(m->geom_contype[g], 0);
+  EXPECT_EQ(m->nv, 3);
+  EXPECT_LE(MaxRelativeDifference(model, "table_arm_dynamics"), 1e-9);
 }
 
 TEST(MjcfWriterTest, WritesDriveValuesAndRanges) {

@@ -137,6 +137,21 @@ std::string WriteMjcf(const RobotModel& model) {
     for (int child : model.children(i)) self(self, child, depth + 1);
     bodies << indent << "</body>\n";
   };
+  // The ground links (a table, a pedestal: RobotModel::ground): bodies
+  // without a joint, welded to the world, their shapes where the base frame
+  // (MJCF's world) has them.
+  for (const GroundLink& link : model.ground()) {
+    bodies << "    <body" << Attribute("name", link.name) << ">\n";
+    for (const Shape& shape : link.shapes) {
+      const std::string geom = Geom(shape, link.name, true, &meshes);
+      if (!geom.empty()) bodies << "      " << geom << "\n";
+    }
+    for (const Shape& shape : link.collision_shapes) {
+      const std::string geom = Geom(shape, link.name, false, &meshes);
+      if (!geom.empty()) bodies << "      " << geom << "\n";
+    }
+    bodies << "    </body>\n";
+  }
   for (int root : model.children(-1)) write_body(write_body, root, 2);
 
   // MuJoCo refuses principal moments that break the triangle inequality
