@@ -98,6 +98,14 @@ std::string WriteMjcf(const RobotModel& model) {
   MeshAssets meshes;
   // The bodies, written depth first so children nest in their parents.
   std::ostringstream bodies;
+  // A link's visual then collision shapes, one geom per line.
+  auto write_geoms = [&](const std::vector<Shape>& visual, const std::vector<Shape>& collision,
+                         const std::string& name, const std::string& indent) {
+    for (const Shape& shape : visual)
+      if (const std::string geom = Geom(shape, name, true, &meshes); !geom.empty()) bodies << indent << geom << "\n";
+    for (const Shape& shape : collision)
+      if (const std::string geom = Geom(shape, name, false, &meshes); !geom.empty()) bodies << indent << geom << "\n";
+  };
   auto write_body = [&](auto&& self, int i, int depth) -> void {
     const Link& link = model.link(i);
     const std::string indent(static_cast<size_t>(2 * depth), ' ');
@@ -126,14 +134,7 @@ std::string WriteMjcf(const RobotModel& model) {
            << Attribute("damping", Number(link.dynamics.viscous))
            << Attribute("frictionloss", Number(link.dynamics.coulomb)) << "/>\n";
     // Shapes, then the children.
-    for (const Shape& shape : link.shapes) {
-      const std::string geom = Geom(shape, link.name, true, &meshes);
-      if (!geom.empty()) bodies << indent << "  " << geom << "\n";
-    }
-    for (const Shape& shape : link.collision_shapes) {
-      const std::string geom = Geom(shape, link.name, false, &meshes);
-      if (!geom.empty()) bodies << indent << "  " << geom << "\n";
-    }
+    write_geoms(link.shapes, link.collision_shapes, link.name, indent + "  ");
     for (int child : model.children(i)) self(self, child, depth + 1);
     bodies << indent << "</body>\n";
   };
@@ -142,14 +143,7 @@ std::string WriteMjcf(const RobotModel& model) {
   // (MJCF's world) has them.
   for (const GroundLink& link : model.ground()) {
     bodies << "    <body" << Attribute("name", link.name) << ">\n";
-    for (const Shape& shape : link.shapes) {
-      const std::string geom = Geom(shape, link.name, true, &meshes);
-      if (!geom.empty()) bodies << "      " << geom << "\n";
-    }
-    for (const Shape& shape : link.collision_shapes) {
-      const std::string geom = Geom(shape, link.name, false, &meshes);
-      if (!geom.empty()) bodies << "      " << geom << "\n";
-    }
+    write_geoms(link.shapes, link.collision_shapes, link.name, "      ");
     bodies << "    </body>\n";
   }
   for (int root : model.children(-1)) write_body(write_body, root, 2);
