@@ -205,6 +205,11 @@ Transmission ParseTransmission(const Field& field) {
     }
     for (size_t j = 0; j < ratios.size(); ++j) {
       if (ratios[j] == 0.0) n.at(j).Fail("expected a non-zero gear ratio (θm = N·q), got 0");
+      // Named here as written (not as the matrix Transmission::IsValid checks).
+      if (!(std::abs(ratios[j]) <= Transmission::kMaxRatio)) {
+        n.at(j).Fail("expected a gear ratio of magnitude at most " + Shortest(Transmission::kMaxRatio) +
+                     " (beyond any drive), got " + n.at(j).Shown());
+      }
     }
     out = Transmission::FromReduction(ratios);
     out.source = field.source + ": " + field.path;

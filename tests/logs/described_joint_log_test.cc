@@ -272,6 +272,8 @@ TEST_F(DescribedJointLogTest, ErrorsNameTheDescriptionFieldOrTheFileAndLine) {
        d + ": .transmission: expected \"reduction\": [N1, ...] (gear ratios) or \"actuator_from_joint\""},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, 0, 1, 1, 1]}})",
        d + ": .transmission.reduction[2]: expected a non-zero gear ratio (θm = N·q), got 0"},
+      {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, -1e77, 1, 1, 1]}})",
+       d + ": .transmission.reduction[2]: expected a gear ratio of magnitude at most 10000 (beyond any drive), got -1e+77"},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"reduction": [32, 32, 45]}})",
        d + ": .transmission: 3 actuators, the robot has 6 joints (one actuator each)"},
       {R"({"rate": 100, "files": [)" + q + "," + tau + R"(], "transmission": {"actuator_from_joint": [[1, 2], [3]]}})",
