@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -196,7 +197,7 @@ Transmission ParseTransmission(const Field& field) {
                "matrix A, θ̇m = A·q̇), one of them");
   }
   Transmission out;
-  out.source = field.source + ": " + field.path;
+  out.source = field.path.empty() ? field.source : field.source + ": " + field.path;
   if (reduction) {
     const Field n = field["reduction"];
     const std::vector<double> ratios = n.Numbers();
@@ -207,12 +208,14 @@ Transmission ParseTransmission(const Field& field) {
       if (ratios[j] == 0.0) n.at(j).Fail("expected a non-zero gear ratio (θm = N·q), got 0");
       // Named here as written (not as the matrix Transmission::IsValid checks).
       if (!(std::abs(ratios[j]) <= Transmission::kMaxRatio)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", ratios[j]);  // as Transmission::IsValid shows a matrix entry
         n.at(j).Fail("expected a gear ratio of magnitude at most " + Shortest(Transmission::kMaxRatio) +
-                     " (beyond any drive), got " + n.at(j).Shown());
+                     " (beyond any drive), got " + text);
       }
     }
     out = Transmission::FromReduction(ratios);
-    out.source = field.source + ": " + field.path;
+    out.source = field.path.empty() ? field.source : field.source + ": " + field.path;
   } else {
     const Field a = field["actuator_from_joint"];
     if (!a.value.is_array() || a.value.empty() || static_cast<int>(a.value.size()) > JointLogFormat::kMaxJoints) {
@@ -247,19 +250,28 @@ bool IsJointLogDescriptionPath(const std::string& path) {
   return false;
 }
 
-JointLogDescription ParseJointLogDescription(const std::string& text, const std::string& source, bool yaml) {
-  // The text as JSON (YAML converted), syntax errors naming the line.
-  json document;
-  if (yaml) {
-    try {
-      document = FromYaml(internal::LoadYamlWithoutAliases(text, source), source);
-    } catch (const YAML::Exception& e) {
-      throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
-                                  ": not valid YAML: " + e.msg);
-    }
-  } else {
-    document = ParseJsonInput(text, source);
+namespace {
+
+// The text as JSON (YAML converted), syntax errors naming the line.
+json ParseDocument(const std::string& text, const std::string& source, bool yaml) {
+  if (!yaml) return ParseJsonInput(text, source);
+  try {
+    return FromYaml(internal::LoadYamlWithoutAliases(text, source), source);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                                ": not valid YAML: " + e.msg);
   }
+}
+
+}  // namespace
+
+Transmission ParseTransmissionText(const std::string& text, const std::string& source, bool yaml) {
+  const json document = ParseDocument(text, source, yaml);
+  return ParseTransmission(Field{source, "", document});
+}
+
+JointLogDescription ParseJointLogDescription(const std::string& text, const std::string& source, bool yaml) {
+  const json document = ParseDocument(text, source, yaml);
 
   // Every key known, every value of its type and within its bounds.
   const Field top{source, "", document};

@@ -50,5 +50,22 @@ TEST_F(TransmissionFileTest, RepeatedKeyIsRefused) {
   EXPECT_EQ(ok->actuator_from_joint.diagonal(), (Eigen::VectorXd(6) << 1, 2, 3, 4, 5, 6).finished());
 }
 
+// A transmission file's own fields are named from its own top, and a YAML
+// syntax error at its own line (before, the file was wrapped into a log
+// description: ".transmission.reduction[1]" and lines shifted by 2).
+TEST_F(TransmissionFileTest, FieldsAndLinesAreTheFilesOwn) {
+  const std::string bad_value = Write("gear.yaml", "# gear ratios\nreduction:\n  - 100\n  - abc\n  - 100\n  - 50\n  - 50\n  - 50\n");
+  EXPECT_EQ(Refusal(bad_value), bad_value + ": .reduction[1]: expected a number, got \"abc\"");
+  const std::string bad_syntax = Write("syntax.yaml", "# gear ratios\nreduction: [100, 100\njoint_offset: [0]\n");
+  const std::string what = Refusal(bad_syntax);
+  EXPECT_EQ(what.rfind(bad_syntax + ":3:", 0), 0u) << what;  // the line yaml-cpp reports, in the file as written
+  EXPECT_NE(what.find("not valid YAML"), std::string::npos) << what;
+  const std::string json = Write("gear.json", R"({"reduction": [100, 100, 1e5, 50, 50, 50]})");
+  EXPECT_EQ(Refusal(json), json + ": .reduction[2]: expected a gear ratio of magnitude at most 10000 (beyond any drive), "
+                                  "got 100000");
+  const std::string singular = Write("singular.json", R"({"actuator_from_joint": [[1, 1], [1, 1]]})");
+  EXPECT_EQ(Refusal(singular).rfind(singular + ": .actuator_from_joint: not invertible", 0), 0u) << Refusal(singular);
+}
+
 }  // namespace
 }  // namespace idbench

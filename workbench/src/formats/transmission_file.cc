@@ -31,27 +31,14 @@ std::optional<Transmission> ReadTransmissionArg(const std::string& spec, const s
     const bool yaml = !path.ends_with(".json");
     bool described = false;
     if (!yaml) {
-      // Checked as written (before the wrapping below), so that a syntax
-      // error, depth or repeated key is reported at its own place.
+      // Checked as written first, so that a syntax error, depth or repeated
+      // key is reported at its own place whichever of the two it is.
       const nlohmann::json document = ParseJsonInput(text, path);
       described = document.is_object() && document.contains("files");
     } else {
       described = text.starts_with("files:") || text.find("\nfiles:") != std::string::npos;
     }
-    std::string wrapped;
-    if (described) {
-      wrapped = text;
-    } else if (!yaml) {
-      wrapped = "{\"files\": [{\"path\": \"-\"}], \"transmission\": " + text + "}";
-    } else {
-      wrapped = "files: [{path: \"-\"}]\ntransmission:\n";
-      for (size_t at = 0; at < text.size();) {
-        const size_t end = std::min(text.find('\n', at), text.size());
-        wrapped += "  " + text.substr(at, end - at) + "\n";
-        at = end + 1;
-      }
-    }
-    out = ParseJointLogDescription(wrapped, path, yaml).transmission;
+    out = described ? ParseJointLogDescription(text, path, yaml).transmission : ParseTransmissionText(text, path, yaml);
     if (!out) throw std::invalid_argument(path + ": no \"transmission\"");
   }
   std::string why;

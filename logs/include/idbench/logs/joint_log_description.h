@@ -61,6 +61,11 @@ bool IsJointLogDescriptionPath(const std::string& path);
 // types and values out of bounds throw std::invalid_argument "source: .files[1].stride:
 // what" (jq-style paths); a syntax error names the line.
 JointLogDescription ParseJointLogDescription(const std::string& text, const std::string& source, bool yaml);
+// A transmission alone (a description's "transmission" object as the whole
+// text: {"reduction": [...]} or {"actuator_from_joint": [[...], ...]}, with
+// an optional "joint_offset"), checked as in a description; fields are named
+// from the text's own top (".reduction[2]"), syntax errors at their line.
+Transmission ParseTransmissionText(const std::string& text, const std::string& source, bool yaml);
 // Reads one, YAML or JSON by its extension.
 JointLogDescription ReadJointLogDescription(const std::string& path);
 
