@@ -18,36 +18,6 @@ std::string Str(double value) {
   return out.str();
 }
 
-// Transposed direct form II, one section over the whole signal, in place:
-//   y = b0 x + z0,  z0 ← b1 x − a1 y + z1,  z1 ← b2 x − a2 y.
-void FilterSection(const Eigen::Matrix<double, 1, 6>& s, double z0, double z1, Eigen::VectorXd* x) {
-  const double b0 = s(0), b1 = s(1), b2 = s(2), a1 = s(4), a2 = s(5);
-  for (double& v : *x) {
-    const double in = v;
-    const double out = b0 * in + z0;
-    z0 = b1 * in - a1 * out + z1;
-    z1 = b2 * in - a2 * out;
-    v = out;
-  }
-}
-
-// Filters x in place through all sections, each starting in the state it
-// would have after an infinitely long constant input equal to x[0]
-// (scipy.signal.sosfilt_zi · x[0]).
-void FilterSteadyStart(const SosMatrix& sos, Eigen::VectorXd* x) {
-  double level = (*x)(0);  // the constant at the current section's input
-  for (Eigen::Index i = 0; i < sos.rows(); ++i) {
-    const Eigen::Matrix<double, 1, 6> s = sos.row(i);
-    // Steady state for a unit input: y = G = H_i(1); from the update
-    // equations z1 = b2 − a2 G, z0 = b1 + z1 − a1 G.
-    const double gain = (s(0) + s(1) + s(2)) / (1.0 + s(4) + s(5));
-    const double z1 = s(2) - s(5) * gain;
-    const double z0 = s(1) + z1 - s(4) * gain;
-    FilterSection(s, level * z0, level * z1, x);
-    level *= gain;
-  }
-}
-
 void CheckSos(const SosMatrix& sos) {
   if (sos.rows() == 0) throw std::invalid_argument("filter: expected at least one section, got 0");
   for (Eigen::Index i = 0; i < sos.rows(); ++i) {
@@ -79,29 +49,70 @@ void CheckDerivativeInput(Eigen::Index n, double dt, Eigen::Index min_samples, c
   }
 }
 
-// Zero-phase filtering of one channel (FiltFilt's steps 1–3), with
-// pad_start and pad_end samples of odd extension at the two ends (0: none,
-// the pass starts in the steady state of the end sample). `y` is scratch.
-void FiltFiltChannel(const SosMatrix& sos, Eigen::Ref<Eigen::VectorXd> x, Eigen::Index pad_start,
-                     Eigen::Index pad_end, Eigen::VectorXd* y) {
-  const Eigen::Index n = x.size();
-
-  // Odd extension: the reflection of x through (0, x[0]) and (n−1, x[n−1]).
-  y->resize(n + pad_start + pad_end);
-  y->segment(pad_start, n) = x;
-  for (Eigen::Index i = 1; i <= pad_start; ++i) (*y)(pad_start - i) = 2.0 * x(0) - x(i);
-  for (Eigen::Index i = 1; i <= pad_end; ++i) (*y)(pad_start + n - 1 + i) = 2.0 * x(n - 1) - x(n - 1 - i);
-
-  // Forward pass, then backward pass on the reversed output.
-  FilterSteadyStart(sos, y);
-  y->reverseInPlace();
-  FilterSteadyStart(sos, y);
-  y->reverseInPlace();
-  x = y->segment(pad_start, n);
-}
-
 Eigen::Index FiltFiltPad(const SosMatrix& sos, Eigen::Index n) {
   return std::min<Eigen::Index>(3 * (FiltFiltMinSamples(sos) - 1), n - 1);
+}
+
+// Zero-phase filtering (FiltFilt's steps 1–3), kGroup channels at once: with
+// pad_start and pad_end samples of odd extension at the two ends (0: none,
+// the pass starts in the steady state of the end sample), each section in
+// transposed direct form II,
+//   y = b0 x + z0,  z0 ← b1 x − a1 y + z1,  z1 ← b2 x − a2 y,
+// starting in the state it would have after an infinitely long constant
+// input equal to the pass's first sample (scipy.signal.sosfilt_zi · x[0]).
+// The channels' recursions run side by side through each sample (independent
+// chains the processor overlaps, and vector instructions across channels)
+// where one channel alone waits on each sample's multiply-add chain; each
+// channel's operations and their order are those of a channel alone.
+constexpr int kGroup = 8;
+using GroupRow = Eigen::Array<double, 1, kGroup>;
+using GroupBuffer = Eigen::Array<double, Eigen::Dynamic, kGroup, Eigen::RowMajor>;
+
+// One pass of all sections over y's rows, forward or from the last row back,
+// each section starting in the steady state of the pass's first row.
+void FilterGroupSteadyStart(const SosMatrix& sos, bool backward, GroupBuffer* y) {
+  const Eigen::Index n = y->rows();
+  const Eigen::Index first = backward ? n - 1 : 0, step = backward ? -1 : 1;
+  GroupRow level = y->row(first);
+  for (Eigen::Index i = 0; i < sos.rows(); ++i) {
+    const double b0 = sos(i, 0), b1 = sos(i, 1), b2 = sos(i, 2), a1 = sos(i, 4), a2 = sos(i, 5);
+    // Steady state for a unit input: y = G = H_i(1); from the update
+    // equations z1 = b2 − a2 G, z0 = b1 + z1 − a1 G.
+    const double gain = (b0 + b1 + b2) / (1.0 + a1 + a2);
+    const double z1_unit = b2 - a2 * gain;
+    const double z0_unit = b1 + z1_unit - a1 * gain;
+    GroupRow z0 = level * z0_unit, z1 = level * z1_unit;
+    double* row = y->data() + first * kGroup;
+    for (Eigen::Index k = 0; k < n; ++k, row += step * kGroup) {
+      Eigen::Map<GroupRow> v(row);
+      const GroupRow in = v;
+      const GroupRow out = b0 * in + z0;
+      z0 = b1 * in - a1 * out + z1;
+      z1 = b2 * in - a2 * out;
+      v = out;
+    }
+    level *= gain;
+  }
+}
+
+// The zero-phase filter of every column of x, kGroup columns at a time.
+void FiltFiltColumns(const SosMatrix& sos, Eigen::Ref<Eigen::MatrixXd> x, Eigen::Index pad_start,
+                     Eigen::Index pad_end) {
+  const Eigen::Index n = x.rows();
+  GroupBuffer y(n + pad_start + pad_end, kGroup);
+  for (Eigen::Index c0 = 0; c0 < x.cols(); c0 += kGroup) {
+    const Eigen::Index width = std::min<Eigen::Index>(kGroup, x.cols() - c0);
+    y.setZero();  // unused channels of the last group stay 0
+    for (Eigen::Index g = 0; g < width; ++g) {
+      const auto column = x.col(c0 + g);
+      y.col(g).segment(pad_start, n) = column.array();
+      for (Eigen::Index i = 1; i <= pad_start; ++i) y(pad_start - i, g) = 2.0 * column(0) - column(i);
+      for (Eigen::Index i = 1; i <= pad_end; ++i) y(pad_start + n - 1 + i, g) = 2.0 * column(n - 1) - column(n - 1 - i);
+    }
+    FilterGroupSteadyStart(sos, false, &y);
+    FilterGroupSteadyStart(sos, true, &y);
+    for (Eigen::Index g = 0; g < width; ++g) x.col(c0 + g) = y.col(g).segment(pad_start, n).matrix();
+  }
 }
 
 }  // namespace
@@ -176,8 +187,7 @@ Eigen::MatrixXd FiltFilt(const SosMatrix& sos, const Eigen::MatrixXd& x) {
   }
   const Eigen::Index pad = FiltFiltPad(sos, n);
   Eigen::MatrixXd y = x;
-  Eigen::VectorXd scratch;
-  for (Eigen::Index j = 0; j < x.cols(); ++j) FiltFiltChannel(sos, y.col(j), pad, pad, &scratch);
+  FiltFiltColumns(sos, y, pad, pad);
   return y;
 }
 
@@ -218,10 +228,7 @@ void FiltFiltWindow(const SosMatrix& sos, Eigen::Index n_total, bool at_start, b
     throw std::invalid_argument("filtfilt window: expected at least " + std::to_string(pad + 1) +
                                 " rows at an end of the signal, got " + std::to_string(n));
   }
-  Eigen::VectorXd scratch;
-  for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    FiltFiltChannel(sos, x.col(j), at_start ? pad : 0, at_end ? pad : 0, &scratch);
-  }
+  FiltFiltColumns(sos, x, at_start ? pad : 0, at_end ? pad : 0);
 }
 
 Eigen::MatrixXd FirstDerivative(const Eigen::MatrixXd& x, double dt) {

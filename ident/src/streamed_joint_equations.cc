@@ -100,18 +100,28 @@ void StreamedJointEquations::Equations(const JointLog& prepared) {
     RobotData data(*model_);
     Eigen::MatrixXd Y;
     Eigen::VectorXd q(n), qd(n), qdd(n);
-    for (Eigen::Index r = r_begin; r < r_end; ++r) {
-      q = prepared.q.row(r).transpose();
-      qd = prepared.qd.row(r).transpose();
-      qdd = prepared.qdd.row(r).transpose();
-      ComputeJointTorqueRegressor(*model_, friction_, q, qd, qdd, &data, &Y);
-      for (int j = 0; j < n; ++j) {
-        const std::vector<int>& cols = standard_[static_cast<size_t>(j)];
-        const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(cols.size());
-        for (Eigen::Index k = 0; k < c; ++k) regressor_(r, o + k) = Y(j, cols[static_cast<size_t>(k)]);
-        regressor_(r, o + c) = prepared.tau(r, j);
+    // Rows are gathered in a row-major tile that stays in cache, then stored
+    // column by column: a row stored straight into the column-major
+    // regressor_ touches a cache line per entry.
+    constexpr Eigen::Index kTile = 64;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> tile(kTile, width_ + 1);
+    for (Eigen::Index r0 = r_begin; r0 < r_end; r0 += kTile) {
+      const Eigen::Index rows = std::min(kTile, r_end - r0);
+      for (Eigen::Index i = 0; i < rows; ++i) {
+        const Eigen::Index r = r0 + i;
+        q = prepared.q.row(r).transpose();
+        qd = prepared.qd.row(r).transpose();
+        qdd = prepared.qdd.row(r).transpose();
+        ComputeJointTorqueRegressor(*model_, friction_, q, qd, qdd, &data, &Y);
+        for (int j = 0; j < n; ++j) {
+          const std::vector<int>& cols = standard_[static_cast<size_t>(j)];
+          const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(cols.size());
+          for (Eigen::Index k = 0; k < c; ++k) tile(i, o + k) = Y(j, cols[static_cast<size_t>(k)]);
+          tile(i, o + c) = prepared.tau(r, j);
+        }
+        tile(i, width_) = prepared.t[r];
       }
-      regressor_(r, width_) = prepared.t[r];
+      regressor_.middleRows(r0, rows) = tile.topRows(rows);
     }
   };
   const Eigen::Index n_threads = std::min<Eigen::Index>(settings_.n_threads, std::max<Eigen::Index>(1, m / 64));
@@ -150,8 +160,8 @@ void StreamedJointEquations::FoldWindow(Eigen::Ref<const Eigen::MatrixXd> window
     filter(0, width_ / n_threads);
   }
   const Eigen::Index m = (end - first + k - 1) / k;
-  Eigen::MatrixXd kept(m, width_ + 1);
-  for (Eigen::Index i = 0; i < m; ++i) kept.row(i) = filtered_.row(first + i * k - w0);
+  // Column by column (a row at a time would touch a cache line per entry).
+  const Eigen::MatrixXd kept = filtered_(Eigen::seqN(first - w0, m, k), Eigen::all);
   FoldRows(kept);
 }
 
@@ -179,17 +189,24 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
   // The scores s_t = Σ_j w_j² W_tjᵀ e_tj at the given fit, sample by sample.
   if (scores_) {
     const LinearFit& fit = *settings_.score_fit;
-    for (Eigen::Index i = 0; i < m; ++i) {
-      score_.setZero();
-      for (int j = 0; j < n_dof_; ++j) {
-        const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
-        const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(columns.size());
-        double e = rows(i, o + c);
-        for (Eigen::Index k = 0; k < c; ++k) e -= rows(i, o + k) * fit.beta[columns[static_cast<size_t>(k)]];
-        const double w2e = fit.row_weights[j] * fit.row_weights[j] * e;
-        for (Eigen::Index k = 0; k < c; ++k) score_[columns[static_cast<size_t>(k)]] += w2e * rows(i, o + k);
+    // Read through a row-major tile that stays in cache (a row of the
+    // column-major rows touches a cache line per entry).
+    constexpr Eigen::Index kTile = 64;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> tile;
+    for (Eigen::Index i0 = 0; i0 < m; i0 += kTile) {
+      tile = rows.middleRows(i0, std::min(kTile, m - i0));
+      for (Eigen::Index i = 0; i < tile.rows(); ++i) {
+        score_.setZero();
+        for (int j = 0; j < n_dof_; ++j) {
+          const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
+          const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(columns.size());
+          double e = tile(i, o + c);
+          for (Eigen::Index k = 0; k < c; ++k) e -= tile(i, o + k) * fit.beta[columns[static_cast<size_t>(k)]];
+          const double w2e = fit.row_weights[j] * fit.row_weights[j] * e;
+          for (Eigen::Index k = 0; k < c; ++k) score_[columns[static_cast<size_t>(k)]] += w2e * tile(i, o + k);
+        }
+        scores_->Push(score_);
       }
-      scores_->Push(score_);
     }
   }
   if (!settings_.fold) return;
