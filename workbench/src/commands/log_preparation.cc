@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "idbench/logs/open_joint_log.h"
+#include "idbench/logs/prefetching_joint_log_source.h"
 #include "idbench/logs/recorded_joint_log_source.h"
 #include "number_format.h"
 
@@ -229,7 +230,9 @@ void HoldPreparedLog(int n_dof, const std::string& path, const StreamObserver* o
 
 PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, const LogPreparationOptions& options,
                             const StreamObserver* observer) {
-  std::shared_ptr<JointLogSource> source = OpenJointLog(path, model, options.format, options.torques);
+  // Read one block ahead on another thread: parsing overlaps the filter and the fold.
+  std::shared_ptr<JointLogSource> source =
+      std::make_shared<PrefetchingJointLogSource>(OpenJointLog(path, model, options.format, options.torques));
   // A log description's time window, unless an option gives one too.
   const std::vector<double> described = source->layout().time_window;
   if (described.empty()) return PrepareJointLogSource(std::move(source), path, options, observer);
