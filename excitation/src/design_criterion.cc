@@ -5,6 +5,8 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace idbench {
 namespace {
@@ -31,9 +33,9 @@ Eigen::VectorXd SingularValues(const Eigen::MatrixXd& W, Eigen::MatrixXd* V = nu
 // Eigen-pairs of M = WᵀW/m, ascending: λ_i = σ_i²/m. From M itself while
 // λ_min/λ_max ≥ 1e-12 (i.e. cond(W) ≤ 1e6, where forming WᵀW loses at most
 // 1e-4 relative in λ_min), else from the SVD.
-void Spectrum(const Eigen::MatrixXd& W, Eigen::VectorXd* lambda, Eigen::MatrixXd* V) {
+// m: the rows W stands for (its own, or with given information the union's).
+void Spectrum(const Eigen::MatrixXd& W, double m, Eigen::VectorXd* lambda, Eigen::MatrixXd* V) {
   const Eigen::Index p = W.cols();
-  const double m = static_cast<double>(W.rows());
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(p, p);
   M.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), 1.0 / m);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M);
@@ -55,15 +57,14 @@ struct SpectralTerms {
   Eigen::MatrixXd d_log_cond, d_sum_log;
 };
 
-SpectralTerms ComputeSpectralTerms(const Eigen::MatrixXd& W, bool want_sum_log, bool want_gradient) {
+SpectralTerms ComputeSpectralTerms(const Eigen::MatrixXd& W, double m, bool want_sum_log, bool want_gradient) {
   SpectralTerms terms;
   Eigen::VectorXd lambda;
   Eigen::MatrixXd V;
-  Spectrum(W, &lambda, &V);
+  Spectrum(W, m, &lambda, &V);
   const Eigen::Index p = W.cols();
   const double lmin = lambda(0), lmax = lambda(p - 1);
   if (!(lmax > 0.0) || !(lmin > kRankTolerance * kRankTolerance * lmax)) return terms;
-  const double m = static_cast<double>(W.rows());
   terms.log_cond = 0.5 * std::log(lmax / lmin);
   if (want_sum_log) terms.sum_log = 0.5 * lambda.array().log().sum();
   if (!want_gradient) return terms;
@@ -75,7 +76,98 @@ SpectralTerms ComputeSpectralTerms(const Eigen::MatrixXd& W, bool want_sum_log, 
   return terms;
 }
 
+// [R; W]: the given factor's rows on W's (W itself without given information).
+Eigen::MatrixXd Union(const Eigen::MatrixXd& W, const GivenInformation& given) {
+  if (given.empty()) return W;
+  if (given.R.cols() != W.cols() || given.R.rows() != W.cols()) {
+    throw std::invalid_argument("given information: expected a factor of " + std::to_string(W.cols()) + " x " +
+                                std::to_string(W.cols()) + " (the regressor's parameters), got " +
+                                std::to_string(given.R.rows()) + " x " + std::to_string(given.R.cols()));
+  }
+  Eigen::MatrixXd U(given.R.rows() + W.rows(), W.cols());
+  U << given.R, W;
+  return U;
+}
+
+double UnionRows(const Eigen::MatrixXd& W, const GivenInformation& given) {
+  return static_cast<double>(W.rows()) + (given.empty() ? 0.0 : given.n_rows);
+}
+
 }  // namespace
+
+GivenInformation GivenInformationFromFactors(const std::vector<Eigen::MatrixXd>& combined_factors,
+                                             const std::vector<double>& weights,
+                                             const std::vector<double>& n_rows, const std::vector<bool>& measured) {
+  const size_t n = combined_factors.size();
+  if (n == 0 || weights.size() != n || n_rows.size() != n || measured.size() != n) {
+    throw std::invalid_argument("given information: expected at least one motion and a weight, row count and "
+                                "measured flag per factor, got " + std::to_string(n) + " factors, " +
+                                std::to_string(weights.size()) + " weights, " + std::to_string(n_rows.size()) +
+                                " row counts, " + std::to_string(measured.size()) + " flags");
+  }
+  const Eigen::Index p1 = combined_factors.front().rows();
+  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(n) * p1, p1);
+  GivenInformation given;
+  double measured_rows = 0.0;
+  bool any_measured = false;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::MatrixXd& F = combined_factors[i];
+    if (F.rows() != p1 || F.cols() != p1 || p1 < 2 || !(weights[i] > 0.0) || !std::isfinite(weights[i])) {
+      throw std::invalid_argument("given information: motion " + std::to_string(i + 1) + ": expected a factor of " +
+                                  std::to_string(p1) + " x " + std::to_string(p1) + " and a weight > 0, got " +
+                                  std::to_string(F.rows()) + " x " + std::to_string(F.cols()) + " and " +
+                                  std::to_string(weights[i]));
+    }
+    stacked.middleRows(static_cast<Eigen::Index>(i) * p1, p1) = std::sqrt(weights[i]) * F;
+    // A motion without torques adds information but no residual.
+    if (!measured[i]) stacked.block(static_cast<Eigen::Index>(i) * p1, p1 - 1, p1, 1).setZero();
+    given.n_rows += weights[i] * n_rows[i];
+    if (measured[i]) {
+      measured_rows += n_rows[i];
+      any_measured = true;
+    }
+  }
+  // One QR of the stacked factors: [R z; 0 ρ] of all weighted rows.
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(stacked);
+  const Eigen::MatrixXd T = qr.matrixQR().topRows(p1).triangularView<Eigen::Upper>();
+  const Eigen::Index p = p1 - 1;
+  given.R = T.topLeftCorner(p, p);
+  if (any_measured && measured_rows > static_cast<double>(p)) {
+    // The least-squares residual min ‖R β − z‖² + ρ²: ρ² alone when R has
+    // full rank; otherwise the part of z outside R's range too (the minimum
+    // norm solution, R's singular values ≤ 1e-12 of the largest as zero).
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(given.R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    svd.setThreshold(kRankTolerance);
+    const Eigen::VectorXd z = T.col(p).head(p);
+    const double rss = (given.R * svd.solve(z) - z).squaredNorm() + T(p, p) * T(p, p);
+    given.noise_variance = rss / (measured_rows - static_cast<double>(p));
+  }
+  return given;
+}
+
+Eigen::VectorXd PredictedSigma(const GivenInformation& given, const Eigen::MatrixXd& W) {
+  if (given.empty()) throw std::invalid_argument("predicted sigma: no given information");
+  const Eigen::MatrixXd U = W.size() == 0 ? given.R : Union(W, given);
+  Eigen::MatrixXd V;
+  const Eigen::VectorXd sigma = SingularValues(U, &V);  // descending
+  const double s2 = std::isnan(given.noise_variance) ? 1.0 : given.noise_variance;
+  const Eigen::Index p = U.cols();
+  Eigen::VectorXd out(p);
+  for (Eigen::Index k = 0; k < p; ++k) {
+    // ((UᵀU)⁻¹)_kk = Σ_i V_ki²/σ_i²; a direction of σ_i ≈ 0 that parameter k
+    // takes part in leaves it undetermined.
+    double variance = 0.0;
+    for (Eigen::Index i = 0; i < sigma.size(); ++i) {
+      if (sigma(i) <= kRankTolerance * sigma(0)) {
+        if (std::abs(V(k, i)) > 1e-8) variance = kInf;
+        continue;
+      }
+      variance += V(k, i) * V(k, i) / (sigma(i) * sigma(i));
+    }
+    out(k) = std::sqrt(s2 * variance);
+  }
+  return out;
+}
 
 std::vector<std::string> DesignCriterionNames() { return kDesignCriterionNames.Names(); }
 
@@ -87,9 +179,13 @@ bool ParseDesignCriterion(std::string_view text, DesignCriterion* criterion, std
   return kDesignCriterionNames.Parse(text, criterion, why);
 }
 
-Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W) {
+Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W_new, const GivenInformation& given) {
+  Eigen::MatrixXd stacked;
+  if (!given.empty()) stacked = Union(W_new, given);
+  const Eigen::MatrixXd& W = given.empty() ? W_new : stacked;
+  const double m = UnionRows(W_new, given);
   Identifiability id;
-  id.rows = static_cast<int>(W.rows());
+  id.rows = static_cast<int>(std::lround(m));
   id.cols = static_cast<int>(W.cols());
   if (W.size() == 0) return id;
   const Eigen::VectorXd sigma = SingularValues(W);
@@ -98,7 +194,7 @@ Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W) {
   id.rank = static_cast<int>((sigma.array() > kRankTolerance * id.sigma_max).count());
   const bool full_rank = id.rank == id.cols && W.rows() >= W.cols();
   id.cond = full_rank ? id.sigma_max / id.sigma_min : kInf;
-  id.log_det = full_rank ? 2.0 * (sigma.array() / std::sqrt(double(W.rows()))).log().sum() : -kInf;
+  id.log_det = full_rank ? 2.0 * (sigma.array() / std::sqrt(m)).log().sum() : -kInf;
   const Eigen::VectorXd norms = W.colwise().norm();
   if (full_rank && (norms.array() > 0.0).all()) {
     const Eigen::VectorXd s = SingularValues(W * norms.cwiseInverse().asDiagonal());
@@ -109,13 +205,30 @@ Identifiability ComputeIdentifiability(const Eigen::MatrixXd& W) {
   return id;
 }
 
-double EvaluateDesignCriterion(DesignCriterion criterion, const Eigen::MatrixXd& W, Eigen::MatrixXd* dc_dW) {
+double EvaluateDesignCriterion(DesignCriterion criterion, const Eigen::MatrixXd& W_new, Eigen::MatrixXd* dc_dW_new,
+                               const GivenInformation& given) {
+  // With given information: the union's criterion, and of its gradient the
+  // rows of W (the given rows are fixed).
+  Eigen::MatrixXd stacked;
+  if (!given.empty()) stacked = Union(W_new, given);
+  const Eigen::MatrixXd& W = given.empty() ? W_new : stacked;
+  const double m = UnionRows(W_new, given);
+  Eigen::MatrixXd union_gradient;
+  Eigen::MatrixXd* dc_dW = given.empty() ? dc_dW_new : dc_dW_new ? &union_gradient : nullptr;
+  struct TakeRows {  // the new rows of the union's gradient, on every return
+    Eigen::MatrixXd* from;
+    Eigen::MatrixXd* to;
+    Eigen::Index n;
+    ~TakeRows() {
+      if (from && to) *to = from->bottomRows(n);
+    }
+  } take{given.empty() ? nullptr : dc_dW, dc_dW_new, W_new.rows()};
   const bool gradient = dc_dW != nullptr;
   const double p = static_cast<double>(W.cols());
   if (gradient) dc_dW->setZero(W.rows(), W.cols());
   switch (criterion) {
     case DesignCriterion::kLogCond: {
-      SpectralTerms t = ComputeSpectralTerms(W, false, gradient);
+      SpectralTerms t = ComputeSpectralTerms(W, m, false, gradient);
       if (gradient && std::isfinite(t.log_cond)) *dc_dW = std::move(t.d_log_cond);
       return t.log_cond;
     }
@@ -124,7 +237,7 @@ double EvaluateDesignCriterion(DesignCriterion criterion, const Eigen::MatrixXd&
       const Eigen::RowVectorXd norms = W.colwise().norm();
       if (!(norms.array() > 0.0).all()) return kInf;
       const Eigen::MatrixXd Wn = W * norms.cwiseInverse().asDiagonal();
-      SpectralTerms t = ComputeSpectralTerms(Wn, false, gradient);
+      SpectralTerms t = ComputeSpectralTerms(Wn, m, false, gradient);
       if (gradient && std::isfinite(t.log_cond)) {
         const Eigen::MatrixXd& Gn = t.d_log_cond;
         const Eigen::RowVectorXd proj = (Wn.array() * Gn.array()).colwise().sum();
@@ -133,13 +246,13 @@ double EvaluateDesignCriterion(DesignCriterion criterion, const Eigen::MatrixXd&
       return t.log_cond;
     }
     case DesignCriterion::kLogDet: {
-      SpectralTerms t = ComputeSpectralTerms(W, true, gradient);
+      SpectralTerms t = ComputeSpectralTerms(W, m, true, gradient);
       if (!std::isfinite(t.log_cond)) return kInf;
       if (gradient) *dc_dW = (-2.0 / p) * t.d_sum_log;
       return -2.0 / p * t.sum_log;
     }
     case DesignCriterion::kHybrid: {
-      SpectralTerms t = ComputeSpectralTerms(W, true, gradient);
+      SpectralTerms t = ComputeSpectralTerms(W, m, true, gradient);
       if (!std::isfinite(t.log_cond)) return kInf;
       if (gradient) *dc_dW = t.d_log_cond - t.d_sum_log / p;
       return t.log_cond - t.sum_log / p;

@@ -27,6 +27,7 @@ DesignProblem::DesignProblem(const DesignRegressor& regressor, const std::vector
       limits_(limits),
       actuators_(options.actuators),
       criterion_(options.criterion),
+      given_(options.given),
       f0_(options.f0),
       duration_(options.period_duration()),
       margin_(options.margin),
@@ -181,7 +182,7 @@ double DesignProblem::Criterion(const double* theta, double* grad, Workspace* ws
   for (size_t k = 0; k < times_.size(); ++k) {
     regressor_.Rows(ws->x[k], &ws->regressor, ws->W.middleRows(r * static_cast<Eigen::Index>(k), r));
   }
-  const double c = EvaluateDesignCriterion(criterion_, ws->W, grad ? &ws->G : nullptr);
+  const double c = EvaluateDesignCriterion(criterion_, ws->W, grad ? &ws->G : nullptr, given_);
   if (grad) std::fill(grad, grad + n_unknowns(), 0.0);
   if (!std::isfinite(c)) return kRankDeficientValue;
   if (!grad) return c;

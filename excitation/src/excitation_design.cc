@@ -285,9 +285,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
   result.initial_value = summaries[static_cast<size_t>(best)].initial_value;
   result.value = winner.best_value;
   const std::vector<double> times = DesignSampleTimes(options);
-  result.initial = ComputeIdentifiability(regressor.Stack(result.initial_trajectory, times));
+  result.initial = ComputeIdentifiability(regressor.Stack(result.initial_trajectory, times), options.given);
   const Eigen::MatrixXd W = regressor.Stack(result.trajectory, times);
-  result.final = ComputeIdentifiability(W);
+  result.final = ComputeIdentifiability(W, options.given);  // with given motions: the union's
   if (result.final.rank < regressor.n_parameters()) {  // feasible, but the limits leave parameters unexcited
     result.status = DesignStatus::kNotExcited;
     result.infeasibility = internal::ExplainUnexcited(regressor, W, result.final.rank, winner.held_still, result.check);

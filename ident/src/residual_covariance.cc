@@ -65,7 +65,8 @@ void ScoreBatchMeans::Push(const Eigen::Ref<const Eigen::VectorXd>& score) {
                                 " entries and at most " + std::to_string(n_samples_) + " samples, got " +
                                 std::to_string(score.size()) + " entries for sample " + std::to_string(n_pushed_ + 1));
   }
-  if (n_pushed_ > 0) c1_ += score.cwiseProduct(previous_);
+  if (!series_start_) c1_ += score.cwiseProduct(previous_);
+  series_start_ = false;
   c0_ += score.cwiseAbs2();
   previous_ = score;
   ++n_pushed_;
@@ -78,6 +79,17 @@ void ScoreBatchMeans::Push(const Eigen::Ref<const Eigen::VectorXd>& score) {
       blocks.in_block = 0;
       ++blocks.n_blocks;
     }
+  }
+}
+
+void ScoreBatchMeans::EndSeries() {
+  series_start_ = true;
+  for (Blocks& blocks : lengths_) {
+    if (blocks.in_block == 0) continue;
+    blocks.sum.selfadjointView<Eigen::Lower>().rankUpdate(blocks.block_sum);
+    blocks.block_sum.setZero();
+    blocks.in_block = 0;
+    ++blocks.n_blocks;
   }
 }
 

@@ -56,7 +56,7 @@ StreamedJointEquations::StreamedJointEquations(const RobotModel& model, const Fr
                                   " parameters and " + std::to_string(n_dof_) + " joint weights, got " +
                                   std::to_string(fit.beta.size()) + " and " + std::to_string(fit.row_weights.size()));
     }
-    scores_.emplace(base.n_base(), n_kept, settings_.score_block_samples);
+    if (!settings_.scores_into) scores_.emplace(base.n_base(), n_kept, settings_.score_block_samples);
     score_.resize(base.n_base());
   }
   if (settings_.series_beta.size() > 0) {
@@ -187,7 +187,7 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
     n_series_kept_ += m;
   }
   // The scores s_t = Σ_j w_j² W_tjᵀ e_tj at the given fit, sample by sample.
-  if (scores_) {
+  if (ScoreBatchMeans* scores = settings_.scores_into ? settings_.scores_into : scores_ ? &*scores_ : nullptr) {
     const LinearFit& fit = *settings_.score_fit;
     // Read through a row-major tile that stays in cache (a row of the
     // column-major rows touches a cache line per entry).
@@ -205,7 +205,7 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
           const double w2e = fit.row_weights[j] * fit.row_weights[j] * e;
           for (Eigen::Index k = 0; k < c; ++k) score_[columns[static_cast<size_t>(k)]] += w2e * tile(i, o + k);
         }
-        scores_->Push(score_);
+        scores->Push(score_);
       }
     }
   }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 
+#include "idbench/ident/linear_estimator.h"
+
 namespace idbench {
 namespace {
 
@@ -101,6 +103,68 @@ TEST_P(DesignCriterionGradientTest, MatchesCentralDifferences) {
 INSTANTIATE_TEST_SUITE_P(AllCriteria, DesignCriterionGradientTest,
                          ::testing::Values(DesignCriterion::kLogCond, DesignCriterion::kLogCondNormalised,
                                            DesignCriterion::kLogDet, DesignCriterion::kHybrid));
+
+// Sequential design: the criterion with given information (a p × p factor of
+// the given rows) equals the criterion of the given rows concatenated with
+// W, value and gradient (W's rows of the concatenation's gradient); a row
+// weight of 2 equals the given rows stacked twice.
+class UnionCriterionTest : public ::testing::TestWithParam<DesignCriterion> {};
+
+TEST_P(UnionCriterionTest, EqualsTheCriterionOfTheConcatenatedRows) {
+  std::mt19937 rng(11);
+  const Eigen::MatrixXd Wg = RandomMatrix(40, 5, &rng);
+  Eigen::MatrixXd W = RandomMatrix(12, 5, &rng);  // alone: 12 rows, still full rank
+  W.col(2) *= 30.0;
+  const Eigen::VectorXd tau_g = RandomMatrix(40, 1, &rng);
+  for (const double weight : {1.0, 2.0}) {
+    const GivenInformation given =
+        GivenInformationFromFactors({CombinedFactor(Wg, tau_g)}, {weight}, {40.0}, {true});
+    Eigen::MatrixXd concatenated(weight == 1.0 ? 52 : 92, 5);
+    if (weight == 1.0) concatenated << Wg, W;
+    else concatenated << Wg, Wg, W;  // weight 2: every given row twice
+    Eigen::MatrixXd G_union, G_concatenated;
+    const double c_union = EvaluateDesignCriterion(GetParam(), W, &G_union, given);
+    const double c_concatenated = EvaluateDesignCriterion(GetParam(), concatenated, &G_concatenated);
+    ASSERT_TRUE(std::isfinite(c_concatenated));
+    EXPECT_NEAR(c_union, c_concatenated, 1e-10 * std::max(1.0, std::abs(c_concatenated))) << weight;
+    ASSERT_EQ(G_union.rows(), W.rows());
+    EXPECT_LT((G_union - G_concatenated.bottomRows(W.rows())).norm(), 1e-9 * G_concatenated.norm()) << weight;
+    const Identifiability u = ComputeIdentifiability(W, given), c = ComputeIdentifiability(concatenated);
+    EXPECT_NEAR(u.cond, c.cond, 1e-10 * c.cond);
+    EXPECT_NEAR(u.cond_normalised, c.cond_normalised, 1e-10 * c.cond_normalised);
+    EXPECT_NEAR(u.log_det, c.log_det, 1e-10 * std::abs(c.log_det));
+    EXPECT_EQ(u.rows, c.rows);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllCriteria, UnionCriterionTest,
+                         ::testing::Values(DesignCriterion::kLogCond, DesignCriterion::kLogCondNormalised,
+                                           DesignCriterion::kLogDet, DesignCriterion::kHybrid));
+
+// Predicted σ against the textbook formula on the concatenated rows:
+// s² = ‖τ − Wg β̂‖²/(m − p) from the given rows' least-squares fit, σ_k =
+// s √((AᵀA)⁻¹)_kk with A the given rows alone, then with W's rows added.
+TEST(PredictedSigmaTest, IsTheWhiteNoiseSigmaOfTheGivenRowsAloneAndWithTheNewOnes) {
+  std::mt19937 rng(12);
+  const Eigen::MatrixXd Wg = RandomMatrix(60, 4, &rng), W = RandomMatrix(20, 4, &rng);
+  const Eigen::VectorXd tau_g = Wg * Eigen::Vector4d(1.0, -2.0, 0.5, 3.0) + 0.1 * RandomMatrix(60, 1, &rng);
+  const GivenInformation given = GivenInformationFromFactors({CombinedFactor(Wg, tau_g)}, {1.0}, {60.0}, {true});
+  const Eigen::VectorXd beta = (Wg.transpose() * Wg).ldlt().solve(Wg.transpose() * tau_g);
+  const double s2 = (tau_g - Wg * beta).squaredNorm() / (60 - 4);
+  EXPECT_NEAR(given.noise_variance, s2, 1e-12 * s2);
+  Eigen::MatrixXd A(80, 4);
+  A << Wg, W;
+  const Eigen::VectorXd alone = (s2 * (Wg.transpose() * Wg).inverse().diagonal()).cwiseSqrt();
+  const Eigen::VectorXd with_new = (s2 * (A.transpose() * A).inverse().diagonal()).cwiseSqrt();
+  EXPECT_LT((PredictedSigma(given) - alone).norm(), 1e-10 * alone.norm());
+  EXPECT_LT((PredictedSigma(given, W) - with_new).norm(), 1e-10 * with_new.norm());
+  // A given direction the rows leave undetermined: σ = ∞ there alone, finite with W.
+  Eigen::MatrixXd Wd = Wg;
+  Wd.col(3).setZero();
+  const GivenInformation deficient = GivenInformationFromFactors({CombinedFactor(Wd, tau_g)}, {1.0}, {60.0}, {true});
+  EXPECT_TRUE(std::isinf(PredictedSigma(deficient)[3]));
+  EXPECT_TRUE(std::isfinite(PredictedSigma(deficient, W)[3]));
+}
 
 }  // namespace
 }  // namespace idbench

@@ -206,5 +206,41 @@ TEST(ResidualCovarianceTest, BlockSumsByHand) {
   EXPECT_THROW(short_of.Omega(), std::invalid_argument);
 }
 
+// Several logs fitted together (identify --data A --data B): EndSeries
+// closes the block being filled, so no block straddles two logs; by hand on
+// series of 3 and 4 scores in blocks of 2: {s0 s1} {s2} | {s3 s4} {s5 s6}
+// (without the break: {s0 s1} {s2 s3} {s4 s5} {s6}). The lag-1 sum does not
+// pair s3 with s2: a series of +1 then one of −1 scores has ρ = 1 within
+// each, and Andrews' length is that of ρ → 1, not lowered by the jump.
+TEST(ResidualCovarianceTest, EndSeriesKeepsBlocksWithinALog) {
+  const std::vector<Eigen::Vector2d> s = {{1, 2}, {3, -1}, {0.5, 0.5}, {-2, 1}, {4, 0}, {1, 1}, {-1, 3}};
+  ScoreBatchMeans scores(2, 7, 2);
+  for (int t = 0; t < 3; ++t) scores.Push(s[static_cast<size_t>(t)]);
+  scores.EndSeries();
+  scores.EndSeries();  // at a block's end: nothing more
+  for (int t = 3; t < 7; ++t) scores.Push(s[static_cast<size_t>(t)]);
+  ASSERT_TRUE(scores.done());
+  EXPECT_EQ(scores.n_blocks(), 4);
+  const Eigen::Vector2d S0 = s[0] + s[1], S1 = s[2], S2 = s[3] + s[4], S3 = s[5] + s[6];
+  const Eigen::Matrix2d expected =
+      4.0 / 3.0 * (S0 * S0.transpose() + S1 * S1.transpose() + S2 * S2.transpose() + S3 * S3.transpose());
+  EXPECT_LT((scores.Omega() - expected).norm(), 1e-14 * expected.norm());
+
+  ScoreBatchMeans two_logs(1, 200), one_log(1, 200);
+  for (int t = 0; t < 200; ++t) {
+    if (t == 100) two_logs.EndSeries();
+    const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, t < 100 ? 1.0 : -1.0);
+    two_logs.Push(x);
+    one_log.Push(x);
+  }
+  // ρ = Σ s_t s_{t−1} / Σ s_t²: 198/200 without the pair across the break, 197/200 with it.
+  const double rho_two = 198.0 / 200.0, rho_one = 197.0 / 200.0;
+  auto andrews = [](double rho) {
+    return 1.1447 * std::cbrt(4.0 * rho * rho / std::pow((1 - rho) * (1 + rho), 2) * 200.0);
+  };
+  EXPECT_NEAR(two_logs.andrews_block_samples(), andrews(rho_two), 1e-9 * andrews(rho_two));
+  EXPECT_NEAR(one_log.andrews_block_samples(), andrews(rho_one), 1e-9 * andrews(rho_one));
+}
+
 }  // namespace
 }  // namespace idbench

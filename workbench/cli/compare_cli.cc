@@ -24,7 +24,8 @@ constexpr FieldFlag kCompareSpellings[] = {{"model", "--model"},
                                            {"trials", "--trials"},
                                            {"tau_noise", "--tau-noise"},
                                            {"wrench_noise", "--wrench-noise"},
-                                           {"clearance", "--clearance"}};
+                                           {"clearance", "--clearance"},
+                                           {"given", "--given"}};
 
 struct CompareFlags {
   CompareOptions options;
@@ -61,6 +62,12 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
   command->add_option("--log", compare.logs,
                       "A recorded joint log (CSV, log description, ROS 2 bag) compared beside the motions; repeatable")
       ->type_name("PATH");
+  command
+      ->add_option("--given", compare.given,
+                   "A motion the robot already has (a joint log, or a designed trajectory); repeatable: the motions "
+                   "are ranked by cond(W) of their union with these")
+      ->type_name("PATH")
+      ->allow_extra_args(false);
   AddRobotFlags(command, &compare.robot, context->robot_load(), "Built-in robot or URDF file");
   AddEnumFlag(command, "--model", &compare.model, kIdentificationModelNames, "torque or per-body");
   AddFrictionFlag(command, &compare.friction, "Friction terms of the torque model");

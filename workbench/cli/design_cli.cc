@@ -9,6 +9,7 @@
 #include "cli_command.h"
 #include "common_flags.h"
 #include "ctrl_c_stop.h"
+#include "log_reading_flags.h"
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/workbench/reports/design_report.h"
@@ -29,7 +30,7 @@ constexpr FieldFlag kDesignSpellings[] = {
     {"model", "--model"},             {"criterion", "--criterion"},
     {"algorithm", "--algorithm"},     {"csv_rate_hz", "--rate"},
     {"csv_columns", "--csv-columns"},
-    {"transmission", "--transmission"}};
+    {"transmission", "--transmission"}, {"given", "--given"}};
 
 struct DesignFlags {
   DesignCommandOptions options;
@@ -126,6 +127,7 @@ void AddSearchFlags(CLI::App* command, DesignOptions* design) {
 
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
   context->AddSpellings(kDesignSpellings);
+  context->AddSpellings(kLogReadingSpellings);
   auto flags = std::make_shared<DesignFlags>();
   DesignCommandOptions& design = flags->options;
   design.command_line = context->command_line();
@@ -155,6 +157,15 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
                       "Rest-to-rest ramps from and to the home pose in trajectory.csv and the re-check [s]; 0: none")
       ->capture_default_str();
   command->add_option("--home", design.home, "Home pose q1,...,qn [rad] the motion oscillates about")->delimiter(',');
+  // Sequential design: the logs the robot already has, read as identify reads --data.
+  command
+      ->add_option("--given", design.given,
+                   "A motion the robot already has (repeatable): a joint log identify reads, or a designed "
+                   "trajectory (.json/.csv); the criterion is that of their union with the new motion")
+      ->allow_extra_args(false);
+  AddLogReadingFlags(command, &design.given_reading.format, nullptr, nullptr, &design.given_reading.filter,
+                     &design.given_reading.max_gap_s);
+  AddDriveGainsFlag(command, &design.given_reading.format);
   command->add_flag("--quiet", design.quiet, "No progress on stderr");
   command->add_flag("--write-trajectory-anyway", design.write_trajectory_anyway,
                     "Write trajectory.json/.csv even when the design is not usable (infeasible or no progress); "

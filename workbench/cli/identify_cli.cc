@@ -34,6 +34,7 @@ struct IdentifyFlags {
   std::vector<double> mass_range;     // --mass-range LO,HI: plausibility.mass_factor_min, _max
   std::string com_bound = "geometry"; // --com-bound: plausibility.com_in_geometry
   bool report = false;                // --report
+  std::vector<std::string> data;      // --data (repeatable): data, then more_data
 };
 
 int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool with_report,
@@ -124,10 +125,13 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
   CLI::App* command = app->add_subcommand("identify", "Identify base parameters from a joint log (CSV)");
   AddRobotFlags(command, &identify.robot, context->robot_load());
   AddBasePoseFlag(command, &identify.base_pose);
+  // One value per --data; repeated: several logs of the robot, identified together.
   command
-      ->add_option("--data", identify.data,
-                   "Joint log: CSV (t, q*, [qd*, qdd*], tau*), log description (.json/.yaml) or ROS 2 bag")
-      ->required();
+      ->add_option("--data", flags->data,
+                   "Joint log: CSV (t, q*, [qd*, qdd*], tau*), log description (.json/.yaml) or ROS 2 bag; "
+                   "repeat for several logs of the robot, each read and filtered on its own, stacked into one fit")
+      ->required()
+      ->allow_extra_args(false);
   AddEnumFlag(command, "--model", &identify.model, kIdentificationModelNames,
               "torque (per-body needs hinge wrenches: idbench run)");
   AddEnumFlag(command, "--estimator", &identify.estimator, kTorqueEstimatorNames, "ols, wls or pc (physically consistent)");
@@ -153,6 +157,8 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
   AddReportFlag(command, &flags->report);
   return {command, [flags, context] {
             IdentifyOptions& options = flags->options;
+            options.data = flags->data.front();
+            options.more_data.assign(flags->data.begin() + 1, flags->data.end());
             options.plausibility.mass_factor_min = flags->mass_range[0];
             options.plausibility.mass_factor_max = flags->mass_range[1];
             if (flags->com_bound != "geometry" && flags->com_bound != "none")

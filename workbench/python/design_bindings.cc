@@ -158,7 +158,8 @@ void BindDesign(py::module_& m) {
          bool rest_to_rest, int samples, int starts, unsigned seed, int threads, int max_evaluations,
          double max_time, double margin, double clearance, const std::string& limits, double rate,
          const std::string& csv_columns, double ramp, const std::vector<double>& home, const std::string& transmission,
-         const std::string& scene, const py::object& base_pose, const py::object& progress) {
+         const std::string& scene, const py::object& base_pose, const std::vector<std::string>& given,
+         const py::object& progress) {
         DesignCommandOptions options;
         options.robot = robot.source;
         options.model = EnumArgument(kIdentificationModelNames, model);
@@ -185,6 +186,7 @@ void BindDesign(py::module_& m) {
         options.csv_columns = EnumArgument(kTrajectoryCsvColumnsNames, csv_columns);
         options.design.ramp_seconds = ramp;
         options.home = home;
+        options.given = given;  // logs read as their defaults read them (no column or filter options here)
         options.quiet = true;
         options.command_line = "python: idbench.design";
         return Design(robot, options, progress);
@@ -202,10 +204,11 @@ void BindDesign(py::module_& m) {
       py::arg("rate") = design_defaults.csv_rate_hz, py::arg("csv_columns") = std::string(kTrajectoryCsvColumnsNames.Name(design_defaults.csv_columns)),
       py::arg("ramp") = design_defaults.design.ramp_seconds, py::arg("home") = design_defaults.home,
       py::arg("transmission") = design_defaults.transmission, py::arg("scene") = design_defaults.scene,
-      py::arg("base_pose") = py::none(), py::arg("progress") = py::none(),
+      py::arg("base_pose") = py::none(), py::arg("given") = design_defaults.given, py::arg("progress") = py::none(),
       "Designs an excitation trajectory (as `idbench design`). transmission: \"urdf\" or a file, through which "
       "the limits file's \"actuators\" (motor-side qd_max, tau_max) are kept. scene: the cell's JSON file (obstacles, "
-      "floor), kept clear of; base_pose=(x, y, z, roll, pitch, yaw) mounts the robot (a cell whose obstacles leave no "
+      "floor), kept clear of; given=[paths]: logs the robot already has (or designed trajectories), the criterion being "
+      "that of their union with the new motion (summary and design_json add the predicted sigma); base_pose=(x, y, z, roll, pitch, yaw) mounts the robot (a cell whose obstacles leave no "
       "room raises RuntimeError, explained per obstacle; settings that admit no motion raise ValueError). progress(start, evaluations, best_value, feasible) "
       "is called as the starts run (TypeError before any work if it cannot be called so; an exception it raises "
       "stops the design and is raised again); Ctrl-C stops and returns the best design so far (stopped = True).");

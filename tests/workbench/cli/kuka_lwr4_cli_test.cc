@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <vector>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "workbench/cli/cli_fixture.h"
@@ -184,6 +185,60 @@ TEST_F(KukaLwr4CliTest, TwoRecordingsOfOneMotionAgreeWithinTheirSigma) {
               runs[0]["sigma_method"]["n_effective"].get<double>(), runs[1]["sigma_method"]["n_effective"].get<double>());
   EXPECT_GE(fraction, 0.8);
   EXPECT_LT(fraction_white, 0.5);  // 27 %: what the white formula claimed
+}
+
+// Sequential design on the real robot's log (issue 38, done-when 1): the KUKA
+// LWR4+'s measurements_1.csv (FloBaRoID's data/KUKA/HW, 200 Hz, 25.1 s; see
+// ../shared/data/kuka_lwr4/README.md), friction viscous, coulomb, offset (64
+// base parameters). `design --given measurements_1.csv` shapes a motion for
+// the union; `simulate` records it at the log's 200 Hz; `identify --data
+// measurements_1.csv --data NEW.csv` stacks both and says cond(W) of each
+// log alone and of the union. Measured (2 starts × 100 evaluations, 2.1 s):
+// measurements_1 alone cond(W) = 952.3, the new motion alone 115.3, the
+// union 81.57 (design predicted 81.43 with its per-second weighting): the
+// union at 0.086 of the log alone, where the issue asks at most half. The
+// data are not part of the project: without ../shared the test skips.
+TEST_F(KukaLwr4CliTest, DesignGivenTheLogHalvesTheUnionsCondition) {
+  const std::string robot = "--robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() +
+                            " --friction viscous,coulomb,offset";
+  const std::string log = (kData / "logs" / "measurements_1.csv").string();
+  // The URDF gives no acceleration limits: those of the recorded excitation's
+  // range (|qd| ≤ 0.92 rad/s, |qdd| ≤ 2.8 rad/s² in measurements_1).
+  std::ofstream(dir_ / "limits.json") << R"({"joints": [)" << [] {
+    std::string joints;
+    for (int j = 0; j < 7; ++j) joints += std::string(j ? ", " : "") + R"({"qd_max": 1.0, "qdd_max": 3.0})";
+    return joints;
+  }() << "]}";
+  const Result design = Run("design " + robot + " --limits " + (dir_ / "limits.json").string() + " --given " + log +
+                            " --starts 2 --max-evaluations 100 --quiet --out " + (dir_ / "design").string());
+  ASSERT_EQ(design.exit_code, 0) << design.err;
+  EXPECT_NE(design.out.find("cond(W) of the given motions alone "), std::string::npos) << design.out;
+  EXPECT_NE(design.out.find("given alone  with new motion"), std::string::npos) << design.out;
+  const nlohmann::json given = nlohmann::json::parse(idbench::testing::Slurp(dir_ / "design" / "design.json"))["given"];
+  ASSERT_EQ(given["predicted_sigma"].size(), 64u);
+  for (const auto& p : given["predicted_sigma"]) {  // information only adds: σ never grows
+    EXPECT_LE(p["with_new_motion"].get<double>(), p["given_alone"].get<double>() * (1 + 1e-9)) << p["parameter"];
+  }
+  const double predicted_union = given["with_new_motion"]["cond"];
+
+  const Result simulate = Run("simulate " + robot.substr(0, robot.find(" --friction")) + " --trajectory " +
+                              (dir_ / "design" / "trajectory.json").string() + " --rate 200 --out " +
+                              (dir_ / "new.csv").string());
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.err;
+  const Result identify = Run("identify " + robot + " --data " + log + " --data " + (dir_ / "new.csv").string() +
+                              " --estimator ols --write-unverified --out " + (dir_ / "identify").string());
+  ASSERT_EQ(identify.exit_code, 0) << identify.err;
+  EXPECT_NE(identify.out.find("log 1 of 2, " + log + ": 5027 samples, cond(W) = 952.3 alone"), std::string::npos)
+      << identify.out;
+  const nlohmann::json id = Json("identify");
+  ASSERT_EQ(id["data_logs"].size(), 2u);
+  const double alone = id["data_logs"][0]["cond"], both = id["cond"];
+  EXPECT_NEAR(alone, 952.3, 0.1);
+  EXPECT_LE(both, 0.5 * alone) << "union " << both << ", measurements_1 alone " << alone;
+  // The design's prediction of the union (a second of the log weighs as a
+  // second of the new motion) against the union identify stacks.
+  EXPECT_NEAR(predicted_union, both, 0.1 * both);
+  EXPECT_EQ(id["data_files"], nlohmann::json({log, (dir_ / "new.csv").string()}));
 }
 
 }  // namespace

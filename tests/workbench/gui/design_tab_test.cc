@@ -9,10 +9,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "idbench/engine/puma560.h"
 #include "idbench/engine/robot_library.h"
+#include "idbench/excitation/builtin_motions.h"
+#include "idbench/logs/joint_log_csv_writer.h"
 #include "idbench/gui/gui_script.h"
 #include "idbench/gui/headless_gui.h"
 #include "workbench/geared_paper6r.h"
+#include "ident/synthetic_log.h"
 #include "workbench/gui/gui_test_util.h"
 
 namespace idbench::gui {
@@ -245,6 +249,32 @@ TEST(DesignTabTest, AMotorLimitThroughTheUrdfTransmissionEqualsRunDesign) {
     std::printf("motor 1 through the URDF's reduction 50: peak %.4g of 30 rad/s\n", m.value);
   }
   EXPECT_EQ(motor_margins, 1);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
+// The given logs (design --given) as a comma-separated field: split into
+// DesignCommandOptions::given, and the design on top of them equals
+// RunDesign's, with the predicted sigma of every base parameter.
+TEST(DesignTabTest, GivenLogsEqualRunDesign) {
+  const fs::path out = DesignTabDir("given");
+  const RobotModel puma = MakePuma560();
+  const std::unique_ptr<Trajectory> motion = MakeBuiltinMotion("general", 6, {.duration = 10.0});
+  const fs::path log = out / "recorded.csv";
+  std::ofstream(log) << FormatJointLogCsv(
+      testing::SyntheticJointLog(puma, *motion, Eigen::VectorXd::LinSpaced(1001, 0.0, 10.0)));
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  RunScript(gui, "click tab.design\nset design.given " + log.string() + ",,\n");
+  EXPECT_EQ(session.design.given, std::vector<std::string>{log.string()});
+  RunScript(gui, "click limits.fill\nset design.harmonics 2\nset design.f0 0.5\nset design.samples 40\n"
+                 "set design.max_evaluations 20\nset design.clearance -1\nclick design.run\nwait design 300\n");
+  ASSERT_TRUE(session.design_report().has_value()) << session.last_error();
+  const DesignCommandReport& shown = *session.design_report();
+  ASSERT_EQ(shown.given.size(), 1u);
+  const DesignCommandReport direct = RunDesign(session.model(), session.design, session.limits, DesignControl{});
+  EXPECT_EQ(shown.result.value, direct.result.value);
+  EXPECT_EQ(shown.sigma_with_new, direct.sigma_with_new);
+  EXPECT_EQ(shown.sigma_given.size(), static_cast<Eigen::Index>(shown.parameter_names.size()));
   if (!HasFailure()) fs::remove_all(out);
 }
 

@@ -56,6 +56,25 @@ void GuiApp::Impl::DrawDesignCell() {
     ImGui::SetTooltip("What the limits file's actuators act through: urdf (the robot URDF's) or a JSON/YAML file "
                       "({\"reduction\": [...]} or {\"actuator_from_joint\": [[...], ...]}); empty: none");
   }
+  // Sequential design (--given): logs the robot already has, comma-separated.
+  auto set_given = [this](const std::string& text) {
+    given_text = text;
+    session.design.given.clear();
+    for (size_t start = 0; start <= text.size();) {
+      const size_t comma = std::min(text.find(',', start), text.size());
+      if (comma > start) session.design.given.push_back(text.substr(start, comma - start));
+      start = comma + 1;
+    }
+  };
+  if (ImGui::InputText("given logs##design.given", &given_text)) set_given(given_text);
+  widgets.Record("design.given", [set_given](const std::string& text, std::string*) {
+    set_given(text);
+    return true;
+  });
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("Logs the robot already has (read with the default columns), or designed trajectories, "
+                      "comma-separated: the criterion is that of their union with the new motion; empty: none");
+  }
   ImGui::InputText("base pose##design.base_pose", &base_pose_text);
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     std::string why;

@@ -78,6 +78,7 @@ struct GuiApp::Impl {
   bool scene_dirty = false;
   std::array<double, 6> drawn_base_pose{};
   std::string base_pose_text;      // DesignOptions::base_pose as "x,y,z,roll,pitch,yaw"
+  std::string given_text;          // DesignCommandOptions::given as "a.csv,b.csv"
   std::string design_text_error;   // why base_pose_text does not parse ("" = it does)
   bool design_fields_initialised = false;
 

@@ -242,7 +242,15 @@ bool CompareOptions::IsValid(std::string* why) const {
   if (trajectories.empty() && logs.empty()) {
     return fail("give at least one motion (built-in name, .json/.csv trajectory file, or a recorded log)");
   }
-  if (!logs.empty() && !preparation().IsValid(why)) return false;
+  if ((!logs.empty() || !given.empty()) && !preparation().IsValid(why)) return false;
+  if (static_cast<int>(given.size()) > DesignCommandOptions::kMaxGiven) {
+    return fail("given: expected at most " + std::to_string(DesignCommandOptions::kMaxGiven) + " motions, got " +
+                std::to_string(given.size()));
+  }
+  if (!given.empty() && model != IdentificationModel::kJointTorque) {
+    return fail("given: motions already recorded enter the joint-torque model's ranking only (model torque), got "
+                "model per-body");
+  }
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
   if (samples < 4) return fail("samples: must be >= 4, got " + std::to_string(samples));
@@ -325,6 +333,14 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) 
     if (simulated.back()) motion->Cut(cut);
     motions.push_back(std::move(motion));
   }
+  // The given motions' information, at one row per second (scaled to each
+  // candidate's rows per second below).
+  GivenInformation given_per_second;
+  if (!options.given.empty()) {
+    given_per_second = ReadGivenInformation(model, regressor, options.given, options.preparation(), 1.0, nullptr,
+                                            &report.notes);
+    report.ranked_with_given = true;
+  }
   for (size_t m = 0; m < names.size(); ++m) {
     const std::string& name = names[m];
     const std::unique_ptr<Trajectory>& motion = motions[m];
@@ -338,6 +354,9 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) 
     for (int k = 0; k < options.samples; ++k) times.push_back(k * motion->duration() / options.samples);
     const Eigen::MatrixXd W = regressor.Stack(*motion, times);
     row.designed = ComputeIdentifiability(W);
+    if (!given_per_second.empty()) {
+      row.with_given = ComputeIdentifiability(W, given_per_second.Scaled(options.samples / motion->duration()));
+    }
     row.limits = CheckTrajectoryLimits(model, limits, *motion, kCheckRateHz, clearance ? &*clearance : nullptr);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (row.designed.rank < regressor.n_parameters()) {
@@ -379,13 +398,20 @@ CompareReport RunCompare(const RobotModel& loaded, const CompareOptions& given) 
     }
     report.motions.push_back(std::move(row));
   }
-  // Ranked by cond(W), designed and recorded together; rank-deficient last (0).
+  // Ranked by cond(W), designed and recorded together (with given motions:
+  // of each one's union with them); rank-deficient last (0).
+  const auto ranked = [&](const MotionComparison& m) -> const Identifiability& {
+    return report.ranked_with_given ? m.with_given : m.designed;
+  };
   std::vector<size_t> order;
   for (size_t m = 0; m < report.motions.size(); ++m) {
-    if (report.motions[m].unexcited.empty()) order.push_back(m);
+    const MotionComparison& row = report.motions[m];
+    if (report.ranked_with_given ? row.with_given.rank == row.with_given.cols : row.unexcited.empty()) {
+      order.push_back(m);
+    }
   }
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return report.motions[a].designed.cond < report.motions[b].designed.cond;
+    return ranked(report.motions[a]).cond < ranked(report.motions[b]).cond;
   });
   for (size_t i = 0; i < order.size(); ++i) report.motions[order[i]].rank = static_cast<int>(i + 1);
   // The verdict: limits first (a motion the robot must not run), then excitation.
@@ -423,8 +449,12 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
                 "norm cond", "log det", "sigma_min", "realised", "MC error", "limits, clearance");
   out += line;
   bool any_recorded = false;
+  // A motion's name in a 28-column field: its end.
+  const auto short_name = [](const std::string& name) {
+    return name.size() > 28 ? "…" + name.substr(name.size() - 26) : name;
+  };
   for (const MotionComparison& m : report.motions) {
-    std::string name = m.name.size() > 28 ? "…" + m.name.substr(m.name.size() - 26) : m.name;
+    std::string name = short_name(m.name);
     any_recorded = any_recorded || !m.simulated;
     // A recorded log not simulated: "—" and the footnote below.
     const std::string realised = !m.simulated ? "—¹" : Format("%.5g", m.realised.cond);
@@ -444,7 +474,19 @@ std::string FormatCompareTable(const CompareOptions& options, const CompareRepor
     }
   }
   if (!cell.empty()) out += "\nclearance to the cell, per motion:\n" + cell;
-  out += "\nrank: by cond(W), designed and recorded motions together (1: lowest).";
+  if (report.ranked_with_given) {
+    out += "\nwith the given motions (";
+    for (size_t i = 0; i < options.given.size(); ++i) out += (i ? ", " : "") + options.given[i];
+    out += "), cond(W) of each motion's union with them, a given second weighed as a second of the motion:\n";
+    for (const MotionComparison& m : report.motions) {
+      std::snprintf(line, sizeof line, "%4s %-28s %11s\n", m.rank > 0 ? std::to_string(m.rank).c_str() : "-",
+                    short_name(m.name).c_str(), Format("%.5g", m.with_given.cond).c_str());
+      out += line;
+    }
+    out += "\nrank: by cond(W) of each motion's union with the given motions (1: lowest).";
+  } else {
+    out += "\nrank: by cond(W), designed and recorded motions together (1: lowest).";
+  }
   if (any_recorded) {
     out += "\n¹ a recorded log shorter than samples x dt or longer than one simulation: not simulated, so no realised "
            "cond or Monte-Carlo error; its cond, log det and %sigma are of the recorded states, %sigma with the "
@@ -507,6 +549,7 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
               {"duration", m.duration},
               {"designed", IdentifiabilityJson(m.designed)},
               {"realised", IdentifiabilityJson(m.realised)},
+              {"with_given", report.ranked_with_given ? IdentifiabilityJson(m.with_given) : json(nullptr)},
               {"mean_relative_error", std::isfinite(m.mean_relative_error) ? json(m.mean_relative_error) : json(nullptr)},
               {"unexcited", m.unexcited},
               {"within_robot_limits", m.limits.feasible()},
@@ -536,6 +579,7 @@ std::string FormatCompareJson(const CompareOptions& options, const CompareReport
                     {"noise", options.model == IdentificationModel::kJointTorque ? json{{"tau", report.tau_noise}}
                                                         : json{{"force", options.wrench_noise[0]},
                                                                {"moment", options.wrench_noise[1]}}},
+                    {"given", options.given},
                     {"parameters", report.parameter_names},
                     {"true_parameters", ToStdVector(report.true_parameters)},
                     {"motions", motions}};

@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <mutex>
 
+#include "idbench/logs/open_joint_log.h"
 #include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/ident/linear_estimator.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/limits_file.h"
 #include "idbench/workbench/formats/scene_file.h"
@@ -54,7 +56,78 @@ bool DesignCommandOptions::IsValid(std::string* why) const {
     if (!std::isfinite(q)) return fail("home: expected finite joint angles [rad]");
   }
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
+  if (static_cast<int>(given.size()) > kMaxGiven) {
+    return fail("given: expected at most " + std::to_string(kMaxGiven) + " motions, got " + std::to_string(given.size()));
+  }
+  if (!given.empty() && model != IdentificationModel::kJointTorque) {
+    return fail("given: motions already recorded enter the joint-torque model's criterion only (model torque), got "
+                "model per-body");
+  }
+  for (const std::string& g : given) {
+    if (g.empty()) return fail("given: an empty path");
+  }
+  if (!given.empty() && !given_reading.IsValid(why)) return false;
   return true;
+}
+
+GivenInformation ReadGivenInformation(const RobotModel& model, const DesignRegressor& regressor,
+                                      const std::vector<std::string>& paths, const LogPreparationOptions& reading,
+                                      double rows_per_second, std::vector<DesignCommandReport::GivenMotion>* motions,
+                                      std::vector<std::string>* notes) {
+  if (!(rows_per_second > 0.0) || !std::isfinite(rows_per_second)) {
+    throw std::invalid_argument("given: expected the new motion's samples per second > 0, got " +
+                                Format("%g", rows_per_second));
+  }
+  const int n_dof = model.n_dof();
+  std::vector<Eigen::MatrixXd> factors;
+  std::vector<double> weights, rows;
+  std::vector<bool> measured;
+  for (const std::string& path : paths) {
+    DesignCommandReport::GivenMotion motion;
+    motion.path = path;
+    // A designed trajectory (.json or .csv, not what a robot recorded: no
+    // torque columns) unless the columns are named for a log.
+    if (IsTrajectoryFile(path) && !IsRecordedJointLogPath(path) && reading.format.columns.empty()) {
+      // A designed motion: its rows at kGivenTrajectoryRateHz, no torques.
+      const std::unique_ptr<Trajectory> trajectory = LoadTrajectoryArg(path, model, {});
+      motion.measured = false;
+      motion.duration_s = trajectory->duration();
+      const double n_real = std::floor(motion.duration_s * kGivenTrajectoryRateHz);
+      if (!(n_real <= static_cast<double>(kMaxGivenTrajectorySamples))) {
+        throw std::invalid_argument(path + ": " + Format("%g", motion.duration_s) + " s at " +
+                                    Format("%g", kGivenTrajectoryRateHz) + " Hz is more than " +
+                                    std::to_string(kMaxGivenTrajectorySamples) + " samples");
+      }
+      const Eigen::Index n = std::max<Eigen::Index>(static_cast<Eigen::Index>(n_real), 1);
+      std::vector<double> times(static_cast<size_t>(n));
+      for (Eigen::Index k = 0; k < n; ++k) times[static_cast<size_t>(k)] = static_cast<double>(k) / kGivenTrajectoryRateHz;
+      const Eigen::MatrixXd W = regressor.Stack(*trajectory, times);
+      if (W.rows() <= W.cols()) {
+        throw std::invalid_argument(path + ": " + std::to_string(n) + " samples at " +
+                                    Format("%g", kGivenTrajectoryRateHz) + " Hz give " + std::to_string(W.rows()) +
+                                    " equations for " + std::to_string(W.cols()) + " base parameters");
+      }
+      motion.n_samples = n;
+      factors.push_back(CombinedFactor(W, Eigen::VectorXd::Zero(W.rows())));
+    } else {
+      // A recorded log, read as identify reads it; its equations for the
+      // regressor's base parameters folded into one factor.
+      const PreparedLog log = PrepareJointLog(path, model, reading);
+      const StackedFactors folded = FoldPreparedLog(log, model, regressor.friction(), regressor.base());
+      motion.n_samples = folded.n_samples();
+      motion.duration_s = log.log.t.size() > 1 ? log.log.t[log.log.t.size() - 1] - log.log.t[0] : 0.0;
+      if (!(motion.duration_s > 0.0)) throw std::invalid_argument(path + ": the log spans no time");
+      factors.push_back(CombinedFactor(folded, Eigen::VectorXd::Ones(n_dof)));
+      if (notes) notes->insert(notes->end(), log.notes.begin(), log.notes.end());
+    }
+    // A second of this motion weighs as a second of the new one.
+    motion.weight = rows_per_second * motion.duration_s / static_cast<double>(motion.n_samples);
+    weights.push_back(motion.weight);
+    rows.push_back(static_cast<double>(motion.n_samples * n_dof));
+    measured.push_back(motion.measured);
+    if (motions) motions->push_back(motion);
+  }
+  return GivenInformationFromFactors(factors, weights, rows, measured);
 }
 
 double MinimumCsvRate(const DesignOptions& design) { return 10.0 * design.harmonics * design.f0; }
@@ -121,6 +194,15 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
   CheckTrajectoryCsvRate(options.design.period_duration(), options.csv_rate_hz, model.n_dof());  // before the design
   const DesignRegressor regressor = options.MakeRegressor(model);
   CheckDesignFitsInMemory(regressor, design);  // before the progress state per start
+  // The motions already recorded: the criterion becomes the union's.
+  std::vector<DesignCommandReport::GivenMotion> given;
+  std::vector<std::string> given_notes;
+  if (!options.given.empty()) {
+    // The new motion's rows per second: the design's samples over its duration.
+    const double rows_per_second = static_cast<double>(design.samples) / design.period_duration();
+    design.given = ReadGivenInformation(model, regressor, options.given, options.given_reading, rows_per_second,
+                                        &given, &given_notes);
+  }
 
   // Progress: at most one line per start every second.
   std::mutex mutex;
@@ -174,6 +256,18 @@ DesignCommandReport RunDesign(const RobotModel& loaded, const DesignCommandOptio
   }
   DesignCommandReport report{limits,   DesignExcitation(regressor, limits, design, control),
                              regressor.parameter_names(), excluded, held, design.actuators, design.criterion};
+  if (!design.given.empty()) {
+    report.given = std::move(given);
+    report.given_notes = std::move(given_notes);
+    report.noise_variance = design.given.noise_variance;
+    const Eigen::MatrixXd none(0, regressor.n_parameters());
+    report.given_alone = ComputeIdentifiability(none, design.given);
+    report.sigma_given = PredictedSigma(design.given);
+    if (report.status() == DesignStatus::kFeasible || report.status() == DesignStatus::kNotExcited) {
+      report.sigma_with_new =
+          PredictedSigma(design.given, regressor.Stack(report.result.trajectory, DesignSampleTimes(design)));
+    }
+  }
   if (report.status() != DesignStatus::kFeasible) return report;  // result.infeasibility says why
   if (!options.quiet) {
     for (size_t s = 0; s < report.result.starts.size(); ++s) {
@@ -223,6 +317,47 @@ std::string DesignCommandReport::BriefReport() const {
   return out + buf;
 }
 
+namespace {
+
+// With given motions: what they are, cond alone and with the new motion, and
+// the predicted σ table.
+std::string FormatGivenSummary(const DesignCommandReport& report) {
+  std::string out = "the criterion and the numbers above are of the union of the new motion with the given motions:\n";
+  for (const std::string& note : report.given_notes) out += "  " + note + "\n";
+  char buf[512];
+  for (const DesignCommandReport::GivenMotion& g : report.given) {
+    std::snprintf(buf, sizeof buf, "  given %s: %s, %lld samples over %.4g s, each weighted %.4g (a second as a second of the new motion)\n",
+                  g.path.c_str(), g.measured ? "recorded log" : "designed trajectory (no torques)",
+                  static_cast<long long>(g.n_samples), g.duration_s, g.weight);
+    out += buf;
+  }
+  std::snprintf(buf, sizeof buf, "cond(W) of the given motions alone %.6g, with the new motion %.6g\n",
+                report.given_alone.cond, report.result.final.cond);
+  out += buf;
+  if (std::isnan(report.noise_variance)) {
+    out += "predicted sigma per base parameter, for a torque noise of 1 N m per sample at the design's rate (no given "
+           "log has torques to estimate it):\n";
+  } else {
+    std::snprintf(buf, sizeof buf, "predicted sigma per base parameter (as if the residual were white; noise s = %.4g N m "
+                  "per sample at the design's rate, from the given logs' least-squares residual):\n",
+                  std::sqrt(report.noise_variance));
+    out += buf;
+  }
+  std::snprintf(buf, sizeof buf, "%4s  %13s  %15s  %8s  %s\n", "#", "given alone", "with new motion", "ratio",
+                "base parameter");
+  out += buf;
+  for (Eigen::Index k = 0; k < report.sigma_given.size(); ++k) {
+    const double alone = report.sigma_given[k];
+    const double with_new = k < report.sigma_with_new.size() ? report.sigma_with_new[k] : std::nan("");
+    std::snprintf(buf, sizeof buf, "%4lld  %13.4g  %15.4g  %8.3g  %s\n", static_cast<long long>(k + 1), alone,
+                  with_new, with_new / alone, report.parameter_names[static_cast<size_t>(k)].c_str());
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string FormatDesignSummary(const DesignCommandOptions& options, const DesignCommandReport& report) {
   const DesignResult& r = report.result;
   const DesignOptions design = options.Resolved();
@@ -240,6 +375,7 @@ std::string FormatDesignSummary(const DesignCommandOptions& options, const Desig
                 r.initial.sigma_min, r.final.sigma_min, r.evaluations, r.wall_seconds,
                 r.check.feasible() ? "feasible" : "INFEASIBLE", r.check.rate_hz);
   out = buf;
+  if (!report.given.empty()) out += FormatGivenSummary(report);
   if (r.ramp_seconds > 0.0) {
     std::snprintf(buf, sizeof buf, "with %g s ramps from and to the home pose: %g s in trajectory.csv\n", r.ramp_seconds,
                   r.RobotTrajectory().duration());
@@ -331,6 +467,31 @@ nlohmann::json CheckJson(const FeasibilityCheck& check) {
 
 namespace {
 
+// design.json's "given": the motions, cond alone and with the new motion, σ
+// predicted per base parameter (null where undetermined).
+nlohmann::json GivenJson(const DesignCommandReport& report) {
+  using nlohmann::json;
+  auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json motions = json::array();
+  for (const DesignCommandReport::GivenMotion& g : report.given) {
+    motions.push_back({{"path", g.path}, {"kind", g.measured ? "log" : "designed trajectory"},
+                       {"n_samples", g.n_samples}, {"duration", g.duration_s}, {"weight", g.weight}});
+  }
+  json sigma = json::array();
+  for (Eigen::Index k = 0; k < report.sigma_given.size(); ++k) {
+    sigma.push_back({{"parameter", report.parameter_names[static_cast<size_t>(k)]},
+                     {"given_alone", number(report.sigma_given[k])},
+                     {"with_new_motion", k < report.sigma_with_new.size() ? number(report.sigma_with_new[k]) : json(nullptr)}});
+  }
+  return {{"motions", motions},
+          {"weighting", "a second of a given motion counts as a second of the new motion"},
+          {"notes", report.given_notes},
+          {"noise_sigma", number(std::sqrt(report.noise_variance))},
+          {"given_alone", IdentifiabilityJson(report.given_alone)},
+          {"with_new_motion", IdentifiabilityJson(report.result.final)},
+          {"predicted_sigma", sigma}};
+}
+
 // design.json when no feasible design was found.
 std::string FormatInfeasibleDesignJson(const RobotModel& model, const DesignCommandOptions& options,
                                        const DesignCommandReport& report) {
@@ -383,6 +544,7 @@ std::string FormatDesignJson(const RobotModel& model, const DesignCommandOptions
       {"verdict", {{"usable", r.usable()}, {"reason", r.Rejection()}}},
       {"clearance_pairs", {{"excluded", report.clearance_excluded}, {"held_at_home", report.clearance_held}}},
   });
+  if (!report.given.empty()) result["given"] = GivenJson(report);
   return result.dump(2) + "\n";
 }
 

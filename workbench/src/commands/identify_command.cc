@@ -38,6 +38,12 @@ std::optional<Transmission> IdentifyOptions::transmission() const {
   return format.transmission;
 }
 
+std::vector<std::string> IdentifyOptions::data_logs() const {
+  std::vector<std::string> logs{data};
+  logs.insert(logs.end(), more_data.begin(), more_data.end());
+  return logs;
+}
+
 LogPreparationOptions IdentifyOptions::preparation(bool with_window) const {
   LogPreparationOptions out;
   out.format = format;
@@ -57,6 +63,13 @@ bool IdentifyOptions::IsValid(std::string* why) const {
     return false;
   };
   if (data.empty()) return fail("data: a joint-log CSV is required");
+  if (static_cast<int>(more_data.size()) + 1 > kMaxDataLogs) {
+    return fail("data: expected at most " + std::to_string(kMaxDataLogs) + " logs, got " +
+                std::to_string(more_data.size() + 1));
+  }
+  for (size_t i = 0; i < more_data.size(); ++i) {
+    if (more_data[i].empty()) return fail("data: log " + std::to_string(i + 2) + " is an empty path");
+  }
   if (model == IdentificationModel::kPerBody) {
     return fail("model: per-body needs the wrench through every hinge, which a joint log does not carry; "
                 "`idbench run` identifies per body from Bullet's joint feedback");
@@ -121,8 +134,9 @@ class IdentifyStages {
   StreamObserver observer_;
 };
 
-// IdentifyPreparedLogs, its stages (folding each log, the solve) reported to `stages`.
-IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
+// IdentifyPreparedLogs, its stages (folding each log, the solve) reported to
+// `stages`. data: the logs identified together (at least one), in order.
+IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& options, std::vector<PreparedLog> data,
                                 std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole,
                                 IdentifyStages* stages) {
   IdentifyReport report;
@@ -130,29 +144,61 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   id_options.friction = options.friction_model();
   id_options.estimator = options.estimator;
   id_options.plausibility = options.plausibility;
-  report.log = std::move(data.log);
-  report.n_samples_read = data.n_raw;
-  id_options.parallel_filter = data.parallel_filter;
+  PreparedLog& first = data.front();
+  report.log = std::move(first.log);
+  id_options.parallel_filter = first.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
   report.parallel_filter = id_options.parallel_filter;
-  report.derivatives = data.derivatives;
-  report.notes = data.notes;
-  report.warnings = data.warnings;
-  // The equations streamed into factors, then solved.
+  report.derivatives = first.derivatives;
+  for (const PreparedLog& log : data) {
+    report.n_samples_read += log.n_raw;
+    report.notes.insert(report.notes.end(), log.notes.begin(), log.notes.end());
+    report.warnings.insert(report.warnings.end(), log.warnings.begin(), log.warnings.end());
+  }
+  const std::string data_name = data.size() == 1 ? options.data : "data";
+  // The equations streamed into factors, each log's in turn stacked onto the
+  // first's (MergeStackedFactors), then solved.
   const BaseParameters base = ComputeBaseParameters(model, id_options.friction, id_options.base);
   try {
-    const StackedFactors factors = FoldPreparedLog(data, model, id_options.friction, base, {}, nullptr,
-                                                   LogPreparationOptions::kMaxHeldSamples,
-                                                   stages->Next("identifying from " + options.data));
+    StackedFactors factors;
+    std::vector<Eigen::Index> n_kept;
+    for (size_t i = 0; i < data.size(); ++i) {
+      const PreparedLog& log = data[i];
+      StackedFactors own = FoldPreparedLog(log, model, id_options.friction, base, {}, nullptr,
+                                           LogPreparationOptions::kMaxHeldSamples,
+                                           stages->Next("identifying from " + log.path));
+      n_kept.push_back(own.n_samples());
+      if (data.size() > 1) {
+        IdentifiedLogPart part{log.path, own.n_samples(), log.n_raw, log.parallel_filter.has_value(),
+                               log.derivatives, log.parallel_filter, log.decimation, SolveOls(own).cond};
+        report.parts.push_back(std::move(part));
+      }
+      if (i == 0) {
+        factors = std::move(own);
+      } else {
+        MergeStackedFactors(own, &factors);
+      }
+    }
     report.n_samples = factors.n_samples();  // what the fold kept
     stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
     report.identification = IdentifyJointTorque(model, base, factors, id_options);
-    // σ from the residual as it is: the log streamed again for the scores at β̂.
-    ApplyPreparedLogScoreCovariance(data, model, id_options.friction, base, &report.identification.linear,
-                                    stages->Next("sigma from the residual of " + options.data));
+    // σ from the residual as it is: the logs streamed again for the scores at β̂.
+    if (data.size() == 1) {
+      ApplyPreparedLogScoreCovariance(first, model, id_options.friction, base, &report.identification.linear,
+                                      stages->Next("sigma from the residual of " + options.data));
+    } else {
+      std::vector<const PreparedLog*> logs;
+      for (const PreparedLog& log : data) logs.push_back(&log);
+      ApplyPreparedLogsScoreCovariance(logs, n_kept, model, id_options.friction, base, &report.identification.linear,
+                                       [&](const PreparedLog& log) {
+                                         return stages->Next("sigma from the residual of " + log.path);
+                                       });
+    }
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    throw std::invalid_argument(what.rfind(options.data + ":", 0) == 0 ? what : options.data + ": " + what);
+    bool named = what.rfind(data_name + ":", 0) == 0;
+    for (const PreparedLog& log : data) named = named || what.rfind(log.path + ":", 0) == 0;
+    throw std::invalid_argument(named ? what : data_name + ": " + what);
   }
   // Actuator-side columns scale as N and N² with the gear ratios N, the link
   // ones do not: from N = 1000 (N² = 1e6, the fit's rank tolerance) a column
@@ -172,7 +218,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
       report.warnings.push_back(text);
     }
   }
-  report.prepared = std::make_shared<PreparedLog>(std::move(data));
+  report.prepared = std::make_shared<PreparedLog>(std::move(first));
   if (held_out) {
     for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));
     for (std::string& warning : held_out->warnings) report.warnings.push_back(std::move(warning));
@@ -204,12 +250,15 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
                                 "model (MountRobot)");
   }
   // Stages: each log read, then folded, the solve, and the identification
-  // log's second pass (the scores of its σ).
-  const int n_logs = 1 + int(!options.validate.empty()) + int(!options.validate.empty() && !options.validate_window.empty());
-  IdentifyStages stages(&control, 2 * n_logs + 2);
+  // logs' second pass (the scores of their σ).
+  const std::vector<std::string> paths = options.data_logs();
+  const int n_held_out = int(!options.validate.empty()) + int(!options.validate.empty() && !options.validate_window.empty());
+  IdentifyStages stages(&control, 3 * static_cast<int>(paths.size()) + 1 + 2 * n_held_out);
   try {
-    PreparedLog data = PrepareJointLog(options.data, model, options.preparation(true),
-                                       stages.Next("reading " + options.data));
+    std::vector<PreparedLog> data;
+    for (const std::string& path : paths) {
+      data.push_back(PrepareJointLog(path, model, options.preparation(true), stages.Next("reading " + path)));
+    }
     std::optional<PreparedLog> held_out;
     std::optional<PreparedLog> held_out_whole;
     if (!options.validate.empty()) {
@@ -233,7 +282,9 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
                                     std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole) {
   IdentifyStages none(nullptr, 1);
-  return IdentifyPrepared(model, options, std::move(data), std::move(held_out), std::move(held_out_whole), &none);
+  std::vector<PreparedLog> logs;
+  logs.push_back(std::move(data));
+  return IdentifyPrepared(model, options, std::move(logs), std::move(held_out), std::move(held_out_whole), &none);
 }
 
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,

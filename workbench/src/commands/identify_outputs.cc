@@ -170,6 +170,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"verdict", verdict},
       {"robot", model.name()},
       {"data", options.data},
+      {"data_files", options.data_logs()},
       {"n_samples", report.n_samples},
       {"n_samples_read", report.n_samples_read},
       {"derivatives", report.filtered ? "estimated: zero-phase Butterworth + central differences (" + report.derivatives + ")"
@@ -228,6 +229,14 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       result["validation"]["whole_file"] = {{"joint_rms", ToStdVector(report.validation_whole_file->joint_rms)},
                                             {"relative_error", report.validation_whole_file->relative_error}};
     }
+  }
+  if (!report.parts.empty()) {  // several logs stacked: each one's samples and cond(W) alone
+    json logs = json::array();
+    for (const IdentifiedLogPart& p : report.parts) {
+      logs.push_back({{"path", p.path}, {"n_samples", p.n_samples}, {"n_samples_read", p.n_samples_read},
+                      {"cond", std::isfinite(p.cond) ? json(p.cond) : json(nullptr)}});
+    }
+    result["data_logs"] = logs;
   }
   return result.dump(2) + "\n";
 }

@@ -16,17 +16,18 @@ namespace {
 // read; otherwise both counts and why they differ, "2000 samples read, 375
 // used (qd, qdd from the filtered q; 250 filter-transient samples dropped at
 // each end, then one in 4 kept)". A filtered log's derivatives are said
-// either way.
-std::string SamplesText(const IdentifyReport& report) {
+// either way. Of one log (IdentifiedLogPart), or of the report's logs.
+std::string SamplesText(Eigen::Index n_samples, Eigen::Index n_samples_read, bool filtered,
+                        const std::string& derivatives, const std::optional<ParallelFilter>& parallel_filter,
+                        int decimation) {
   std::vector<std::string> why;
-  if (report.filtered) why.push_back(report.derivatives);
-  if (report.n_samples == report.n_samples_read) {
-    return std::to_string(report.n_samples) + " samples" + (why.empty() ? "" : " (" + why.front() + ")");
+  if (filtered) why.push_back(derivatives);
+  if (n_samples == n_samples_read) {
+    return std::to_string(n_samples) + " samples" + (why.empty() ? "" : " (" + why.front() + ")");
   }
   std::string dropped;
-  int decimation = report.prepared ? report.prepared->decimation : 1;
-  if (report.parallel_filter) {
-    const ParallelFilter& pf = *report.parallel_filter;
+  if (parallel_filter) {
+    const ParallelFilter& pf = *parallel_filter;
     decimation = pf.filter.decimation;
     if (const Eigen::Index trim = ParallelFilterTrimSamples(pf.filter, pf.sample_rate_hz); trim > 0) {
       dropped = std::to_string(trim) + " filter-transient samples dropped at each end";
@@ -34,9 +35,14 @@ std::string SamplesText(const IdentifyReport& report) {
   }
   if (decimation > 1) dropped += (dropped.empty() ? "" : ", then ") + std::string("one in ") + std::to_string(decimation) + " kept";
   if (!dropped.empty()) why.push_back(dropped);
-  std::string text = std::to_string(report.n_samples_read) + " samples read, " + std::to_string(report.n_samples) + " used";
+  std::string text = std::to_string(n_samples_read) + " samples read, " + std::to_string(n_samples) + " used";
   for (size_t i = 0; i < why.size(); ++i) text += (i ? "; " : " (") + why[i];
   return why.empty() ? text : text + ")";
+}
+
+std::string SamplesText(const IdentifyReport& report) {
+  return SamplesText(report.n_samples, report.n_samples_read, report.filtered, report.derivatives,
+                     report.parallel_filter, report.prepared ? report.prepared->decimation : 1);
 }
 
 // A note per friction or rotor-inertia base parameter (Fv, Fc, Ia of a joint
@@ -96,9 +102,23 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   std::string out;
   for (const std::string& note : report.notes) out += note + "\n";
   char line[512];
-  out += "Joint-torque identification of " + model.name() + " from " + options.data + ": " + SamplesText(report) + ", " +
-         std::to_string(id.base.n_base()) + " base parameters, estimator " + std::string(ToString(options.estimator)) +
-         ", cond(W) = " + Format("%.4g", id.linear.cond) + "\n\n";
+  if (report.parts.empty()) {
+    out += "Joint-torque identification of " + model.name() + " from " + options.data + ": " + SamplesText(report) +
+           ", " + std::to_string(id.base.n_base()) + " base parameters, estimator " +
+           std::string(ToString(options.estimator)) + ", cond(W) = " + Format("%.4g", id.linear.cond) + "\n\n";
+  } else {
+    // Several logs: a line per log (its samples, its cond(W) alone), then the one fit.
+    for (size_t i = 0; i < report.parts.size(); ++i) {
+      const IdentifiedLogPart& p = report.parts[i];
+      out += "log " + std::to_string(i + 1) + " of " + std::to_string(report.parts.size()) + ", " + p.path + ": " +
+             SamplesText(p.n_samples, p.n_samples_read, p.filtered, p.derivatives, p.parallel_filter, p.decimation) +
+             ", cond(W) = " + Format("%.4g", p.cond) + " alone\n";
+    }
+    out += "Joint-torque identification of " + model.name() + " from the " + std::to_string(report.parts.size()) +
+           " logs stacked: " + std::to_string(report.n_samples) + " samples used, " +
+           std::to_string(id.base.n_base()) + " base parameters, estimator " +
+           std::string(ToString(options.estimator)) + ", cond(W) = " + Format("%.4g", id.linear.cond) + "\n\n";
+  }
   std::snprintf(line, sizeof(line), "%4s  %14s  %14s  %11s  %8s  %-10s  %s\n", "#", "robot file", "identified", "sigma",
                 "%sigma", "status", "base parameter");
   out += line;

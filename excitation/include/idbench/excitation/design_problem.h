@@ -165,6 +165,7 @@ class DesignProblem {
   bool has_motor_rows_ = false;
   Eigen::VectorXd home_;
   DesignCriterion criterion_;
+  GivenInformation given_;  // options.given
   double f0_, duration_, margin_;
   bool rest_to_rest_;
   std::vector<double> times_;

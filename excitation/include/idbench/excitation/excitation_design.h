@@ -69,6 +69,10 @@ struct DesignOptions {
   static constexpr double kMaxRampSeconds = 600.0;
   ActuatorLimits actuators;        // motor-side velocity and torque limits through a transmission
                                    // (actuator_limits.h), kept as the joints' are; empty: none
+  // The information of motions already recorded (design --given,
+  // design_criterion.h): the criterion, DesignResult::initial and final are
+  // then those of the union; empty: the new motion alone.
+  GivenInformation given;
 
   double period_duration() const { return duration > 0.0 ? duration : 1.0 / f0; }
   // Checks ranges; names the bad option in *why.

@@ -58,6 +58,12 @@ class ScoreBatchMeans {
   // The next sample's score s_t (p). Throws std::invalid_argument on a size
   // mismatch or more samples than announced.
   void Push(const Eigen::Ref<const Eigen::VectorXd>& score);
+  // Ends a series (one log of several fitted together): the block being
+  // filled is closed, shorter, so that no block straddles two logs, and the
+  // next score is not paired with this one in the lag-1 autocorrelation.
+  // Independent logs then add their blocks' Σ S_b S_bᵀ. A no-op at a block's
+  // end and before the first score.
+  void EndSeries();
 
   bool done() const { return n_pushed_ == n_samples_; }
   Eigen::Index n_samples() const { return n_samples_; }
@@ -85,6 +91,7 @@ class ScoreBatchMeans {
   bool automatic_;
   std::vector<Blocks> lengths_;  // L₀, 2L₀, … (one: a given length)
   Eigen::VectorXd previous_, c0_, c1_;  // s_{t−1}; Σ s_t²; Σ s_t s_{t−1} (p)
+  bool series_start_ = true;            // the next score starts a series (no s_{t−1})
 };
 
 // Adds the scores of dense stacked rows (rows interleaved by joint,

@@ -44,6 +44,10 @@ struct StreamedEquationsSettings {
   // (residual_covariance.h).
   const LinearFit* score_fit = nullptr;
   Eigen::Index score_block_samples = 0;
+  // With score_fit: the scores go into this (announced for every log fitted
+  // together, one after the other: ScoreBatchMeans::EndSeries between them)
+  // instead of this log's own (scores() is then nullptr). Not owned.
+  ScoreBatchMeans* scores_into = nullptr;
   bool fold = true;  // false: the factors are left empty (a pass for the scores or the series only)
 };
 
@@ -63,7 +67,8 @@ class StreamedJointEquations {
   // The folded equations; complete once done().
   const StackedFactors& factors() const { return factors_; }
   const TorqueSeries& series() const { return series_; }
-  // The scores' block sums (settings.score_fit); nullptr without score_fit.
+  // The scores' block sums (settings.score_fit); nullptr without score_fit
+  // or with scores_into.
   const ScoreBatchMeans* scores() const { return scores_ ? &*scores_ : nullptr; }
 
  private:

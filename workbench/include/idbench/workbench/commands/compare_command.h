@@ -26,6 +26,11 @@ namespace idbench {
 struct CompareOptions {
   std::vector<std::string> trajectories;   // built-in names or .json/.csv files
   std::vector<std::string> logs;           // recorded joint logs (≥ 1 motion in all)
+  // Motions the robot already has (sequential design, as design's given):
+  // the motions are then ranked by cond(W) of their union with these, each
+  // given second weighed as a second of the candidate (ReadGivenInformation).
+  // Read as `logs` are. At most DesignCommandOptions::kMaxGiven.
+  std::vector<std::string> given;
   JointLogFormat format;                   // how the logs are read
   LogFilterOptions filter{.trim_s = -1.0}; // for logs missing qd or qdd
   double max_gap_s = 0.0;                  // [s] longest step resampled; 0: 10 median steps
@@ -56,6 +61,7 @@ struct MotionComparison {
   double duration = 0.0;
   Identifiability designed;             // analytic motion on the sample grid
   Identifiability realised;             // the states Bullet executed, same samples
+  Identifiability with_given;           // designed, with CompareOptions::given (empty without)
   Eigen::VectorXd predicted_percent_sigma;  // 100 σ/|true| per parameter (torque model; empty otherwise);
                                             // NaN where the true value is zero up to rounding (≤ 1e-9 of the largest)
   Eigen::VectorXd predicted_sigma;          // σ per parameter, in its unit (torque model)
@@ -86,6 +92,7 @@ struct CompareReport {
   std::vector<std::string> parameter_names;
   Eigen::VectorXd true_parameters;
   std::vector<MotionComparison> motions;
+  bool ranked_with_given = false;  // ranks by cond(W) of each motion's union with the given motions
   // How the recorded logs were read, as identify says it (PreparedLog):
   std::vector<std::string> notes;     // one line per step done (window, resampling, columns), for stdout
   std::vector<std::string> warnings;  // for stderr ("is the log in radians?")

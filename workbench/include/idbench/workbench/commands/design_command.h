@@ -14,6 +14,7 @@
 
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/excitation_design.h"
+#include "idbench/workbench/commands/log_preparation.h"
 
 namespace idbench {
 
@@ -50,6 +51,14 @@ struct DesignCommandOptions {
   bool write_trajectory_anyway = false;
   std::string out_dir = "out/design";
   std::string command_line;                          // recorded in design.json
+  // Sequential design: motions the robot already has, whose union with the
+  // new motion the criterion is of (ReadGivenInformation). Each a joint log
+  // in any format identify reads (read as given_reading says, the whole log),
+  // or a designed trajectory (design's trajectory.json or trajectory.csv:
+  // information, no torques). Joint-torque model only; at most kMaxGiven.
+  std::vector<std::string> given;
+  LogPreparationOptions given_reading;               // format, filter, max_gap_s of the given logs
+  static constexpr int kMaxGiven = 64;
 
   // Checks the options alone (not the robot); *why names the bad one.
   bool IsValid(std::string* why) const;
@@ -77,6 +86,21 @@ struct DesignCommandReport {
   std::vector<std::string> clearance_excluded, clearance_held;
   ActuatorLimits actuators;          // as used (DesignOptions::actuators)
   DesignCriterion criterion = DesignCriterion::kLogCond;  // as used
+  // With given motions (DesignCommandOptions::given): each one's part, the
+  // union's numbers are result.initial/final; the given ones alone, and σ
+  // per parameter predicted with them alone and with the new motion added.
+  struct GivenMotion {
+    std::string path;
+    bool measured = true;        // a log with torques; false: a designed trajectory
+    Eigen::Index n_samples = 0;  // samples its equations hold
+    double duration_s = 0.0;     // [s]
+    double weight = 1.0;         // per row, to the new motion's per-second weight
+  };
+  std::vector<GivenMotion> given;
+  std::vector<std::string> given_notes;  // how the logs were read
+  Identifiability given_alone;
+  Eigen::VectorXd sigma_given, sigma_with_new;  // (n_parameters); +inf: undetermined
+  double noise_variance = 0.0;                  // s² per design-rate row; NaN: no measured log (σ per unit s)
 
   DesignStatus status() const { return result.status; }
   // One line: the status, the criterion before and after, the verdict at the
@@ -86,6 +110,24 @@ struct DesignCommandReport {
   // no feasible design: no start met the limits ...; 20 evaluations in 0.41 s".
   std::string BriefReport() const;
 };
+
+// The information of the motions `paths` (DesignCommandOptions::given) for
+// `regressor` (its base parameters and friction; model mounted as the
+// design's), each row weighted so that the motion counts by its duration: a
+// second of it weighs as a second of a new motion sampled at
+// rows_per_second (the design's samples per second): w = rows_per_second ·
+// T / n, T the motion's duration and n its equations' samples (see
+// docs/commands/design.md). A designed trajectory is sampled at
+// kGivenTrajectoryRateHz. *motions and *notes (optional) get each motion's
+// part and the logs' reading notes. Throws std::invalid_argument naming the
+// file for a log that cannot be read or has too few samples.
+inline constexpr double kGivenTrajectoryRateHz = 100.0;
+inline constexpr Eigen::Index kMaxGivenTrajectorySamples = 1000000;
+GivenInformation ReadGivenInformation(const RobotModel& model, const DesignRegressor& regressor,
+                                      const std::vector<std::string>& paths, const LogPreparationOptions& reading,
+                                      double rows_per_second,
+                                      std::vector<DesignCommandReport::GivenMotion>* motions = nullptr,
+                                      std::vector<std::string>* notes = nullptr);
 
 // The smallest trajectory.csv rate that samples the motion: ten samples per
 // period of the highest harmonic, 10 H f0 [Hz].

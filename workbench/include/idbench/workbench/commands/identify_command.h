@@ -26,6 +26,13 @@ inline constexpr EnumNames<FrictionSide, 2> kFrictionSideNames{"friction_side", 
 struct IdentifyOptions {
   std::string robot = "puma560";   // built-in name or URDF path
   std::string data;                // joint-log CSV (required)
+  // Further logs of the same robot, identified together with data: each read,
+  // windowed (time_window), resampled and filtered on its own with the same
+  // options, their equations stacked into one fit; σ treats each log as a
+  // series of its own (ApplyPreparedLogsScoreCovariance). At most
+  // kMaxDataLogs − 1.
+  std::vector<std::string> more_data;
+  static constexpr int kMaxDataLogs = 64;
   IdentificationModel model = IdentificationModel::kJointTorque;  // kPerBody needs hinge wrenches (idbench run)
   BasePose base_pose;              // the robot's base in the world: the model given to RunIdentify
                                    // must have its gravity (MountRobot; refused otherwise)
@@ -59,6 +66,8 @@ struct IdentifyOptions {
   // The transmission the data is read with: its log description's, else
   // format.transmission (the robot's); nullopt when neither gives one.
   std::optional<Transmission> transmission() const;
+  // data, then more_data: every log identified from, in order.
+  std::vector<std::string> data_logs() const;
   // How --data (with_window: time_window) or --validate (validate_window) is read.
   LogPreparationOptions preparation(bool with_window) const;
   // Checks the options alone; *why names the bad one.
@@ -85,6 +94,18 @@ enum class IdentifyStatus {
   kCancelled,  // control.stop was set: the report holds nothing else
 };
 
+// One of several logs identified together (IdentifyOptions::more_data): what
+// identify says of a log, counted as IdentifyReport counts the whole.
+struct IdentifiedLogPart {
+  std::string path;
+  Eigen::Index n_samples = 0, n_samples_read = 0;  // in the fit; read (IdentifyReport's)
+  bool filtered = false;
+  std::string derivatives;
+  std::optional<ParallelFilter> parallel_filter;
+  int decimation = 1;
+  double cond = 0.0;  // cond(W) of this log's equations alone (OLS: unweighted)
+};
+
 struct IdentifyReport {
   IdentifyStatus status = IdentifyStatus::kDone;
   // As identified (after filtering, if any): every sample up to
@@ -101,6 +122,10 @@ struct IdentifyReport {
   std::vector<std::string> notes;    // how the logs were read (window, resampling), for stdout
   std::vector<std::string> warnings; // for stderr
   JointTorqueIdentification identification;
+  // With IdentifyOptions::more_data: every log, in order (empty for one log).
+  // n_samples, n_samples_read above are then their sums; log, prepared,
+  // parallel_filter and derivatives are the first log's (plots, playback).
+  std::vector<IdentifiedLogPart> parts;
   std::optional<TorquePrediction> validation;  // on the held-out log (its validate_window, if any)
   std::optional<TorquePrediction> validation_whole_file;  // on the whole held-out log, when validate_window is set
   // What predicts the torques again (PredictTorqueSeries, the report's plots):
@@ -120,7 +145,8 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
 
 // The same for logs already prepared (PrepareJointLog or
 // PrepareRecordedJointLog, e.g. arrays from Python); options.data and
-// options.validate only name them in messages.
+// options.validate only name them in messages. (options.more_data is read by
+// RunIdentify only: here the data is the one log given.)
 // held_out_whole: the whole held-out log, when held_out is its validate_window.
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
                                     std::optional<PreparedLog> held_out,

@@ -136,4 +136,17 @@ void ApplyPreparedLogScoreCovariance(const PreparedLog& log, const RobotModel& m
                                      const BaseParameters& base, LinearFit* fit,
                                      const StreamObserver* observer = nullptr);
 
+// The same for a fit to several logs stacked (IdentifyOptions::more_data):
+// the logs streamed one after the other, n_kept[i] the samples log i's fold
+// kept (StackedFactors::n_samples), into one batch-means accumulator whose
+// blocks never straddle two logs (ScoreBatchMeans::EndSeries): the logs are
+// separate series, independent of each other. observer(log) gives each
+// pass's observer (may be empty, or return nullptr). Throws
+// std::invalid_argument unless there is a count per log, and as
+// FoldPreparedLog.
+void ApplyPreparedLogsScoreCovariance(const std::vector<const PreparedLog*>& logs,
+                                      const std::vector<Eigen::Index>& n_kept, const RobotModel& model,
+                                      const FrictionModel& friction, const BaseParameters& base, LinearFit* fit,
+                                      const std::function<const StreamObserver*(const PreparedLog&)>& observer = {});
+
 }  // namespace idbench
