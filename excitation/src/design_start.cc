@@ -115,6 +115,7 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
   run.index = s;
   run.algorithm = options.algorithm;
   run.ws.emplace(problem);
+  run.evaluations_before = plan.evaluations_before, run.best_before = plan.best_before;
   Eigen::VectorXd theta = plan.from ? *plan.from
                                     : problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws, &run.held_still);
   run.start_theta = theta;

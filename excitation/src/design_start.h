@@ -30,6 +30,10 @@ struct StartPlan {
   // A second stall ends the round (StartRun::deferred) instead of resuming
   // with COBYLA: the second round takes the start elsewhere.
   bool defer_stall = false;
+  // What an earlier round of this start did, for its progress reports only
+  // (evaluations counted on from there, the best value so far).
+  int evaluations_before = 0;
+  double best_before = kInf;
 };
 
 // One start of the optimizer: NLopt callbacks and the best feasible point.
@@ -60,6 +64,8 @@ struct StartRun {
   double stall_reference = kInf;
   bool stalled = false;
   bool deferred = false;  // stalled twice with StartPlan::defer_stall: the round ended there
+  int evaluations_before = 0;  // StartPlan's, for progress reports
+  double best_before = kInf;
 
   // SLSQP's linear rows: those within kNearActive of their limit at the
   // points it was (re)started from. Its quadratic subproblem costs in
@@ -190,7 +196,7 @@ struct StartRun {
       stalled = true;
       nlopt_force_stop(opt);
     }
-    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, linear_ok});
+    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations_before + evaluations, std::min(best_value, best_before), linear_ok});
     return sbplx ? c + Penalty(theta) : c;
   }
 

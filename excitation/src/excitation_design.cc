@@ -244,6 +244,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     auto worker = [&]() {
       for (int s = next++; s < options.starts; s = next++) {
         const size_t i = static_cast<size_t>(s);
+        if (plans[i].budget < 1) continue;  // nothing left for a second round
         internal::RunStart(s, regressor, limits, options, control, problem, lower, upper, t_begin, plans[i],
                            &(*round_runs)[i], &(*round_summaries)[i]);
       }
@@ -266,8 +267,9 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     for (int s = 0; s < options.starts; ++s) {
       const size_t i = static_cast<size_t>(s);
       const StartRun& run = runs[i];
-      plans[i].budget = std::max(1, options.max_evaluations - summaries[i].evaluations);
+      plans[i].budget = options.max_evaluations - summaries[i].evaluations;
       plans[i].defer_stall = false;
+      plans[i].evaluations_before = summaries[i].evaluations, plans[i].best_before = run.best_value;
       const bool behind = leader >= 0 && s != leader &&
                           (run.best_theta.size() == 0 || run.deferred ||
                            run.best_value > runs[static_cast<size_t>(leader)].best_value + std::log(2.0));
@@ -290,6 +292,7 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     run_round(&second, &second_summaries);
     // Each start's record: the better of its two rounds' points, evaluations summed.
     for (size_t i = 0; i < runs.size(); ++i) {
+      if (plans[i].budget < 1) continue;
       StartRun& run = runs[i];
       const StartRun& more = second[i];
       DesignStartSummary& summary = summaries[i];
