@@ -98,7 +98,8 @@ Eigen::VectorXd GrownToLinearLimits(const DesignProblem& problem, const Eigen::V
 void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
               const DesignOptions& options, const DesignControl& control, const DesignProblem& problem,
               const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-              std::chrono::steady_clock::time_point t_begin, StartRun* run_out, DesignStartSummary* summary_out) {
+              std::chrono::steady_clock::time_point t_begin, const StartPlan& plan, StartRun* run_out,
+              DesignStartSummary* summary_out) {
   // A start that has not improved on its start point (nor, infeasible, met
   // the constraints) after this many evaluations is stalled: it is moved
   // inside its constraints (Centre) and resumed from there.
@@ -114,7 +115,9 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
   run.index = s;
   run.algorithm = options.algorithm;
   run.ws.emplace(problem);
-  Eigen::VectorXd theta = problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws, &run.held_still);
+  run.evaluations_before = plan.evaluations_before, run.best_before = plan.best_before;
+  Eigen::VectorXd theta = plan.from ? *plan.from
+                                    : problem.StartPoint(options.seed + static_cast<unsigned>(s), &*run.ws, &run.held_still);
   run.start_theta = theta;
   DesignStartSummary& summary = *summary_out;
   summary.initial_value = problem.Criterion(theta.data(), nullptr, &*run.ws);
@@ -129,7 +132,7 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
     return true;
   };
   take_if_feasible();
-  const int budget = options.max_evaluations;
+  const int budget = plan.budget;
   auto remaining = [&]() { return std::max(1, budget - run.evaluations); };
 
   // The story of this start for its line: what was wrong and what was done.
@@ -183,6 +186,11 @@ void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLi
         story += Format(inside ? " -> moved inside in %g evaluations, resumed" : " -> centring failed in %g evaluations, resumed",
                         used);
       }
+    }
+    if (!moved && plan.defer_stall) {
+      run.deferred = true;
+      story += " -> left for the second round";
+      break;
     }
     if (!moved) {
       run.algorithm = DesignAlgorithm::kCobyla;

@@ -22,6 +22,20 @@ namespace idbench::internal {
 // (joint range, velocity or acceleration limit) of being active.
 constexpr double kNearActive = 0.3;
 
+// What one round of a start does (DesignExcitation runs the starts in two
+// rounds when there are several; see there).
+struct StartPlan {
+  int budget = 0;                         // evaluations (max_evaluations for a single round)
+  const Eigen::VectorXd* from = nullptr;  // the point to start from; null: the seeded StartPoint
+  // A second stall ends the round (StartRun::deferred) instead of resuming
+  // with COBYLA: the second round takes the start elsewhere.
+  bool defer_stall = false;
+  // What an earlier round of this start did, for its progress reports only
+  // (evaluations counted on from there, the best value so far).
+  int evaluations_before = 0;
+  double best_before = kInf;
+};
+
 // One start of the optimizer: NLopt callbacks and the best feasible point.
 struct StartRun {
   const DesignProblem* problem = nullptr;
@@ -49,6 +63,9 @@ struct StartRun {
   int stall_at = 0, stall_window = 0;
   double stall_reference = kInf;
   bool stalled = false;
+  bool deferred = false;  // stalled twice with StartPlan::defer_stall: the round ended there
+  int evaluations_before = 0;  // StartPlan's, for progress reports
+  double best_before = kInf;
 
   // SLSQP's linear rows: those within kNearActive of their limit at the
   // points it was (re)started from. Its quadratic subproblem costs in
@@ -179,7 +196,7 @@ struct StartRun {
       stalled = true;
       nlopt_force_stop(opt);
     }
-    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations, best_value, linear_ok});
+    if (control->progress && evaluations % 20 == 0) control->progress({index, evaluations_before + evaluations, std::min(best_value, best_before), linear_ok});
     return sbplx ? c + Penalty(theta) : c;
   }
 
@@ -237,13 +254,15 @@ struct StartRun {
   }
 };
 
-// Start s of DesignExcitation from its seeded start point to its best point,
-// into *run (its run state, kept for ExplainNoFeasibleStart) and *summary.
+// Start s of DesignExcitation from its seeded start point (or plan.from) to
+// its best point within plan.budget evaluations (and the repair rounds' third
+// of it), into *run (its run state, kept for ExplainNoFeasibleStart) and *summary.
 // `problem` gains the clearance instants the fine check adds (in this start's
 // workspace). t_begin is when the design began (for options.max_seconds).
 void RunStart(int s, const DesignRegressor& regressor, const std::vector<JointLimits>& limits,
               const DesignOptions& options, const DesignControl& control, const DesignProblem& problem,
               const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-              std::chrono::steady_clock::time_point t_begin, StartRun* run_out, DesignStartSummary* summary_out);
+              std::chrono::steady_clock::time_point t_begin, const StartPlan& plan, StartRun* run_out,
+              DesignStartSummary* summary_out);
 
 }  // namespace idbench::internal

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -222,20 +223,96 @@ DesignResult DesignExcitation(const DesignRegressor& regressor, const std::vecto
     return result;
   }
 
+  // The starts run in two rounds when there are several: the first with two
+  // thirds of max_evaluations, the second with what each has left. In the
+  // second, a start within a factor 2 of the leader's cond (the best after
+  // the first round; log 2 of the criterion, every criterion being a log)
+  // continues from its own best point; one further behind, or one that
+  // stalled twice, or one that found no feasible point, starts again near the
+  // leader's best point (its amplitudes perturbed, seeded by the start), so
+  // that no start spends its evaluations stuck far above the best (issue 38:
+  // the UR10e's starts ended at 5-13x the best). The second round depends
+  // only on the first's results: the same for any thread count.
+  const bool two_rounds = options.starts > 1;
+  const int first_budget = two_rounds ? options.max_evaluations - options.max_evaluations / 3 : options.max_evaluations;
   std::vector<StartRun> runs(static_cast<size_t>(options.starts));
   std::vector<DesignStartSummary> summaries(runs.size());
-  std::atomic<int> next{0};
-  auto worker = [&]() {
-    for (int s = next++; s < options.starts; s = next++) {
-      internal::RunStart(s, regressor, limits, options, control, problem, lower, upper, t_begin,
-                         &runs[static_cast<size_t>(s)], &summaries[static_cast<size_t>(s)]);
-    }
+  std::vector<internal::StartPlan> plans(runs.size());
+  std::vector<Eigen::VectorXd> plan_from(runs.size());
+  auto run_round = [&](std::vector<StartRun>* round_runs, std::vector<DesignStartSummary>* round_summaries) {
+    std::atomic<int> next{0};
+    auto worker = [&]() {
+      for (int s = next++; s < options.starts; s = next++) {
+        const size_t i = static_cast<size_t>(s);
+        if (plans[i].budget < 1) continue;  // nothing left for a second round
+        internal::RunStart(s, regressor, limits, options, control, problem, lower, upper, t_begin, plans[i],
+                           &(*round_runs)[i], &(*round_summaries)[i]);
+      }
+    };
+    std::vector<std::thread> pool;
+    const int n_threads = std::min(options.threads, options.starts);
+    for (int i = 1; i < n_threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
   };
-  std::vector<std::thread> pool;
-  const int n_threads = std::min(options.threads, options.starts);
-  for (int i = 1; i < n_threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  for (internal::StartPlan& plan : plans) plan.budget = first_budget, plan.defer_stall = two_rounds;
+  run_round(&runs, &summaries);
+  if (two_rounds && !(control.stop && control.stop->load())) {
+    int leader = -1;
+    for (int s = 0; s < options.starts; ++s) {
+      const StartRun& run = runs[static_cast<size_t>(s)];
+      if (run.best_theta.size() > 0 && (leader < 0 || run.best_value < runs[static_cast<size_t>(leader)].best_value)) leader = s;
+    }
+    std::vector<int> restarted_from(runs.size(), -1);
+    for (int s = 0; s < options.starts; ++s) {
+      const size_t i = static_cast<size_t>(s);
+      const StartRun& run = runs[i];
+      plans[i].budget = options.max_evaluations - summaries[i].evaluations;
+      plans[i].defer_stall = false;
+      plans[i].evaluations_before = summaries[i].evaluations, plans[i].best_before = run.best_value;
+      const bool behind = leader >= 0 && s != leader &&
+                          (run.best_theta.size() == 0 || run.deferred ||
+                           run.best_value > runs[static_cast<size_t>(leader)].best_value + std::log(2.0));
+      if (behind) {
+        // The leader's point, each amplitude coefficient scaled by 1 + 0.03 ξ (ξ ~ N(0, 1)).
+        std::mt19937_64 rng(options.seed + 7919u * static_cast<unsigned>(s + 1));
+        std::normal_distribution<double> normal(0.0, 1.0);
+        plan_from[i] = runs[static_cast<size_t>(leader)].best_theta;
+        for (int j = 0; j < problem.n_dof(); ++j) {
+          for (int c = 1; c < problem.block(); ++c) plan_from[i][j * problem.block() + c] *= 1.0 + 0.03 * normal(rng);
+        }
+        restarted_from[i] = leader;
+      } else {
+        plan_from[i] = run.best_theta.size() > 0 ? run.best_theta : run.last_theta;
+      }
+      plans[i].from = &plan_from[i];
+    }
+    std::vector<StartRun> second(runs.size());
+    std::vector<DesignStartSummary> second_summaries(runs.size());
+    run_round(&second, &second_summaries);
+    // Each start's record: the better of its two rounds' points, evaluations summed.
+    for (size_t i = 0; i < runs.size(); ++i) {
+      if (plans[i].budget < 1) continue;
+      StartRun& run = runs[i];
+      const StartRun& more = second[i];
+      DesignStartSummary& summary = summaries[i];
+      const DesignStartSummary& later = second_summaries[i];
+      if (more.best_theta.size() > 0 && !(more.best_value >= run.best_value)) {
+        run.best_value = more.best_value, run.best_theta = more.best_theta;
+      }
+      run.last_theta = more.last_theta;
+      if (summary.feasible_at < 0 && later.feasible_at >= 0) summary.feasible_at = summary.evaluations + later.feasible_at;
+      summary.evaluations += later.evaluations;
+      run.evaluations = summary.evaluations;
+      summary.best_value = run.best_value;
+      summary.status = later.status;
+      summary.final_violation = later.final_violation;
+      const std::string first_story = summary.outcome;
+      internal::DescribeProgress(&summary);
+      summary.outcome = first_story;
+      if (restarted_from[i] >= 0) summary.outcome += Format("; then from near start %g's best: ", restarted_from[i] + 1) + later.outcome;
+    }
+  }
 
   // The starts feasible on the grid, best first; ties go to the lower index
   // (deterministic).

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "excitation/design_test_util.h"
@@ -17,6 +19,7 @@ namespace {
 
 const char* const kUrLike = IDBENCH_SOURCE_DIR "/tests/data/ur10e_like/ur10e_like.urdf";
 const char* const kKuka = IDBENCH_SOURCE_DIR "/../shared/data/kuka_lwr4/lwr_description/urdf/kuka_lwr4.urdf";
+const char* const kUr10e = IDBENCH_SOURCE_DIR "/../shared/data/robots/ur_e_description/urdf/ur10e.urdf";
 
 // The arm's own ranges and velocity limits, tests/data/ur10e_like/lim_acc.json's accelerations.
 std::vector<JointLimits> UrLikeLimits(const RobotModel& model) {
@@ -115,6 +118,49 @@ TEST(StartRecoveryTest, EveryStartOnTheUrLikeArmEndsFeasibleAndBetter) {
       EXPECT_TRUE(start.progressed);
     }
   }
+}
+
+// The vendor UR10e (its own URDF and collision meshes, ../shared/data/robots)
+// with the default 1 cm clearance, 4 starts of 150 evaluations: every start
+// ends within 2x of the best start's cond (the median of the four within 2x:
+// before the second round, starts 1 and 2 ended at 875 and 275 against the
+// best 57.3, a median 2.95x the best), and the design holds at 1 kHz, as an
+// independent sampler of the clearance sees it (GJK on the same model at
+// every millisecond, not the design's own check).
+TEST(StartRecoveryTest, MedianStartOnTheVendorUr10eEndsWithinTwiceTheBest) {
+  if (!std::filesystem::exists(kUr10e)) GTEST_SKIP() << kUr10e << " not found (../shared is not beside the checkout)";
+  const RobotModel model = LoadUrdfFile(kUr10e).model;
+  const DesignRegressor r = DesignRegressor::JointTorque(model, FrictionModel{});
+  DesignOptions o;  // defaults: H = 5, f0 = 0.1 Hz, 250 samples, 4 starts, 1 cm clearance
+  o.max_evaluations = 150;
+  o.threads = 1;
+  const DesignResult result = DesignExcitation(r, UrLikeLimits(model), o);
+  ASSERT_EQ(result.status, DesignStatus::kFeasible) << result.infeasibility.explanation;
+  std::vector<double> conds;
+  for (const DesignStartSummary& start : result.starts) {
+    ASSERT_TRUE(std::isfinite(start.best_value)) << start.outcome;
+    conds.push_back(std::exp(start.best_value));  // the criterion is log cond(W)
+  }
+  std::sort(conds.begin(), conds.end());
+  const double median = 0.5 * (conds[1] + conds[2]);
+  EXPECT_LE(median, 2.0 * conds[0]) << conds[0] << " " << conds[1] << " " << conds[2] << " " << conds[3];
+  EXPECT_NEAR(result.final.cond, conds[0], 1e-4 * conds[0]);
+  // The 1 kHz sampler: every pair at every millisecond at least its minimum.
+  const ClearanceModel clearance(model, o.clearance);
+  const RampedTrajectory motion = result.RobotTrajectory();
+  RobotData data(model);
+  JointState x(model.n_dof());
+  std::vector<Clearance> distances;
+  double least_margin = 1e9;
+  for (long k = 0; k <= static_cast<long>(motion.duration() * 1000.0); ++k) {
+    motion.Evaluate(k / 1000.0, &x);
+    ComputeKinematicsT<double>(model, x.q, x.qd, x.qdd, &data);
+    clearance.Compute(data, &distances);
+    for (size_t i = 0; i < distances.size(); ++i) {
+      least_margin = std::min(least_margin, distances[i].distance - clearance.pairs()[i].minimum);
+    }
+  }
+  EXPECT_GE(least_margin, 0.0);
 }
 
 }  // namespace
