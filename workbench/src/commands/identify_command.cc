@@ -145,8 +145,13 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
                                                    LogPreparationOptions::kMaxHeldSamples,
                                                    stages->Next("identifying from " + options.data));
     report.n_samples = factors.n_samples();  // what the fold kept
-    stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
-    report.identification = IdentifyJointTorque(model, base, factors, id_options);
+    // IRLS reads the log again for each of its passes.
+    const StreamObserver* solving = stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
+    const ReweightedFold reweighted_fold = [&](const RobustRowWeights& weights, IrlsPassRecord* residuals) {
+      return FoldPreparedLog(data, model, id_options.friction, base, {}, nullptr, LogPreparationOptions::kMaxHeldSamples,
+                             solving, &weights, residuals);
+    };
+    report.identification = IdentifyJointTorque(model, base, factors, id_options, &reweighted_fold);
     // σ from the residual as it is: the log streamed again for the scores at β̂.
     ApplyPreparedLogScoreCovariance(data, model, id_options.friction, base, &report.identification.linear,
                                     stages->Next("sigma from the residual of " + options.data));
@@ -158,6 +163,10 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   // ones do not: from N = 1000 (N² = 1e6, the fit's rank tolerance) a column
   // may be lost to that spread rather than to the motion. Said when it happens.
   const LinearFit& linear = report.identification.linear;
+  if (!linear.solve.converged) {
+    report.warnings.push_back("estimator " + std::string(ToString(options.estimator)) + ": " + linear.solve.message +
+                              "; its beta and sigma are those of where it stopped");
+  }
   if (id_options.friction.actuator_side() && linear.rank < base.n_base()) {
     const double ratio = id_options.friction.actuator_from_joint.cwiseAbs().maxCoeff();
     if (ratio >= 1e3) {

@@ -45,6 +45,11 @@ struct StreamedEquationsSettings {
   const LinearFit* score_fit = nullptr;
   Eigen::Index score_block_samples = 0;
   bool fold = true;  // false: the factors are left empty (a pass for the scores or the series only)
+  // Optional: an IRLS pass (reweighted_least_squares.h): each folded row
+  // scaled by √w at its residual, which is added to *residuals (if given;
+  // rows of one joint from one thread).
+  const RobustRowWeights* row_weights = nullptr;
+  IrlsPassRecord* residuals = nullptr;
 };
 
 class StreamedJointEquations {
