@@ -387,3 +387,15 @@ def test_a_design_that_leaves_parameters_unexcited_is_a_runtime_error_as_the_com
     assert str(raised.value) == cli_message
     assert cli_message.startswith("no design within these limits excites every parameter (rank 50 of 52)")
     assert "\n  column of Fv6 is zero: the data do not excite it" in cli_message
+
+
+def test_tls_and_irls_estimators_recover_a_noise_free_log(puma):
+    # identify(estimator="tls" | "irls"), as `identify --estimator`: the robot
+    # file's base parameters to rounding, with the passes and verdict in the JSON.
+    log = idbench.simulate(puma, "general", duration=4.0, rate=100.0)
+    for estimator in ("tls", "irls"):
+        result = idbench.identify(puma, log, estimator=estimator)
+        solve = json.loads(result.json)["solve"]
+        assert solve["converged"], solve
+        error = np.linalg.norm(result.beta - result.beta_model) / np.linalg.norm(result.beta_model)
+        assert error < 1e-9, (estimator, error)
