@@ -12,6 +12,7 @@
 
 #include "idbench/engine/link_bounding_box.h"
 #include "idbench/ident/residual_covariance.h"
+#include "idbench/ident/total_least_squares.h"
 
 namespace idbench {
 
@@ -411,20 +412,27 @@ IdentificationVerdict JudgePlausibleFit(const PhysicallyConsistentFit& fit, doub
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const JointLog& log,
                                               const JointTorqueOptions& options) {
   const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
-  JointTorqueIdentification out = IdentifyJointTorque(
-      model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter), options);
+  // W held whole: for the IRLS passes and the scores at β̂.
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  const bool stacked = options.covariance == CovarianceMethod::kBatchMeans || options.estimator == TorqueEstimator::kIrls;
+  if (stacked) StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
+  const ReweightedFold reweighted_fold = [&](const RobustRowWeights& weights, IrlsPassRecord* residuals) {
+    return FactorStackedRows(W, tau, model.n_dof(), &weights, residuals);
+  };
+  JointTorqueIdentification out =
+      IdentifyJointTorque(model, base, FactorEquations(model, options.friction, base, log, options.parallel_filter),
+                          options, stacked ? &reweighted_fold : nullptr);
   if (options.covariance == CovarianceMethod::kBatchMeans) {
     // The scores at β̂: a second pass over the equations.
-    Eigen::MatrixXd W;
-    Eigen::VectorXd tau;
-    StackEquations(model, options.friction, base, log, options.parallel_filter, &W, &tau);
     ApplyStackedScoreCovariance(W, tau, model.n_dof(), &out.linear);
   }
   return out;
 }
 
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
-                                              const StackedFactors& factors, const JointTorqueOptions& options) {
+                                              const StackedFactors& factors, const JointTorqueOptions& options,
+                                              const ReweightedFold* reweighted_fold) {
   JointTorqueIdentification out;
   out.base = base;
   if (factors.n_parameters != base.n_base() || factors.n_dof() != model.n_dof()) {
@@ -436,7 +444,18 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Bas
   out.standard_names = StandardParameterNames(model, options.friction);
   const Eigen::VectorXd pi_model = StandardParameters(model, options.friction);
   out.beta_model = out.base.combination * pi_model;
-  out.linear = options.estimator == TorqueEstimator::kWls ? SolveWls(factors) : SolveOls(factors);
+  switch (options.estimator) {
+    case TorqueEstimator::kWls: out.linear = SolveWls(factors); break;
+    case TorqueEstimator::kTls: out.linear = SolveTls(factors); break;
+    case TorqueEstimator::kIrls:
+      if (!reweighted_fold) {
+        throw std::invalid_argument("estimator irls: needs passes over the equations, not only their folded factors");
+      }
+      out.linear = SolveIrls(factors, *reweighted_fold, options.irls);
+      break;
+    case TorqueEstimator::kOls:
+    case TorqueEstimator::kPhysicallyConsistent: out.linear = SolveOls(factors); break;
+  }
   out.beta = out.linear.beta;
   // The plausible fit keeps the robot file's values in the directions the
   // log does not determine.

@@ -2,6 +2,7 @@
 
 #include "idbench/ident/least_squares.h"
 #include "householder_fold.h"
+#include "linear_fit_internal.h"
 
 #include <algorithm>
 #include <Eigen/SVD>
@@ -25,9 +26,11 @@ void CheckSizes(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof)
 }
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Singular values of the column-normalised R below this × the largest count
-// as zero (the data do not determine that direction).
-constexpr double kRankTolerance = 1e-6;
+using internal::kRankTolerance;
+
+}  // namespace
+
+namespace internal {
 
 // R D with unit columns (D = 1/‖column‖), so that units do not decide the
 // rank. A column below 1e-9 of the largest (as SolveLeastSquares: the data do
@@ -47,6 +50,12 @@ Eigen::MatrixXd UnitColumns(const Eigen::MatrixXd& R, Eigen::VectorXd* D) {
   }
   return RD;
 }
+
+}  // namespace internal
+
+namespace {
+
+using internal::UnitColumns;
 
 // ‖W_j β − τ_j‖ of one joint from its factor: ‖T [β_columns; −1]‖.
 double JointResidualNorm(const JointRowFactor& f, const Eigen::VectorXd& beta) {
@@ -197,7 +206,8 @@ void MergeStackedFactors(const StackedFactors& other, StackedFactors* into) {
   }
 }
 
-StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof) {
+StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof,
+                                 const RobustRowWeights* weights, IrlsPassRecord* residuals) {
   CheckSizes(W, tau, n_dof);
   const Eigen::Index n_samples = W.rows() / n_dof;
   using Strided = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
@@ -223,6 +233,11 @@ StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd
         const Eigen::Index row = (s0 + s) * n_dof + j;
         for (Eigen::Index k = 0; k < c; ++k) rows(s, k) = W(row, f.columns[static_cast<size_t>(k)]);
         rows(s, c) = tau[row];
+        if (weights) {  // an IRLS pass: the row scaled by √w at its residual
+          const double r = tau[row] - W.row(row).dot(weights->beta);
+          if (residuals) residuals->Add(j, r, rows.row(s).head(c), f.columns, *weights);
+          rows.row(s) *= std::sqrt(weights->Weight(j, r));
+        }
       }
       FoldJointRows(rows, &f);
     }
@@ -282,6 +297,7 @@ Eigen::MatrixXd CombinedFactor(const Eigen::MatrixXd& W, const Eigen::VectorXd& 
 LinearFit SolveOls(const StackedFactors& factors) {
   LinearFit fit = Fit(factors, Eigen::VectorXd::Ones(factors.n_dof()));
   fit.joint_sigma = fit.joint_rms;
+  fit.solve.message = "closed form (QR of the folded equations)";
   return fit;
 }
 
@@ -296,6 +312,7 @@ LinearFit SolveWls(const StackedFactors& factors) {
   sigma = sigma.cwiseMax(floor);
   LinearFit fit = Fit(factors, sigma.cwiseInverse());
   fit.joint_sigma = sigma;
+  fit.solve.message = "closed form (QR), joints weighted by 1/σ_j of the OLS residual";
   return fit;
 }
 

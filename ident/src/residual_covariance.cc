@@ -140,13 +140,14 @@ void PushStackedScores(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int
                                 std::to_string(n_dof));
   }
   const Eigen::VectorXd e = tau - W * fit.beta;
+  const Eigen::VectorXd e_weights = fit.row_reweighting ? Eigen::VectorXd(tau - W * fit.row_reweighting->beta) : e;
   Eigen::VectorXd score(W.cols());
   for (Eigen::Index s = 0; s < W.rows() / n_dof; ++s) {
     score.setZero();
+    if (fit.score_offset.size() > 0) score = fit.score_offset;
     for (int j = 0; j < n_dof; ++j) {
       const Eigen::Index row = s * n_dof + j;
-      const double w = fit.row_weights[j];
-      score += (w * w * e[row]) * W.row(row).transpose();
+      score += (ScoreRowWeight(fit, j, e_weights[row]) * e[row]) * W.row(row).transpose();
     }
     scores->Push(score);
   }

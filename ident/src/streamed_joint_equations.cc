@@ -165,6 +165,17 @@ void StreamedJointEquations::FoldWindow(Eigen::Ref<const Eigen::MatrixXd> window
   FoldRows(kept);
 }
 
+namespace {
+// τ − W β of one row [W_j τ_j] restricted to the joint's columns.
+double RowResidual(const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>& row, const std::vector<int>& columns,
+                   const Eigen::VectorXd& beta) {
+  const Eigen::Index c = static_cast<Eigen::Index>(columns.size());
+  double e = row[c];
+  for (Eigen::Index k = 0; k < c; ++k) e -= row[k] * beta[columns[static_cast<size_t>(k)]];
+  return e;
+}
+}  // namespace
+
 // Folds equation rows [W_0 τ_0 | … | t] into the factors; records the series.
 void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& rows) {
   const Eigen::Index m = rows.rows();
@@ -197,12 +208,15 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
       tile = rows.middleRows(i0, std::min(kTile, m - i0));
       for (Eigen::Index i = 0; i < tile.rows(); ++i) {
         score_.setZero();
+        if (fit.score_offset.size() > 0) score_ = fit.score_offset;
         for (int j = 0; j < n_dof_; ++j) {
           const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
           const Eigen::Index o = offset_[static_cast<size_t>(j)], c = static_cast<Eigen::Index>(columns.size());
-          double e = tile(i, o + c);
-          for (Eigen::Index k = 0; k < c; ++k) e -= tile(i, o + k) * fit.beta[columns[static_cast<size_t>(k)]];
-          const double w2e = fit.row_weights[j] * fit.row_weights[j] * e;
+          const double e = RowResidual(tile.row(i).segment(o, c + 1), columns, fit.beta);
+          const double e_weights = fit.row_reweighting ? RowResidual(tile.row(i).segment(o, c + 1), columns,
+                                                                     fit.row_reweighting->beta)
+                                                       : e;
+          const double w2e = ScoreRowWeight(fit, j, e_weights) * e;
           for (Eigen::Index k = 0; k < c; ++k) score_[columns[static_cast<size_t>(k)]] += w2e * tile(i, o + k);
         }
         scores->Push(score_);
@@ -217,6 +231,14 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
       const Eigen::Index c = static_cast<Eigen::Index>(standard_[static_cast<size_t>(j)].size());
       Eigen::MatrixXd& f = fold_[static_cast<size_t>(j)];
       f = rows.middleCols(o, c + 1);
+      if (settings_.row_weights) {  // an IRLS pass: each row scaled by √w at its residual
+        const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
+        for (Eigen::Index i = 0; i < f.rows(); ++i) {
+          const double r = RowResidual(f.row(i), columns, settings_.row_weights->beta);
+          if (settings_.residuals) settings_.residuals->Add(j, r, f.row(i).head(c), columns, *settings_.row_weights);
+          f.row(i) *= std::sqrt(settings_.row_weights->Weight(j, r));
+        }
+      }
       FoldJointRows(f, &factors_.joints[static_cast<size_t>(j)]);
     }
   };

@@ -134,7 +134,9 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
       ->allow_extra_args(false);
   AddEnumFlag(command, "--model", &identify.model, kIdentificationModelNames,
               "torque (per-body needs hinge wrenches: idbench run)");
-  AddEnumFlag(command, "--estimator", &identify.estimator, kTorqueEstimatorNames, "ols, wls or pc (physically consistent)");
+  AddEnumFlag(command, "--estimator", &identify.estimator, kTorqueEstimatorNames,
+              "ols, wls, pc (physically consistent), tls (total least squares: noisy regressor) or irls "
+              "(iteratively reweighted, robust to outliers)");
   AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
                      &identify.max_gap_s);
   AddEnumFlag(command, "--friction-side", &identify.friction_side, kFrictionSideNames,

@@ -7,6 +7,9 @@
 // project: without ../shared the tests skip and say what is missing.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +55,47 @@ TEST_F(KukaLwr4CliTest, OlsFitsAtLeastAsWellAsThePublishedBoundedFit) {
   const nlohmann::json j = Json("ols");
   EXPECT_EQ(j["n_samples"].get<int>(), 5027);
   EXPECT_LE(j["fit"]["relative_error"].get<double>(), 0.0215);
+}
+
+// Coulomb friction near zero velocity (docs/commands/identify.md): tanh(q̇/V)
+// with V = 0.02 rad/s against the sign, validated on the repeated motion
+// (measurements_2): fit 1.887 % against 1.990 %, validation 2.048 % against
+// 2.138 %, and Fc of joints 1–5 16–27 % higher (a sign fits the steps of
+// reversals with too small an Fc). TLS and IRLS on the same log predict the
+// held-out one within 0.1 % of OLS (no gross outliers; IRLS converges).
+TEST_F(KukaLwr4CliTest, SmoothCoulombSignFitsBetterAndRaisesFc) {
+  std::map<std::string, nlohmann::json> j;
+  for (const std::string& extra : {std::string("--estimator ols"), std::string("--coulomb-smoothing 0.02"),
+                                   std::string("--estimator tls"), std::string("--estimator irls")}) {
+    const std::string out = "cs" + std::to_string(j.size());
+    const Result r = Run("identify --robot " + (kData / "lwr_description" / "urdf" / "kuka_lwr4.urdf").string() +
+                         " --data " + (kData / "logs" / "measurements_1.csv").string() + " --validate " +
+                         (kData / "logs" / "measurements_2.csv").string() + " --friction viscous,coulomb,offset " +
+                         extra + " --write-unverified --out " + (dir_ / out).string());
+    ASSERT_EQ(r.exit_code, 0) << extra << ": " << r.err;
+    j[extra] = Json(out);
+  }
+  const nlohmann::json& sign = j["--estimator ols"];
+  const nlohmann::json& smooth = j["--coulomb-smoothing 0.02"];
+  EXPECT_LT(smooth["fit"]["relative_error"].get<double>(), 0.96 * sign["fit"]["relative_error"].get<double>());
+  EXPECT_LT(smooth["validation"]["relative_error"].get<double>(),
+            0.97 * sign["validation"]["relative_error"].get<double>());
+  auto fc = [](const nlohmann::json& result) {
+    std::vector<double> out;
+    for (const auto& p : result["base_parameters"]) {
+      if (p["name"].get<std::string>().rfind("Fc", 0) == 0) out.push_back(p["value"]);
+    }
+    return out;
+  };
+  const std::vector<double> fc_sign = fc(sign), fc_smooth = fc(smooth);
+  ASSERT_EQ(fc_sign.size(), 7u);
+  for (size_t k = 0; k < 5; ++k) EXPECT_GT(fc_smooth[k], 1.1 * fc_sign[k]) << "Fc" << k + 1;
+  for (const char* e : {"--estimator tls", "--estimator irls"}) {
+    EXPECT_TRUE(j[e]["solve"]["converged"].get<bool>()) << e;
+    EXPECT_NEAR(j[e]["validation"]["relative_error"].get<double>(), sign["validation"]["relative_error"].get<double>(),
+                0.001)
+        << e;
+  }
 }
 
 // The plausible estimate (issue 12's targets): fit ≤ 2.5 % (measured 2.26 %),

@@ -213,8 +213,8 @@ def test_errors_carry_the_command_lines_messages_in_keywords(puma, tmp_path):
     with pytest.raises(ValueError) as raised:
         idbench.identify(puma, "x.csv", estimator="best")
     # The same message, the option named as its keyword rather than its flag.
-    assert err.strip().splitlines()[-1] == "idbench: error: --estimator: expected ols, wls or pc, got 'best'"
-    assert str(raised.value) == "estimator: expected ols, wls or pc, got 'best'"
+    assert err.strip().splitlines()[-1] == "idbench: error: --estimator: expected ols, wls, pc, tls or irls, got 'best'"
+    assert str(raised.value) == "estimator: expected ols, wls, pc, tls or irls, got 'best'"
 
     # Fields whose keyword differs from the field are spelled as the keyword.
     with pytest.raises(ValueError) as raised:
@@ -387,3 +387,15 @@ def test_a_design_that_leaves_parameters_unexcited_is_a_runtime_error_as_the_com
     assert str(raised.value) == cli_message
     assert cli_message.startswith("no design within these limits excites every parameter (rank 50 of 52)")
     assert "\n  column of Fv6 is zero: the data do not excite it" in cli_message
+
+
+def test_tls_and_irls_estimators_recover_a_noise_free_log(puma):
+    # identify(estimator="tls" | "irls"), as `identify --estimator`: the robot
+    # file's base parameters to rounding, with the passes and verdict in the JSON.
+    log = idbench.simulate(puma, "general", duration=4.0, rate=100.0)
+    for estimator in ("tls", "irls"):
+        result = idbench.identify(puma, log, estimator=estimator)
+        solve = json.loads(result.json)["solve"]
+        assert solve["converged"], solve
+        error = np.linalg.norm(result.beta - result.beta_model) / np.linalg.norm(result.beta_model)
+        assert error < 1e-9, (estimator, error)

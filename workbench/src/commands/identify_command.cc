@@ -180,8 +180,22 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
       }
     }
     report.n_samples = factors.n_samples();  // what the fold kept
-    stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
-    report.identification = IdentifyJointTorque(model, base, factors, id_options);
+    // IRLS reads the logs again for each of its passes (each folded on its own, then stacked).
+    const StreamObserver* solving = stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
+    const ReweightedFold reweighted_fold = [&](const RobustRowWeights& weights, IrlsPassRecord* residuals) {
+      StackedFactors all;
+      for (size_t i = 0; i < data.size(); ++i) {
+        StackedFactors own = FoldPreparedLog(data[i], model, id_options.friction, base, {}, nullptr,
+                                             LogPreparationOptions::kMaxHeldSamples, solving, &weights, residuals);
+        if (i == 0) {
+          all = std::move(own);
+        } else {
+          MergeStackedFactors(own, &all);
+        }
+      }
+      return all;
+    };
+    report.identification = IdentifyJointTorque(model, base, factors, id_options, &reweighted_fold);
     // σ from the residual as it is: the logs streamed again for the scores at β̂.
     if (data.size() == 1) {
       ApplyPreparedLogScoreCovariance(first, model, id_options.friction, base, &report.identification.linear,
@@ -204,6 +218,10 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   // ones do not: from N = 1000 (N² = 1e6, the fit's rank tolerance) a column
   // may be lost to that spread rather than to the motion. Said when it happens.
   const LinearFit& linear = report.identification.linear;
+  if (!linear.solve.converged) {
+    report.warnings.push_back("estimator " + std::string(ToString(options.estimator)) + ": " + linear.solve.message +
+                              "; its beta and sigma are those of where it stopped");
+  }
   if (id_options.friction.actuator_side() && linear.rank < base.n_base()) {
     const double ratio = id_options.friction.actuator_from_joint.cwiseAbs().maxCoeff();
     if (ratio >= 1e3) {

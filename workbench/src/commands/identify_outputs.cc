@@ -100,7 +100,20 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
   for (int k = 0; k < id.base.n_base(); ++k) {
     const bool identifiable = id.linear.identifiable[static_cast<size_t>(k)];
     const json nothing;  // null: not identifiable from this log
+    // β_k = Σ coefficient · standard parameter (its row of the combination
+    // matrix; exact zeros left out), the leading term first: a published
+    // table (FIGAROH's, BIRDy's) matched row by row.
+    json combination = json::array();
+    const int lead = id.base.independent[static_cast<size_t>(k)];
+    combination.push_back({{"parameter", id.standard_names[static_cast<size_t>(lead)]},
+                           {"coefficient", id.base.combination(k, lead)}});
+    for (Eigen::Index c = 0; c < id.base.combination.cols(); ++c) {
+      if (c == lead || id.base.combination(k, c) == 0.0) continue;
+      combination.push_back({{"parameter", id.standard_names[static_cast<size_t>(c)]},
+                             {"coefficient", id.base.combination(k, c)}});
+    }
     base.push_back({{"name", id.base.names[static_cast<size_t>(k)]},
+                    {"combination", combination},
                     {"value", identifiable ? json(id.beta[k]) : nothing},
                     {"sigma", identifiable ? json(id.linear.sigma[k]) : nothing},
                     {"sigma_white", identifiable ? json(id.linear.sigma_white[k]) : nothing},
@@ -179,6 +192,10 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"time_window", options.time_window.empty() ? json(nullptr) : json(options.time_window)},
       {"model", std::string(kIdentificationModelNames.Name(options.model))},
       {"estimator", std::string(ToString(options.estimator))},
+      {"solve",
+       {{"iterations", id.linear.solve.iterations},
+        {"converged", id.linear.solve.converged},
+        {"message", id.linear.solve.message}}},
       {"friction", options.friction},
       {"cond", std::isfinite(id.linear.cond) ? json(id.linear.cond) : json(nullptr)},
       {"rank", id.linear.rank},

@@ -139,6 +139,9 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
          "(%sigma '-': sigma itself is what is known)\n";
   out += NegativeFrictionNotes(options, id);
   out += SigmaMethodText(id.linear) + "\n";
+  if (options.estimator == TorqueEstimator::kTls || options.estimator == TorqueEstimator::kIrls) {
+    out += "estimator " + std::string(ToString(options.estimator)) + ": " + id.linear.solve.message + "\n";
+  }
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
     out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "
            "%sigma: relative to the value shown\n";

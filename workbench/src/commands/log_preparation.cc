@@ -388,10 +388,13 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
 
 StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
                                const BaseParameters& base, const Eigen::VectorXd& series_beta, TorqueSeries* series,
-                               Eigen::Index max_series_points, const StreamObserver* observer) {
+                               Eigen::Index max_series_points, const StreamObserver* observer,
+                               const RobustRowWeights* row_weights, IrlsPassRecord* residuals) {
   StreamedEquationsSettings settings;
   settings.filter = log.parallel_filter;
   settings.n_samples = log.n_samples;
+  settings.row_weights = row_weights;
+  settings.residuals = residuals;
   if (series) {
     settings.series_beta = series_beta;
     settings.series_max_points = max_series_points;

@@ -15,16 +15,21 @@
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/physically_consistent.h"
 #include "idbench/ident/plausible_fit.h"
+#include "idbench/ident/reweighted_least_squares.h"
 #include "idbench/ident/signal_filter.h"
 
 namespace idbench {
 
-enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent };
-inline constexpr EnumNames<TorqueEstimator, 3> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc"}};
+// ols: least squares; wls: joints weighted by their noise; pc: physically
+// consistent (plausible_fit.h); tls: total least squares, the regressor noisy
+// too (total_least_squares.h); irls: iteratively reweighted, robust to
+// outliers (reweighted_least_squares.h).
+enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent, kTls, kIrls };
+inline constexpr EnumNames<TorqueEstimator, 5> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc", "tls", "irls"}};
 
-// "ols", "wls", "pc".
+// "ols", "wls", "pc", "tls", "irls".
 std::string_view ToString(TorqueEstimator estimator);
-// false with *why = "estimator: expected ols, wls or pc, got '...'".
+// false with *why = "estimator: expected ols, wls, pc, tls or irls, got '...'".
 bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why = nullptr);
 
 // Parallel filtering (Gautier 1997): the stacked regressor's columns and the
@@ -73,6 +78,7 @@ struct JointTorqueOptions {
   CovarianceMethod covariance = CovarianceMethod::kBatchMeans;
   BaseParameterOptions base;
   PlausibilitySettings plausibility;
+  IrlsOptions irls;  // estimator irls
 };
 
 // The bounds and scales of the plausible fit for a robot file (the prior):
@@ -126,7 +132,7 @@ struct JointTorqueIdentification {
   BaseParameters base;
   std::vector<std::string> standard_names;
   Eigen::VectorXd beta_model;   // the robot file's parameters as base parameters (C·π_model)
-  // OLS, or WLS when asked. When the log does not determine every base
+  // OLS, or WLS, TLS, IRLS when asked (pc: OLS). When the log does not determine every base
   // parameter, β is the minimum-norm solution, with those flagged (LinearFit);
   // the physically consistent fit keeps the robot file's values there (its prior).
   LinearFit linear;
@@ -193,8 +199,12 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
 // used (the factors are filtered or not), nor options.covariance: σ is the
 // white-residual one until ApplyScoreCovariance replaces it. Throws std::invalid_argument for
 // factors of another size or too few equations.
+// Estimator irls needs passes over the equations: `reweighted_fold` (an
+// IRLS pass over the same equations, reweighted_least_squares.h); without it,
+// irls throws std::invalid_argument.
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
-                                              const StackedFactors& factors, const JointTorqueOptions& options);
+                                              const StackedFactors& factors, const JointTorqueOptions& options,
+                                              const ReweightedFold* reweighted_fold = nullptr);
 
 // How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,

@@ -15,7 +15,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <string>
 #include <vector>
+
+#include "idbench/ident/robust_weights.h"
 
 namespace idbench {
 
@@ -38,6 +42,15 @@ struct CovarianceSummary {
   // identifiable parameters of (σ_white,k / σ_k)² (n for kWhite): for a
   // constant regressor and AR(1) noise of coefficient ρ, n (1 − ρ)/(1 + ρ).
   double n_effective = 0.0;
+};
+
+// How an estimate was solved: passes over the equations, and whether the
+// estimator reached its solution (the verdict the tables and identified.json
+// print beside it).
+struct SolveSummary {
+  int iterations = 1;     // OLS, WLS, TLS: 1 (closed form); IRLS: weighted passes over the equations
+  bool converged = true;  // false: β is the last iterate (IRLS) or OLS's (TLS without a solution)
+  std::string message;    // one line: the method, and why it stopped
 };
 
 // A least-squares estimate. When the data do not determine every parameter
@@ -67,7 +80,23 @@ struct LinearFit {
   // 1e-6 of the largest, columns below 1e-9 of the largest counted as zero.
   int rank = 0;
   std::vector<bool> identifiable;  // per parameter: the data determine it (p)
+  SolveSummary solve;
+  // Scores that are not Σ_j w_j² W_tjᵀ e_tj (residual_covariance.h):
+  // TLS adds this to every sample's score, so that they sum to 0 at β̂ as its
+  // estimating equation says (p; empty: nothing added).
+  Eigen::VectorXd score_offset;
+  // IRLS: each row's own weight (RobustRowWeights::Weight at its β) in place
+  // of row_weights[j]²; null: the per-joint weights.
+  std::shared_ptr<const RobustRowWeights> row_reweighting;
 };
+
+// The weight of one row of joint j in a fit's scores, given its residual at
+// fit.row_reweighting->beta (used only with row_reweighting): the row's own
+// weight, or row_weights[j]².
+inline double ScoreRowWeight(const LinearFit& fit, int joint, double residual_at_reweighting_beta) {
+  if (fit.row_reweighting) return fit.row_reweighting->Weight(joint, residual_at_reweighting_beta);
+  return fit.row_weights[joint] * fit.row_weights[joint];
+}
 
 // What the data say about one parameter, from its estimate β̂ and σ:
 //   kDetermined: σ ≤ 10 % of |β̂|;
@@ -122,7 +151,10 @@ void MergeStackedFactors(const StackedFactors& other, StackedFactors* into);
 // The factors of stacked (W, τ) (rows interleaved by joint), each joint
 // restricted to the columns that are non-zero in its rows. Throws
 // std::invalid_argument on size mismatch.
-StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof);
+// With `weights`, each row is scaled by √w (RobustRowWeights::Weight) and
+// its residual at weights->beta added to *residuals (if given): a pass of IRLS.
+StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof,
+                                 const RobustRowWeights* weights = nullptr, IrlsPassRecord* residuals = nullptr);
 
 // RMS per joint of stacked residuals r (rows interleaved by joint) (n_dof).
 Eigen::VectorXd JointRms(const Eigen::VectorXd& r, int n_dof);

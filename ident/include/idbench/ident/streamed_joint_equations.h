@@ -49,6 +49,11 @@ struct StreamedEquationsSettings {
   // instead of this log's own (scores() is then nullptr). Not owned.
   ScoreBatchMeans* scores_into = nullptr;
   bool fold = true;  // false: the factors are left empty (a pass for the scores or the series only)
+  // Optional: an IRLS pass (reweighted_least_squares.h): each folded row
+  // scaled by √w at its residual, which is added to *residuals (if given;
+  // rows of one joint from one thread).
+  const RobustRowWeights* row_weights = nullptr;
+  IrlsPassRecord* residuals = nullptr;
 };
 
 class StreamedJointEquations {

@@ -116,6 +116,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
 // stacked, parallel-filtered and folded (StreamedJointEquations). With
 // series_beta (n_base), *series gets the measured and predicted torques of
 // at most max_series_points kept equations (every k-th; all when fewer).
+// With row_weights, an IRLS pass (StreamedEquationsSettings::row_weights).
 // A progress line goes to stderr when the work takes more than a few
 // seconds (and to the observer, if any: StreamStopped once its stop is
 // set). Throws std::invalid_argument naming the path for too few equations
@@ -124,7 +125,8 @@ StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, 
                                const BaseParameters& base, const Eigen::VectorXd& series_beta = {},
                                TorqueSeries* series = nullptr,
                                Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples,
-                               const StreamObserver* observer = nullptr);
+                               const StreamObserver* observer = nullptr,
+                               const RobustRowWeights* row_weights = nullptr, IrlsPassRecord* residuals = nullptr);
 
 // σ from the residual as it is: the prepared log's equations streamed again
 // (as FoldPreparedLog, without folding them), each kept sample's score at
