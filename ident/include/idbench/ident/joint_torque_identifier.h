@@ -19,12 +19,17 @@
 
 namespace idbench {
 
-enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent };
-inline constexpr EnumNames<TorqueEstimator, 3> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc"}};
+// kInstrumentalVariables and kDidim are the closed-loop estimators
+// (closed_loop_estimators.h): IdentifyJointTorque gives their starting point,
+// OLS, and the front end iterates from it with the controller and reference.
+enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent, kInstrumentalVariables, kDidim };
+inline constexpr EnumNames<TorqueEstimator, 5> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc", "iv", "didim"}};
 
-// "ols", "wls", "pc".
+// "ols", "wls", "pc", "iv", "didim".
 std::string_view ToString(TorqueEstimator estimator);
-// false with *why = "estimator: expected ols, wls or pc, got '...'".
+// Whether the estimator re-simulates the closed loop (iv, didim).
+bool IsClosedLoopEstimator(TorqueEstimator estimator);
+// false with *why = "estimator: expected ols, wls, pc, iv or didim, got '...'".
 bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why = nullptr);
 
 // Parallel filtering (Gautier 1997): the stacked regressor's columns and the
