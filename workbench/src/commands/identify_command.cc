@@ -174,8 +174,17 @@ void EstimateInClosedLoop(const RobotModel& model, const IdentifyOptions& option
                                                                    : ClosedLoopMethod::kInstrumentalVariables;
   estimator.controller = inputs.controller;
   JointTorqueIdentification& id = report->identification;
-  const ClosedLoopEstimate estimate =
+  // From OLS; when its estimate is no mechanism (its mass matrix not positive
+  // definite: it cannot be simulated), from the physically consistent one,
+  // which is by construction.
+  ClosedLoopEstimate estimate =
       EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.linear.beta, estimator);
+  if (!estimate.converged && estimate.iterations == 0) {
+    estimate = EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.consistent.beta,
+                                  estimator);
+    estimate.message = "from the physically consistent estimate (OLS's mass matrix is not positive definite): " +
+                       estimate.message;
+  }
   id.beta = estimate.beta;
   id.linear.sigma = estimate.sigma;
   id.fit = PredictTorques(factors, estimate.beta);
