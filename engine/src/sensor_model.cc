@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <optional>
-#include <random>
 #include <stdexcept>
 
 namespace idbench {
@@ -56,6 +54,18 @@ bool SensorOptions::IsValid(int n_dof, double dt, std::string* why) const {
   return true;
 }
 
+bool ApplyNoisePreset(NoisePreset preset, SensorOptions* options, std::string* why) {
+  if (preset == NoisePreset::kNone) return true;
+  if (options->q_noise != 0.0 || !options->tau_noise.empty()) {
+    if (why) *why = "noise_preset: sets the position and torque noise (q_noise, tau_noise): give one or the other";
+    return false;
+  }
+  constexpr double kDegree = M_PI / 180.0;
+  options->q_noise = (preset == NoisePreset::kLow ? 1e-4 : 1e-2) * kDegree;
+  options->tau_noise = {preset == NoisePreset::kLow ? 0.05 : 0.10};
+  return true;
+}
+
 TorqueNoise::TorqueNoise(const std::vector<double>& sigma, int n_dof, double bandwidth_hz, double rate_hz) {
   std::string why;
   if (!TorqueNoiseBandwidthIsValid(bandwidth_hz, rate_hz, &why)) throw std::invalid_argument(why);
@@ -84,44 +94,60 @@ double TorqueNoise::Next(int joint, double standard_normal) {
   return x;
 }
 
+SensorSampler::SensorSampler(const SensorOptions& options, int n_dof, double dt)
+    : options_(options), n_dof_(n_dof), rng_(options.seed) {
+  std::string why;
+  if (!options.IsValid(n_dof, dt, &why)) throw std::invalid_argument("sensor model: " + why);
+  if (!options.tau_noise.empty()) {
+    tau_noise_.emplace(options.tau_noise, n_dof, options.tau_noise_bandwidth_hz, options.rate_hz);
+  }
+}
+
+void SensorSampler::MeasureQ(const Eigen::VectorXd& q_true, Eigen::Ref<Eigen::VectorXd> q_measured) {
+  for (Eigen::Index j = 0; j < q_true.size(); ++j) {
+    double q = q_true[j];
+    if (options_.q_noise > 0.0) q += options_.q_noise * normal_(rng_);
+    if (options_.q_resolution > 0.0) q = options_.q_resolution * std::round(q / options_.q_resolution);
+    q_measured[j] = q;
+  }
+}
+
+void SensorSampler::MeasureTau(const Eigen::VectorXd& tau, Eigen::Ref<Eigen::VectorXd> tau_measured) {
+  const std::vector<double>& sigma = options_.tau_noise;
+  for (Eigen::Index j = 0; j < tau.size(); ++j) {
+    const double s = sigma.empty() ? 0.0 : sigma.size() == 1 ? sigma[0] : sigma[static_cast<size_t>(j)];
+    tau_measured[j] = tau[j] + (s > 0.0 ? tau_noise_->Next(static_cast<int>(j), normal_(rng_)) : 0.0);
+  }
+}
+
+JointLog SensorSampler::SizedLog(int n_samples) const {
+  JointLog out;
+  out.t.resize(n_samples);
+  out.q.resize(n_samples, n_dof_);
+  out.tau.resize(n_samples, n_dof_);
+  if (options_.record_derivatives) {
+    out.qd.resize(n_samples, n_dof_);
+    out.qdd.resize(n_samples, n_dof_);
+  }
+  return out;
+}
+
 JointLog Measure(const SimulationLog& log, const SensorOptions& options) {
   if (log.steps.empty()) throw std::invalid_argument("sensor model: the simulation log is empty");
   const int n_dof = static_cast<int>(log.steps.front().q.size());
-  std::string why;
-  if (!options.IsValid(n_dof, log.dt, &why)) throw std::invalid_argument("sensor model: " + why);
+  SensorSampler sensors(options, n_dof, log.dt);
   const int k = options.StepsPerSample(log.dt);
   const int n_samples = static_cast<int>((log.steps.size() + static_cast<size_t>(k) - 1) / static_cast<size_t>(k));
 
-  JointLog out;
-  out.t.resize(n_samples);
-  out.q.resize(n_samples, n_dof);
-  out.tau.resize(n_samples, n_dof);
-  if (options.record_derivatives) {
-    out.qd.resize(n_samples, n_dof);
-    out.qdd.resize(n_samples, n_dof);
-  }
-  // One generator, drawn in a fixed order (sample, then q before τ by joint).
-  std::mt19937_64 rng(options.seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::optional<TorqueNoise> tau_noise;
-  if (!options.tau_noise.empty()) {
-    tau_noise.emplace(options.tau_noise, n_dof, options.tau_noise_bandwidth_hz, options.rate_hz);
-  }
+  JointLog out = sensors.SizedLog(n_samples);
+  Eigen::VectorXd q(n_dof), tau(n_dof);
   for (int s = 0; s < n_samples; ++s) {
     const LogStep& step = log.steps[static_cast<size_t>(s) * static_cast<size_t>(k)];
     out.t[s] = step.t;
-    for (int j = 0; j < n_dof; ++j) {
-      double q = step.q[j];
-      if (options.q_noise > 0.0) q += options.q_noise * normal(rng);
-      if (options.q_resolution > 0.0) q = options.q_resolution * std::round(q / options.q_resolution);
-      out.q(s, j) = q;
-    }
-    for (int j = 0; j < n_dof; ++j) {
-      const double sigma = options.tau_noise.empty()      ? 0.0
-                           : options.tau_noise.size() == 1 ? options.tau_noise[0]
-                                                           : options.tau_noise[static_cast<size_t>(j)];
-      out.tau(s, j) = step.tau[j] + (sigma > 0.0 ? tau_noise->Next(j, normal(rng)) : 0.0);
-    }
+    sensors.MeasureQ(step.q, q);
+    sensors.MeasureTau(step.tau, tau);
+    out.q.row(s) = q.transpose();
+    out.tau.row(s) = tau.transpose();
     if (options.record_derivatives) {
       out.qd.row(s) = step.qd.transpose();
       out.qdd.row(s) = step.qdd.transpose();

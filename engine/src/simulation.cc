@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "idbench/engine/inverse_dynamics.h"
+#include "runge_kutta4.h"
 
 namespace idbench {
 
@@ -50,8 +51,7 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
   const double kp = options.tracking_bandwidth * options.tracking_bandwidth;
   const double kd = 2.0 * options.tracking_bandwidth;
   Eigen::VectorXd q(n_dof), qd(n_dof), tau(n_dof), qdd_cmd(n_dof), qdd1(n_dof);
-  Eigen::VectorXd q2(n_dof), qd2(n_dof), qdd2(n_dof), q3(n_dof), qd3(n_dof), qdd3(n_dof), q4(n_dof), qd4(n_dof),
-      qdd4(n_dof);
+  internal::RungeKutta4Workspace stages(n_dof);
 
   // Preallocate the whole log; the loop below does not allocate.
   SimulationLog log;
@@ -115,23 +115,14 @@ SimulationLog Simulate(const RobotModel& model, const Trajectory& reference,
     }
     if (n + 1 == n_steps) break;  // the state after the last step is not logged
 
-    // Stages 2–4 of the classical Runge–Kutta step (Hairer, Nørsett & Wanner,
-    // Solving ODEs I, §II.1) on x = (q, qd), ẋ = (qd, qdd(q, qd, τ)), the
-    // torque recomputed at each stage's time and state.
-    q2 = q + 0.5 * dt * qd;
-    qd2 = qd + 0.5 * dt * qdd1;
-    control(step.t + 0.5 * dt, q2, qd2, &tau);
-    sim.Accelerations(q2, qd2, tau, dt, &qdd2, /*feedback=*/false);
-    q3 = q + 0.5 * dt * qd2;
-    qd3 = qd + 0.5 * dt * qdd2;
-    control(step.t + 0.5 * dt, q3, qd3, &tau);
-    sim.Accelerations(q3, qd3, tau, dt, &qdd3, /*feedback=*/false);
-    q4 = q + dt * qd3;
-    qd4 = qd + dt * qdd3;
-    control(step.t + dt, q4, qd4, &tau);
-    sim.Accelerations(q4, qd4, tau, dt, &qdd4, /*feedback=*/false);
-    q += dt / 6.0 * (qd + 2.0 * qd2 + 2.0 * qd3 + qd4);
-    qd += dt / 6.0 * (qdd1 + 2.0 * qdd2 + 2.0 * qdd3 + qdd4);
+    // Stages 2–4, the torque recomputed at each stage's time and state.
+    internal::RungeKutta4Step(
+        step.t, dt, qdd1,
+        [&](double t_s, const Eigen::VectorXd& q_s, const Eigen::VectorXd& qd_s, Eigen::VectorXd* qdd_s) {
+          control(t_s, q_s, qd_s, &tau);
+          sim.Accelerations(q_s, qd_s, tau, dt, qdd_s, /*feedback=*/false);
+        },
+        &q, &qd, &stages);
   }
   if (!log.steps.back().q.allFinite() || !log.steps.back().tau.allFinite()) {
     throw std::runtime_error("simulation diverged (non-finite state); reduce dt or the motion's accelerations");

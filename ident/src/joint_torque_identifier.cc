@@ -140,6 +140,10 @@ TorquePrediction Predict(const StackedFactors& factors, const Eigen::VectorXd& b
 
 std::string_view ToString(TorqueEstimator estimator) { return kTorqueEstimatorNames.Name(estimator); }
 
+bool IsClosedLoopEstimator(TorqueEstimator estimator) {
+  return estimator == TorqueEstimator::kInstrumentalVariables || estimator == TorqueEstimator::kDidim;
+}
+
 bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why) {
   return kTorqueEstimatorNames.Parse(text, estimator, why);
 }

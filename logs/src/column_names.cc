@@ -63,6 +63,12 @@ bool ParseColumnName(const std::string& name, ColumnTarget* target) {
       return true;
     }
   }
+  // A closed loop's reference (simulate --controller writes qr1..qrn): known,
+  // not an identification input, so read past as "_" is.
+  if (prefix == kReferencePrefix) {
+    *target = {-1, joint - 1};
+    return true;
+  }
   return false;
 }
 

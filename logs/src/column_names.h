@@ -1,5 +1,5 @@
 // Joint-log column names (README.md, "Joint logs"): t, q<j>, qd<j>, qdd<j>,
-// tau<j>, i<j> and "_", where each column's values go, and how a column is
+// tau<j>, i<j>, qr<j> and "_", where each column's values go, and how a column is
 // named in messages.
 #pragma once
 
@@ -19,8 +19,10 @@ struct ColumnTarget {
 };
 constexpr const char* kKindPrefix[] = {"t", "q", "qd", "qdd", "tau", "i"};
 constexpr int kKinds = 6;
+constexpr const char* kReferencePrefix = "qr";
 
-// Parses a column name: t, q<j>, qd<j>, qdd<j>, tau<j>, i<j> (j >= 1) or "_".
+// Parses a column name: t, q<j>, qd<j>, qdd<j>, tau<j>, i<j> (j >= 1), "_",
+// or qr<j> (a closed loop's reference position, skipped as "_" is: kind −1).
 // Returns false for anything else.
 bool ParseColumnName(const std::string& name, ColumnTarget* target);
 

@@ -1,11 +1,19 @@
 #include "idbench/logs/joint_log_csv_writer.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "number_format.h"
 
 namespace idbench {
 
-std::string FormatJointLogCsv(const JointLog& log) {
+std::string FormatJointLogCsv(const JointLog& log, const Eigen::MatrixXd* q_ref) {
   const int n = log.n_dof();
+  if (q_ref && (q_ref->rows() != log.n_samples() || q_ref->cols() != n)) {
+    throw std::invalid_argument("FormatJointLogCsv: expected a reference of " + std::to_string(log.n_samples()) +
+                                " x " + std::to_string(n) + ", got " + std::to_string(q_ref->rows()) + " x " +
+                                std::to_string(q_ref->cols()));
+  }
   const bool derivatives = log.has_derivatives();
   const bool torques = log.tau.size() > 0;
   std::string out = "t";
@@ -13,6 +21,9 @@ std::string FormatJointLogCsv(const JointLog& log) {
     if (!derivatives && prefix[1] == 'd') continue;
     if (!torques && prefix[0] == 't') continue;
     for (int j = 1; j <= n; ++j) out += "," + std::string(prefix) + std::to_string(j);
+  }
+  if (q_ref) {
+    for (int j = 1; j <= n; ++j) out += ",qr" + std::to_string(j);
   }
   out += '\n';
   out.reserve(out.size() + static_cast<size_t>(log.n_samples()) * static_cast<size_t>(4 * n + 1) * 24);
@@ -30,6 +41,7 @@ std::string FormatJointLogCsv(const JointLog& log) {
       row(log.qdd);
     }
     if (torques) row(log.tau);
+    if (q_ref) row(*q_ref);
     out.push_back('\n');
   }
   return out;

@@ -9,7 +9,7 @@ namespace {
 
 std::vector<Link> PaperLinks() { return MakePaper6r().links(); }
 
-void ExpectRejected(std::vector<Link> links, const std::string& fragment) {
+void ExpectModelRejected(std::vector<Link> links, const std::string& fragment) {
   try {
     RobotModel model("broken", std::move(links));
     FAIL() << "expected std::invalid_argument containing '" << fragment << "'";
@@ -21,26 +21,26 @@ void ExpectRejected(std::vector<Link> links, const std::string& fragment) {
 TEST(RobotModelTest, RejectsBrokenLinksNamingThem) {
   auto links = PaperLinks();
   links[2].inertia.mass = 0.0;
-  ExpectRejected(links, "link 'B3': mass must be > 0");
+  ExpectModelRejected(links, "link 'B3': mass must be > 0");
 
   links = PaperLinks();
   links[4].inertia.I_Bcm_B(1, 1) = -1.0;
-  ExpectRejected(links, "link 'B5': inertia tensor must be positive definite");
+  ExpectModelRejected(links, "link 'B5': inertia tensor must be positive definite");
 
   links = PaperLinks();
   links[1].limits.q_min = 1.0;
   links[1].limits.q_max = 0.0;
-  ExpectRejected(links, "link 'B2': joint limits");
+  ExpectModelRejected(links, "link 'B2': joint limits");
 
   links = PaperLinks();
   links[3].parent = 3;
-  ExpectRejected(links, "link 'B4': parent index");
+  ExpectModelRejected(links, "link 'B4': parent index");
 
   links = PaperLinks();
   links[0].axis_J = Eigen::Vector3d(1, 1, 0);
-  ExpectRejected(links, "link 'B1': joint axis");
+  ExpectModelRejected(links, "link 'B1': joint axis");
 
-  ExpectRejected({}, "no links");
+  ExpectModelRejected({}, "no links");
 }
 
 TEST(RobotModelTest, ChildrenFollowParents) {

@@ -58,5 +58,22 @@ TEST(JointLogCsvWriterTest, WritesTheColumnsTheLogHasAndReadsBackExactly) {
   EXPECT_EQ(read_q.tau.size(), 0);
 }
 
+// A closed loop's log adds its reference, qr1..qrn, after the torques; the
+// readers skip those columns and read the rest exactly (before, "qr1" was an
+// unknown column and the log was refused).
+TEST(JointLogCsvWriterTest, ReferenceColumnsAreWrittenLastAndSkippedByTheReader) {
+  const RobotModel puma = MakePuma560();
+  const JointLog log = RandomLog(10, false, true);
+  const Eigen::MatrixXd q_ref = RandomLog(10, false, false).q * 2.0;
+  const std::string text = FormatJointLogCsv(log, &q_ref);
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6,qr1,qr2,qr3,qr4,qr5,qr6");
+  const JointLog read = ParseJointLogCsv(text, puma, "closed.csv");
+  EXPECT_EQ(read.q, log.q);
+  EXPECT_EQ(read.tau, log.tau);
+  const Eigen::MatrixXd wrong(3, 6);
+  EXPECT_THROW(FormatJointLogCsv(log, &wrong), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace idbench

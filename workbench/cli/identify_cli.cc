@@ -22,6 +22,7 @@ namespace {
 constexpr FieldFlag kIdentifySpellings[] = {
     {"validate_window", "--validate-window"}, {"time_window", "--time-window"}, {"drive_gains", "--drive-gains"},
     {"friction_side", "--friction-side"}, {"data", "--data"}, {"model", "--model"}, {"estimator", "--estimator"},
+    {"controller", "--controller"}, {"reference", "--reference"},
     // PlausibilitySettings, as the library names them.
     {"plausibility.com_in_geometry = false", "--com-bound none"},
     {"plausibility.mass_factor_min, plausibility.mass_factor_max", "--mass-range"},
@@ -82,6 +83,9 @@ int IdentifyCommand(IdentifyOptions options, const UrdfLoadOptions& load, bool w
   std::printf("wrote %s%s%s\n", (dir / "identified.json").c_str(),
               model_files ? (", " + (dir / "identified.urdf").string() + ", identified.xml and joints.yaml").c_str() : "",
               with_report ? (" and " + (dir / "report.html").string() + ", report.pdf").c_str() : "");
+  // A closed-loop estimator that did not converge: the files hold its last
+  // estimate (and say so); the run failed.
+  if (report.closed_loop && !report.closed_loop->converged) return kExitFailure;
   const std::string refused = context.FlagSpelling(RefusedModelMessage(options, report));
   if (refused.empty()) return 0;
   if (options.write_unverified) {
@@ -135,8 +139,13 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
   AddEnumFlag(command, "--model", &identify.model, kIdentificationModelNames,
               "torque (per-body needs hinge wrenches: idbench run)");
   AddEnumFlag(command, "--estimator", &identify.estimator, kTorqueEstimatorNames,
-              "ols, wls, pc (physically consistent), tls (total least squares: noisy regressor) or irls "
-              "(iteratively reweighted, robust to outliers)");
+              "ols, wls, pc (physically consistent), tls (total least squares: noisy regressor), irls "
+              "(iteratively reweighted, robust to outliers), iv (instrumental variables) or didim: iv and didim "
+              "re-simulate the closed loop (--controller, --reference)");
+  command->add_option("--controller", identify.controller,
+                      "iv, didim: the robot's controller file (as simulate --controller reads it)");
+  command->add_option("--reference", identify.reference,
+                      "iv, didim: the reference the robot tracked: a built-in motion (10 s) or a trajectory file");
   AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
                      &identify.max_gap_s);
   AddEnumFlag(command, "--friction-side", &identify.friction_side, kFrictionSideNames,

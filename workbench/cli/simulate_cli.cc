@@ -21,11 +21,15 @@ constexpr FieldFlag kSimulateSpellings[] = {{"paper_accel_deg_s2", "--accel"},
                                             {"motor_coulomb", "--motor-coulomb"},
                                             {"motor_rotor_inertia", "--motor-rotor-inertia"},
                                             {"transmission", "--transmission"},
-                                            {"tau_noise_bandwidth_hz", "--tau-noise-bandwidth"}};
+                                            {"tau_noise_bandwidth_hz", "--tau-noise-bandwidth"},
+                                            {"controller", "--controller"},
+                                            {"noise_preset", "--noise-preset"},
+                                            {"q_noise", "--q-noise"}};
 
 struct SimulateFlags {
   SimulateOptions options;
   bool no_derivatives = false;  // --no-derivatives: sensors.record_derivatives = false
+  NoisePreset noise_preset = NoisePreset::kNone;  // --noise-preset: sensors.q_noise, tau_noise
 };
 
 int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load, const CliContext& context) {
@@ -37,6 +41,16 @@ int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load,
   const std::optional<Transmission> transmission = SimulateTransmission(options, model.n_dof(), from_urdf);
   const std::filesystem::path path(options.out);
   if (path.has_parent_path()) EnsureOutputDirectory(path.parent_path());
+  if (!options.controller.empty()) {
+    const ClosedLoopLog closed = SimulateClosedLoopLog(model, options);
+    WriteFileAtomically(path, FormatJointLogCsv(closed.log, &closed.q_ref));
+    const double tracking = (closed.log.q - closed.q_ref).cwiseAbs().maxCoeff();
+    std::printf("simulated %s along '%s' for %g s under the controller %s: %d samples at %g Hz, largest measured "
+                "tracking error %.3g rad; wrote %s\n",
+                model.name().c_str(), options.trajectory.c_str(), closed.log.n_samples() / options.sensors.rate_hz,
+                options.controller.c_str(), closed.log.n_samples(), options.sensors.rate_hz, tracking, path.c_str());
+    return 0;
+  }
   if (!transmission) {
     const JointLog log = SimulateJointLog(model, options);
     WriteFileAtomically(path, FormatJointLogCsv(log));
@@ -82,6 +96,9 @@ CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
                       "Torque noise low-pass coloured to this band [Hz], sigma unchanged; 0 = white")
       ->capture_default_str();
   command->add_option("--q-noise", simulate.sensors.q_noise, "Position noise sigma [rad]")->capture_default_str();
+  AddEnumFlag(command, "--noise-preset", &flags->noise_preset, kNoisePresetNames,
+              "BIRDy's noise levels: low (position 1e-4 deg, torque 0.05 N m) or high (1e-2 deg, 0.10 N m); "
+              "instead of --q-noise and --tau-noise");
   command->add_option("--encoder-resolution", simulate.sensors.q_resolution, "Encoder quantum [rad]; 0 = none")
       ->capture_default_str();
   command->add_flag("--no-derivatives", flags->no_derivatives,
@@ -99,11 +116,19 @@ CliCommand AddSimulateCommand(CLI::App* app, CliContext* context) {
   command->add_option("--motor-rotor-inertia", simulate.motor_rotor_inertia,
                       "Each motor's rotor inertia [kg m^2]: one value, or one per motor")
       ->delimiter(',');
+  command->add_option("--controller", simulate.controller,
+                      "Closed loop: a controller file {\"kp\": [...], \"kd\": [...], \"ki\": [...], \"tau_max\": "
+                      "[...], \"feedforward\": \"model\"} (one value or one per joint) whose PID, at --rate, tracks "
+                      "--trajectory from the measured q; the log adds the reference qr1..qrn");
   AddBasePoseFlag(command, &simulate.base_pose);
   AddSeedFlag(command, &simulate.sensors.seed);
   AddOutFlag(command, &simulate.out, "Joint-log CSV to write")->capture_default_str();
   return {command, [flags, context] {
             flags->options.sensors.record_derivatives = !flags->no_derivatives;
+            std::string why;
+            if (!ApplyNoisePreset(flags->noise_preset, &flags->options.sensors, &why)) {
+              return context->UsageError(why);
+            }
             return SimulateCommand(flags->options, *context->robot_load(), *context);
           }};
 }

@@ -728,3 +728,46 @@ TEST_F(IdentifyCliTest, AbsurdMassIsRefusedAtLoad) {
 
 }  // namespace
 }  // namespace idbench
+
+namespace idbench {
+namespace {
+
+// A closed loop simulated under a PID (model feed-forward) and identified by
+// the closed-loop estimators: noise-free with qd, qdd read, both recover the
+// base parameters (robot file = truth) in one iteration; without the
+// controller or the reference they are refused before anything runs.
+TEST_F(IdentifyCliTest, ClosedLoopEstimatorsRecoverTheBaseParameters) {
+  const fs::path pid = dir_ / "pid.json";
+  std::ofstream(pid) << R"({"kp": [2000, 2000, 1000, 200, 200, 200], "kd": [40, 40, 20, 4, 4, 4], "ki": 50,
+                           "feedforward": "model"})";
+  const fs::path log = dir_ / "closed.csv";
+  Result r = Run("simulate --robot puma560 --duration 4 --controller " + pid.string() + " --out " + log.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(Slurp(log).find(",qr1,"), std::string::npos);
+  for (const std::string estimator : {"iv", "didim"}) {
+    const fs::path out = dir_ / estimator;
+    r = Run("identify --robot puma560 --data " + log.string() + " --estimator " + estimator + " --controller " +
+            pid.string() + " --reference general --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = Json(out / "identified.json");
+    EXPECT_EQ(j["estimator"], estimator);
+    EXPECT_TRUE(j["closed_loop"]["converged"].get<bool>());
+    EXPECT_LT(BaseError(j), 1e-9) << estimator;
+  }
+  r = Run("identify --robot puma560 --data " + log.string() + " --estimator didim --reference general --out " +
+          (dir_ / "x").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--controller: the estimator didim re-simulates the closed loop"), std::string::npos) << r.err;
+  r = Run("identify --robot puma560 --data " + log.string() + " --estimator iv --controller " + pid.string() +
+          " --out " + (dir_ / "x").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--reference: the estimator iv"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "bad.json") << R"({"kp": [1, 2], "kd": 1})";
+  r = Run("simulate --robot puma560 --duration 1 --controller " + (dir_ / "bad.json").string() + " --out " +
+          (dir_ / "b.csv").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.json: kp: expected one value or 6 (one per joint), got 2"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace idbench

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/formats/controller_file.h"
+#include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/engine/urdf.h"
 #include "idbench/logs/joint_log_csv_reader.h"
 #include "idbench/logs/joint_log_description.h"
@@ -86,6 +88,19 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   std::string plausibility_why;
   if (!plausibility.IsValid(&plausibility_why)) return fail(plausibility_why);
   if (!base_pose.IsValid(why)) return false;
+  const std::string name(ToString(estimator));
+  if (IsClosedLoopEstimator(estimator) && controller.empty()) {
+    return fail("controller: the estimator " + name + " re-simulates the closed loop: it needs the robot's "
+                "controller file");
+  }
+  if (IsClosedLoopEstimator(estimator) && reference.empty()) {
+    return fail("reference: the estimator " + name + " re-simulates the closed loop: it needs the reference the "
+                "robot tracked (a built-in motion or a trajectory file)");
+  }
+  if (!IsClosedLoopEstimator(estimator) && (!controller.empty() || !reference.empty())) {
+    return fail(std::string(controller.empty() ? "reference" : "controller") +
+                ": only the closed-loop estimators (iv, didim) use it, the estimator is " + name);
+  }
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;
 }
@@ -134,6 +149,62 @@ class IdentifyStages {
   StreamObserver observer_;
 };
 
+// What a closed-loop estimator re-simulates: the robot's controller and reference.
+struct ClosedLoopInputs {
+  JointControllerOptions controller;
+  std::unique_ptr<Trajectory> reference;
+};
+
+// Iterates the closed-loop estimator (iv, didim) from the OLS estimate on the
+// samples the fit used (every sample: the controller's period), then puts its
+// estimate, σ and fit in the report.
+void EstimateInClosedLoop(const RobotModel& model, const IdentifyOptions& options, const BaseParameters& base,
+                          const ClosedLoopInputs& inputs, const StackedFactors& factors, IdentifyReport* report,
+                          const StreamObserver*) {
+  const std::string name(ToString(options.estimator));
+  if (report->log.n_samples() != report->n_samples_read) {
+    throw std::invalid_argument("estimator " + name + ": the log has " + std::to_string(report->n_samples_read) +
+                                " samples, more than the " + std::to_string(LogPreparationOptions::kMaxHeldSamples) +
+                                " held for a re-simulated estimator");
+  }
+  const std::vector<Eigen::Index> kept = StackedSamples(report->log, report->parallel_filter);
+  if (kept.empty() || kept.back() - kept.front() + 1 != static_cast<Eigen::Index>(kept.size())) {
+    throw std::invalid_argument("estimator " + name + ": the re-simulated estimators use every sample (the "
+                                "controller's period): no decimation");
+  }
+  const JointLog& all = report->log;
+  const Eigen::Index first = kept.front(), n = static_cast<Eigen::Index>(kept.size());
+  JointLog used;
+  used.t = all.t.segment(first, n);
+  used.q = all.q.middleRows(first, n);
+  used.tau = all.tau.middleRows(first, n);
+  if (all.has_derivatives()) {
+    used.qd = all.qd.middleRows(first, n);
+    used.qdd = all.qdd.middleRows(first, n);
+  }
+  ClosedLoopEstimatorOptions estimator;
+  estimator.method = options.estimator == TorqueEstimator::kDidim ? ClosedLoopMethod::kDidim
+                                                                   : ClosedLoopMethod::kInstrumentalVariables;
+  estimator.controller = inputs.controller;
+  JointTorqueIdentification& id = report->identification;
+  // From OLS; when its estimate is no mechanism (its mass matrix not positive
+  // definite: it cannot be simulated), from the physically consistent one,
+  // which is by construction.
+  ClosedLoopEstimate estimate =
+      EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.linear.beta, estimator);
+  if (!estimate.converged && estimate.iterations == 0) {
+    estimate = EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.consistent.beta,
+                                  estimator);
+    estimate.message = "from the physically consistent estimate (OLS's mass matrix is not positive definite): " +
+                       estimate.message;
+  }
+  id.beta = estimate.beta;
+  id.linear.sigma = estimate.sigma;
+  id.fit = PredictTorques(factors, estimate.beta);
+  if (!estimate.converged) report->warnings.push_back("estimator " + name + ": " + estimate.message);
+  report->closed_loop = estimate;
+}
+
 // IdentifyPreparedLogs, its stages (folding each log, the solve) reported to
 // `stages`. data: the logs identified together (at least one), in order.
 IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& options, std::vector<PreparedLog> data,
@@ -156,6 +227,18 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     report.warnings.insert(report.warnings.end(), log.warnings.begin(), log.warnings.end());
   }
   const std::string data_name = data.size() == 1 ? options.data : "data";
+  // The closed loop's controller and reference, read before the logs'
+  // messages take over; the re-simulation follows one reference: one log.
+  std::optional<ClosedLoopInputs> closed_loop;
+  if (IsClosedLoopEstimator(options.estimator)) {
+    if (data.size() > 1) {
+      throw std::invalid_argument("estimator " + std::string(ToString(options.estimator)) + ": one data log (it "
+                                  "re-simulates the closed loop along one reference), got " +
+                                  std::to_string(data.size()));
+    }
+    closed_loop.emplace(ClosedLoopInputs{ReadControllerFile(options.controller, model.n_dof()),
+                                         LoadTrajectoryArg(options.reference, model, BuiltinMotionOptions{})});
+  }
   // The equations streamed into factors, each log's in turn stacked onto the
   // first's (MergeStackedFactors), then solved.
   const BaseParameters base = ComputeBaseParameters(model, id_options.friction, id_options.base);
@@ -207,6 +290,11 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
                                        [&](const PreparedLog& log) {
                                          return stages->Next("sigma from the residual of " + log.path);
                                        });
+    }
+    if (closed_loop) {
+      EstimateInClosedLoop(model, options, base, *closed_loop, factors, &report,
+                           stages->Next("re-simulating the closed loop (" + std::string(ToString(options.estimator)) +
+                                        ")"));
     }
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -268,10 +356,11 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
                                 "model (MountRobot)");
   }
   // Stages: each log read, then folded, the solve, and the identification
-  // logs' second pass (the scores of their σ).
+  // logs' second pass (the scores of their σ), and a closed loop's re-simulation.
   const std::vector<std::string> paths = options.data_logs();
   const int n_held_out = int(!options.validate.empty()) + int(!options.validate.empty() && !options.validate_window.empty());
-  IdentifyStages stages(&control, 3 * static_cast<int>(paths.size()) + 1 + 2 * n_held_out);
+  IdentifyStages stages(&control, 3 * static_cast<int>(paths.size()) + 1 + 2 * n_held_out +
+                                      int(IsClosedLoopEstimator(options.estimator)));
   try {
     std::vector<PreparedLog> data;
     for (const std::string& path : paths) {

@@ -227,6 +227,15 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
         {"links", links}}},
       {"joints", JointDynamicsJson(JointDynamicsOf(model, options, report))},
   };
+  if (report.closed_loop) {
+    // The closed-loop estimator's verdict; sigma_method above is the OLS start's.
+    result["closed_loop"] = {{"controller", options.controller},
+                             {"reference", options.reference},
+                             {"iterations", report.closed_loop->iterations},
+                             {"converged", report.closed_loop->converged},
+                             {"last_change", report.closed_loop->last_change},
+                             {"message", report.closed_loop->message}};
+  }
   if (options.friction_side == FrictionSide::kActuator) {
     result["joint_side"] = JointSideEquivalentsJson(model, options, report);
     // The transmission the actuator-side terms act through (a log

@@ -138,9 +138,14 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   out += "status: determined = sigma <= 10 % of the value; ~0 = |value| <= 3 sigma, indistinguishable from zero "
          "(%sigma '-': sigma itself is what is known)\n";
   out += NegativeFrictionNotes(options, id);
-  out += SigmaMethodText(id.linear) + "\n";
-  if (options.estimator == TorqueEstimator::kTls || options.estimator == TorqueEstimator::kIrls) {
-    out += "estimator " + std::string(ToString(options.estimator)) + ": " + id.linear.solve.message + "\n";
+  if (report.closed_loop) {
+    out += "estimator " + std::string(ToString(options.estimator)) + ": " + report.closed_loop->message +
+           "; sigma: of its last iteration, as if the residual were white\n";
+  } else {
+    out += SigmaMethodText(id.linear) + "\n";
+    if (options.estimator == TorqueEstimator::kTls || options.estimator == TorqueEstimator::kIrls) {
+      out += "estimator " + std::string(ToString(options.estimator)) + ": " + id.linear.solve.message + "\n";
+    }
   }
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) {
     out += "sigma: of the least-squares estimate (the physically consistent one has no covariance of its own); "

@@ -10,6 +10,7 @@
 #include "idbench/engine/input_file.h"
 #include "idbench/logs/joint_log_csv_writer.h"
 #include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/formats/controller_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/workbench/formats/transmission_file.h"
 
@@ -39,8 +40,12 @@ bool SimulateOptions::IsValid(std::string* why) const {
   }
   // An input the run would overwrite (its own trajectory, a design's
   // trajectory.json beside the log, the transmission file).
+  if (!controller.empty() && !transmission.empty()) {
+    return fail("controller: a closed loop is simulated on the joint side; it cannot be combined with a "
+                "transmission");
+  }
   const std::pair<const char*, const std::string*> inputs[] = {
-      {"robot", &robot}, {"trajectory", &trajectory}, {"transmission", &transmission}};
+      {"robot", &robot}, {"trajectory", &trajectory}, {"transmission", &transmission}, {"controller", &controller}};
   for (size_t k = 0; k < outputs.size(); ++k) {
     for (const auto& [field, path] : inputs) {
       if (path->empty() || !IsSameFile(outputs[k], *path)) continue;
@@ -59,17 +64,28 @@ std::vector<std::string> SimulateOptions::Outputs() const {
 
 namespace {
 
-// The simulation before the sensors, the model mounted at options.base_pose.
-SimulationLog SimulateSteps(const RobotModel& loaded, const SimulateOptions& options) {
-  const RobotModel model = MountRobot(loaded, options.base_pose);  // gravity seen from the base
+// The experiment's model (mounted at options.base_pose, gravity seen from
+// the base), motion and simulation options, the sensors checked.
+struct Experiment {
+  RobotModel model;
+  std::unique_ptr<Trajectory> motion;
+  SimulationOptions simulation;
+};
+Experiment PrepareExperiment(const RobotModel& loaded, const SimulateOptions& options) {
+  Experiment e{MountRobot(loaded, options.base_pose), nullptr, options.simulation()};
   std::string why;
-  if (!options.sensors.IsValid(model.n_dof(), options.dt, &why)) throw std::invalid_argument("sensors: " + why);
+  if (!options.sensors.IsValid(e.model.n_dof(), options.dt, &why)) throw std::invalid_argument("sensors: " + why);
   const BuiltinMotionOptions builtin{.duration = options.duration,
                                      .paper_qdd = options.paper_accel_deg_s2 * std::numbers::pi / 180.0};
-  const std::unique_ptr<Trajectory> motion = LoadTrajectoryArg(options.trajectory, model, builtin);
-  SimulationOptions simulation = options.simulation();
-  simulation.duration = motion->duration();  // a file's own
-  return Simulate(model, *motion, simulation);
+  e.motion = LoadTrajectoryArg(options.trajectory, e.model, builtin);
+  e.simulation.duration = e.motion->duration();  // a file's own
+  return e;
+}
+
+// The simulation before the sensors.
+SimulationLog SimulateSteps(const RobotModel& loaded, const SimulateOptions& options) {
+  const Experiment e = PrepareExperiment(loaded, options);
+  return Simulate(e.model, *e.motion, e.simulation);
 }
 
 // A motor_* field as one value per motor: one value repeated, n as given,
@@ -94,6 +110,12 @@ Eigen::VectorXd PerMotor(const std::vector<double>& values, int n, const std::st
 
 JointLog SimulateJointLog(const RobotModel& loaded, const SimulateOptions& options) {
   return Measure(SimulateSteps(loaded, options), options.sensors);
+}
+
+ClosedLoopLog SimulateClosedLoopLog(const RobotModel& loaded, const SimulateOptions& options) {
+  const Experiment e = PrepareExperiment(loaded, options);
+  const JointControllerOptions controller = ReadControllerFile(options.controller, e.model.n_dof());
+  return SimulateClosedLoop(e.model, *e.motion, e.simulation, controller, options.sensors);
 }
 
 std::optional<Transmission> SimulateTransmission(const SimulateOptions& options, int n_dof,

@@ -5,9 +5,13 @@
 // for the data processing (signal_filter.h) to estimate.
 #pragma once
 
+#include <Eigen/Core>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "idbench/engine/enum_names.h"
 #include "idbench/engine/measurements.h"
 
 namespace idbench {
@@ -28,6 +32,15 @@ struct SensorOptions {
   // Decimation of the simulation steps: round(1 / (rate_hz · dt)).
   int StepsPerSample(double dt) const;
 };
+
+// BIRDy's noise levels (TUM-ICS/BIRDy, its Monte-Carlo benchmark): kLow
+// position noise 1e-4° and torque noise 0.05 N m, kHigh 1e-2° and 0.10 N m.
+enum class NoisePreset { kNone, kLow, kHigh };
+inline constexpr EnumNames<NoisePreset, 3> kNoisePresetNames{"noise_preset", {"none", "low", "high"}};
+// Sets q_noise [rad] and tau_noise (one for all joints) to the preset's;
+// kNone leaves them. false with *why when the options already hold position
+// or torque noise (a preset replaces both: one or the other).
+bool ApplyNoisePreset(NoisePreset preset, SensorOptions* options, std::string* why);
 
 // Torque noise of σ_j per joint, sample by sample: white, or coloured by a
 // first-order low-pass of −3 dB cutoff f_c (the exact discretisation of an
@@ -53,6 +66,30 @@ class TorqueNoise {
   std::vector<double> state_;  // x_{k−1} per joint
   std::vector<bool> started_;
   double a_ = 0.0, innovation_ = 1.0;  // a, √(1 − a²)
+};
+
+// The sensors sample by sample: q through the encoders, then τ through the
+// torque sensing, in this order at every sample, from one generator seeded
+// with options.seed (Measure's numbers). A closed loop (closed_loop.h) reads
+// q before its controller decides τ, so both draw the same noise.
+class SensorSampler {
+ public:
+  // Throws std::invalid_argument as Measure when the options are not valid
+  // for n_dof joints and the step dt [s].
+  SensorSampler(const SensorOptions& options, int n_dof, double dt);
+  // The measured positions of the true q (n_dof) [rad].
+  void MeasureQ(const Eigen::VectorXd& q, Eigen::Ref<Eigen::VectorXd> q_measured);
+  // The logged torques of the true τ (n_dof) [N m].
+  void MeasureTau(const Eigen::VectorXd& tau, Eigen::Ref<Eigen::VectorXd> tau_measured);
+  // A log of n_samples these sensors fill: t, q, τ, and qd, qdd when recorded.
+  JointLog SizedLog(int n_samples) const;
+
+ private:
+  SensorOptions options_;
+  int n_dof_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  std::optional<TorqueNoise> tau_noise_;
 };
 
 // Samples a simulation log through the sensors. Throws std::invalid_argument

@@ -23,13 +23,19 @@ namespace idbench {
 // ols: least squares; wls: joints weighted by their noise; pc: physically
 // consistent (plausible_fit.h); tls: total least squares, the regressor noisy
 // too (total_least_squares.h); irls: iteratively reweighted, robust to
-// outliers (reweighted_least_squares.h).
-enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent, kTls, kIrls };
-inline constexpr EnumNames<TorqueEstimator, 5> kTorqueEstimatorNames{"estimator", {"ols", "wls", "pc", "tls", "irls"}};
+// outliers (reweighted_least_squares.h). kInstrumentalVariables and kDidim
+// are the closed-loop estimators (closed_loop_estimators.h):
+// IdentifyJointTorque gives their starting point, OLS, and the front end
+// iterates from it with the controller and reference.
+enum class TorqueEstimator { kOls, kWls, kPhysicallyConsistent, kTls, kIrls, kInstrumentalVariables, kDidim };
+inline constexpr EnumNames<TorqueEstimator, 7> kTorqueEstimatorNames{
+    "estimator", {"ols", "wls", "pc", "tls", "irls", "iv", "didim"}};
 
-// "ols", "wls", "pc", "tls", "irls".
+// "ols", "wls", "pc", "tls", "irls", "iv", "didim".
 std::string_view ToString(TorqueEstimator estimator);
-// false with *why = "estimator: expected ols, wls, pc, tls or irls, got '...'".
+// Whether the estimator re-simulates the closed loop (iv, didim).
+bool IsClosedLoopEstimator(TorqueEstimator estimator);
+// false with *why = "estimator: expected ols, wls, pc, tls, irls, iv or didim, got '...'".
 bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why = nullptr);
 
 // Parallel filtering (Gautier 1997): the stacked regressor's columns and the

@@ -9,7 +9,10 @@
 
 namespace idbench {
 
-// Writes the columns the log has: t, q, qd and qdd if present, tau if present.
-std::string FormatJointLogCsv(const JointLog& log);
+// Writes the columns the log has: t, q, qd and qdd if present, tau if present,
+// then, given a closed loop's reference positions q_ref (n_samples × n_dof
+// [rad]), qr1..qrn (which the readers skip). Throws std::invalid_argument
+// when q_ref has another shape.
+std::string FormatJointLogCsv(const JointLog& log, const Eigen::MatrixXd* q_ref = nullptr);
 
 }  // namespace idbench

@@ -12,6 +12,7 @@
 #include "idbench/engine/base_pose.h"
 #include "idbench/engine/measurements.h"
 #include "idbench/excitation/design_regressor.h"
+#include "idbench/ident/closed_loop_estimators.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/signal_filter.h"
 #include "idbench/logs/joint_log_format.h"
@@ -37,6 +38,12 @@ struct IdentifyOptions {
   BasePose base_pose;              // the robot's base in the world: the model given to RunIdentify
                                    // must have its gravity (MountRobot; refused otherwise)
   TorqueEstimator estimator = TorqueEstimator::kOls;
+  // The closed-loop estimators (iv, didim) re-simulate the robot's loop: its
+  // controller file (controller_file.h) and the reference it tracked (a
+  // built-in motion of 10 s or a trajectory file). Required by them, refused
+  // with the others.
+  std::string controller;
+  std::string reference;
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
   // Where the friction and rotor terms act: kJoint (per joint, on q̇), or
@@ -126,6 +133,10 @@ struct IdentifyReport {
   // n_samples, n_samples_read above are then their sums; log, prepared,
   // parallel_filter and derivatives are the first log's (plots, playback).
   std::vector<IdentifiedLogPart> parts;
+  // With a closed-loop estimator (iv, didim): its iterations and verdict;
+  // identification.beta and identification.linear.sigma are then its
+  // estimate and σ, the rest of `linear` the OLS it started from.
+  std::optional<ClosedLoopEstimate> closed_loop;
   std::optional<TorquePrediction> validation;  // on the held-out log (its validate_window, if any)
   std::optional<TorquePrediction> validation_whole_file;  // on the whole held-out log, when validate_window is set
   // What predicts the torques again (PredictTorqueSeries, the report's plots):

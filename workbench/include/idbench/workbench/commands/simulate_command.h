@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "idbench/engine/base_pose.h"
+#include "idbench/engine/closed_loop.h"
 #include "idbench/engine/sensor_model.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/engine/transmission.h"
@@ -36,6 +37,10 @@ struct SimulateOptions {
   std::vector<double> motor_viscous;        // Fv_k [N m s/rad of the motor]
   std::vector<double> motor_coulomb;        // Fc_k [N m]
   std::vector<double> motor_rotor_inertia;  // Ia_k [kg m²]
+  // A closed loop when not empty: a controller file (controller_file.h) whose
+  // PID, sampled at sensors.rate_hz, tracks the trajectory from the measured
+  // positions; the log adds the reference (qr1..qrn). Joint side only.
+  std::string controller;
 
   SimulationOptions simulation() const;
   // The files simulate writes: out and, with a transmission, its log
@@ -52,6 +57,12 @@ struct SimulateOptions {
 // std::invalid_argument on a robot/motion/sensor mismatch or a bad trajectory
 // file (naming it) and std::runtime_error if the simulation diverges.
 JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& options);
+
+// The closed loop (options.controller set): Bullet under the controller of
+// that file, the model mounted at options.base_pose, measured by
+// options.sensors (closed_loop.h). Throws std::invalid_argument naming the
+// controller file and its key, or as SimulateJointLog.
+ClosedLoopLog SimulateClosedLoopLog(const RobotModel& model, const SimulateOptions& options);
 
 // A motor-side log and the same experiment on the joint side.
 struct MotorSideLog {

@@ -1,0 +1,154 @@
+#include "idbench/ident/closed_loop_estimators.h"
+
+#include <Eigen/QR>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+#include <stdexcept>
+
+#include "idbench/engine/closed_loop.h"
+#include "idbench/ident/base_parameter_dynamics.h"
+#include "idbench/ident/joint_torque_identifier.h"
+#include "idbench/ident/linear_estimator.h"
+
+namespace idbench {
+
+bool ClosedLoopEstimatorOptions::IsValid(int n_dof, std::string* why) const {
+  if (max_iterations < 1 || max_iterations > kMaxIterations) {
+    if (why) *why = "max_iterations: expected 1 to 1000, got " + std::to_string(max_iterations);
+    return false;
+  }
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    if (why) *why = "tolerance: expected a finite value > 0, got " + std::to_string(tolerance);
+    return false;
+  }
+  std::string controller_why;
+  if (!controller.IsValid(n_dof, &controller_why)) {
+    if (why) *why = "controller: " + controller_why;
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// The log's sample period T and its first sample's index t[0]/T, checking
+// that it is sampled uniformly at whole multiples of T.
+std::pair<double, int> UniformSamples(const JointLog& log) {
+  const Eigen::Index n = log.t.size();
+  if (n < 3) throw std::invalid_argument("closed-loop estimator: expected at least 3 samples, got " + std::to_string(n));
+  const double period = (log.t[n - 1] - log.t[0]) / static_cast<double>(n - 1);
+  const double first = std::round(log.t[0] / period);
+  for (Eigen::Index s = 0; s < n; ++s) {
+    if (!(period > 0.0) || !(std::abs(log.t[s] - (first + s) * period) <= 1e-6 * period)) {
+      throw std::invalid_argument("closed-loop estimator: expected a log sampled at the controller's period from "
+                                  "t = 0 (its ends may be trimmed), sample " + std::to_string(s) + " is at t = " +
+                                  std::to_string(log.t[s]) + " s");
+    }
+  }
+  return {period, static_cast<int>(first)};
+}
+
+}  // namespace
+
+ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionModel& friction,
+                                      const BaseParameters& base, const JointLog& log, const Trajectory& reference,
+                                      const Eigen::VectorXd& beta_initial, const ClosedLoopEstimatorOptions& options) {
+  const int n_dof = model.n_dof();
+  std::string why;
+  if (!options.IsValid(n_dof, &why)) throw std::invalid_argument("closed-loop estimator: " + why);
+  if (log.n_dof() != n_dof || reference.n_dof() != n_dof) {
+    throw std::invalid_argument("closed-loop estimator: the robot has " + std::to_string(n_dof) + " joints, the log " +
+                                std::to_string(log.n_dof()) + ", the reference " + std::to_string(reference.n_dof()));
+  }
+  if (beta_initial.size() != base.n_base()) {
+    throw std::invalid_argument("closed-loop estimator: expected " + std::to_string(base.n_base()) +
+                                " initial base parameters, got " + std::to_string(beta_initial.size()));
+  }
+  const bool iv = options.method == ClosedLoopMethod::kInstrumentalVariables;
+  if (iv && !log.has_derivatives()) {
+    throw std::invalid_argument("closed-loop estimator: instrumental variables need the log's qd and qdd");
+  }
+  const auto [period, first] = UniformSamples(log);
+  const int n_samples = log.n_samples();
+  // The re-simulation: one step per sample, noise-free sensors at the log's rate.
+  SensorOptions exact;
+  exact.rate_hz = 1.0 / period;
+  const double duration = std::min((first + n_samples) * period, reference.duration());
+  if (std::lround(duration / period) < first + n_samples) {
+    throw std::invalid_argument("closed-loop estimator: the reference lasts " + std::to_string(reference.duration()) +
+                                " s, the log to " + std::to_string(log.t[n_samples - 1]) + " s");
+  }
+  JointController controller(options.controller, model, period);
+  // The log's own equations (IV), stacked and filtered as the simulations' will be.
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  if (iv) StackEquations(model, friction, base, log, options.parallel_filter, &W, &tau);
+
+  ClosedLoopEstimate out;
+  out.beta = beta_initial;
+  out.sigma = Eigen::VectorXd::Constant(base.n_base(), std::numeric_limits<double>::infinity());
+  const int p = base.n_base();
+  for (int k = 1; k <= options.max_iterations; ++k) {
+    // Simulate the closed loop with the current estimate.
+    ClosedLoopLog simulated;
+    try {
+      BaseParameterDynamics dynamics(model, friction, base, out.beta);
+      simulated = RunClosedLoop(reference, duration, period, &controller, exact,
+                                [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& t,
+                                    Eigen::VectorXd* qdd) { dynamics.Accelerations(q, qd, t, qdd); });
+    } catch (const std::runtime_error& e) {
+      out.message = "diverged at iteration " + std::to_string(k) + ": re-simulating the estimate failed (" +
+                    e.what() + ")";
+      return out;
+    }
+    // The log's samples of the simulation, with the MEASURED torques: its
+    // equations are the regressor of the simulated states against them.
+    JointLog& states = simulated.log;
+    states.t = states.t.segment(first, n_samples).eval();
+    for (Eigen::MatrixXd* m : {&states.q, &states.qd, &states.qdd}) *m = m->middleRows(first, n_samples).eval();
+    states.tau = log.tau;
+    Eigen::MatrixXd Ws;
+    Eigen::VectorXd tau_s;
+    StackEquations(model, friction, base, states, options.parallel_filter, &Ws, &tau_s);
+    if (!iv) tau = tau_s;
+    Eigen::VectorXd beta_next;
+    if (iv) {
+      // Zᵀ W β = Zᵀ τ with Z = Ws; σ² of the IV estimator s² (ZᵀW)⁻¹ ZᵀZ (WᵀZ)⁻¹.
+      const Eigen::MatrixXd ZtW = Ws.transpose() * W;
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(ZtW);
+      beta_next = qr.solve(Ws.transpose() * tau);
+      const Eigen::VectorXd r = tau - W * beta_next;
+      const double s2 = r.squaredNorm() / std::max<Eigen::Index>(1, tau.size() - p);
+      const Eigen::MatrixXd A = qr.solve(Eigen::MatrixXd::Identity(p, p));  // (ZᵀW)⁻¹
+      const Eigen::MatrixXd cov = s2 * A * (Ws.transpose() * Ws) * A.transpose();
+      out.sigma = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+    } else {
+      const LinearFit fit = SolveOls(Ws, tau, n_dof);
+      beta_next = fit.beta;
+      out.sigma = fit.sigma_white;
+    }
+    out.last_change = (beta_next - out.beta).norm() / std::max(out.beta.norm(), 1e-300);
+    out.beta = beta_next;
+    out.iterations = k;
+    if (!out.beta.allFinite()) {
+      out.message = "diverged at iteration " + std::to_string(k) + ": the estimate is not finite";
+      return out;
+    }
+    if (out.last_change <= options.tolerance) {
+      out.converged = true;
+      char text[160];
+      std::snprintf(text, sizeof(text), "converged in %d iterations (relative change %.3g)", k, out.last_change);
+      out.message = text;
+      return out;
+    }
+  }
+  char text[200];
+  std::snprintf(text, sizeof(text), "not converged: %d iterations (max_iterations), last relative change %.3g",
+                options.max_iterations, out.last_change);
+  out.message = text;
+  return out;
+}
+
+}  // namespace idbench
