@@ -458,7 +458,9 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Bas
       out.linear = SolveIrls(factors, *reweighted_fold, options.irls);
       break;
     case TorqueEstimator::kOls:
-    case TorqueEstimator::kPhysicallyConsistent: out.linear = SolveOls(factors); break;
+    case TorqueEstimator::kPhysicallyConsistent:
+    case TorqueEstimator::kInstrumentalVariables:  // their starting point (closed_loop_estimators.h)
+    case TorqueEstimator::kDidim: out.linear = SolveOls(factors); break;
   }
   out.beta = out.linear.beta;
   // The plausible fit keeps the robot file's values in the directions the

@@ -345,7 +345,7 @@ TEST_F(IdentifyCliTest, BadLogsNameLineAndColumn) {
   // Options: a usage error (exit 2) before any file is read.
   const Result fancy = Run("identify --robot puma560 --data x.csv --estimator fancy");
   EXPECT_EQ(fancy.exit_code, 2);
-  EXPECT_NE(fancy.err.find("ols, wls, pc, tls or irls"), std::string::npos) << fancy.err;
+  EXPECT_NE(fancy.err.find("ols, wls, pc, tls, irls, iv or didim"), std::string::npos) << fancy.err;
   EXPECT_EQ(Run("identify --robot puma560 --data x.csv --friction sticky").exit_code, 2);
   EXPECT_EQ(Run("identify --robot puma560 --data x.csv --model per-body").exit_code, 2);
   const Result unknown = Run("identify --robot nosuch --data x.csv");

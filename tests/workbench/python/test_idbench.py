@@ -213,8 +213,8 @@ def test_errors_carry_the_command_lines_messages_in_keywords(puma, tmp_path):
     with pytest.raises(ValueError) as raised:
         idbench.identify(puma, "x.csv", estimator="best")
     # The same message, the option named as its keyword rather than its flag.
-    assert err.strip().splitlines()[-1] == "idbench: error: --estimator: expected ols, wls, pc, tls or irls, got 'best'"
-    assert str(raised.value) == "estimator: expected ols, wls, pc, tls or irls, got 'best'"
+    assert err.strip().splitlines()[-1] == "idbench: error: --estimator: expected ols, wls, pc, tls, irls, iv or didim, got 'best'"
+    assert str(raised.value) == "estimator: expected ols, wls, pc, tls, irls, iv or didim, got 'best'"
 
     # Fields whose keyword differs from the field are spelled as the keyword.
     with pytest.raises(ValueError) as raised:
