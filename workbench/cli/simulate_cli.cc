@@ -49,6 +49,7 @@ int SimulateCommand(const SimulateOptions& options, const UrdfLoadOptions& load,
                 "tracking error %.3g rad; wrote %s\n",
                 model.name().c_str(), options.trajectory.c_str(), closed.log.n_samples() / options.sensors.rate_hz,
                 options.controller.c_str(), closed.log.n_samples(), options.sensors.rate_hz, tracking, path.c_str());
+    if (const auto lost = LostTrackingWarning(model, closed)) std::fprintf(stderr, "idbench: warning: %s\n", lost->c_str());
     return 0;
   }
   if (!transmission) {

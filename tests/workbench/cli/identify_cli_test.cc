@@ -767,6 +767,17 @@ TEST_F(IdentifyCliTest, ClosedLoopEstimatorsRecoverTheBaseParameters) {
           (dir_ / "b.csv").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bad.json: kp: expected one value or 6 (one per joint), got 2"), std::string::npos) << r.err;
+  // The PUMA's gains hold it (no warning); on paper6r over 10 s the same
+  // gains lose the reference by radians: said, naming the joint, and the log
+  // is still written (it is of the motion that happened).
+  EXPECT_EQ(Run("simulate --robot puma560 --duration 4 --controller " + pid.string() + " --out " +
+                (dir_ / "held.csv").string()).err.find("did not hold the reference"),
+            std::string::npos);
+  r = Run("simulate --robot paper6r --duration 10 --controller " + pid.string() + " --out " + (dir_ / "lost.csv").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("idbench: warning: the controller did not hold the reference: joint '"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "lost.csv"));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -116,6 +117,20 @@ ClosedLoopLog SimulateClosedLoopLog(const RobotModel& loaded, const SimulateOpti
   const Experiment e = PrepareExperiment(loaded, options);
   const JointControllerOptions controller = ReadControllerFile(options.controller, e.model.n_dof());
   return SimulateClosedLoop(e.model, *e.motion, e.simulation, controller, options.sensors);
+}
+
+std::optional<std::string> LostTrackingWarning(const RobotModel& model, const ClosedLoopLog& closed) {
+  if (closed.log.n_samples() == 0) return std::nullopt;
+  Eigen::Index sample = 0, joint = 0;
+  const double largest = (closed.log.q - closed.q_ref).cwiseAbs().maxCoeff(&sample, &joint);
+  if (!(largest > kLostTrackingRad)) return std::nullopt;
+  const Link& link = model.link(static_cast<int>(joint));
+  const std::string name = link.joint_name.empty() ? link.name : link.joint_name;
+  char text[320];
+  std::snprintf(text, sizeof text, "the controller did not hold the reference: joint '%s' %.3g rad from it at t = "
+                "%.4g s (more than %g rad); the log is of the motion that happened, not of the reference",
+                name.c_str(), largest, closed.log.t[sample], kLostTrackingRad);
+  return std::string(text);
 }
 
 std::optional<Transmission> SimulateTransmission(const SimulateOptions& options, int n_dof,

@@ -64,6 +64,13 @@ JointLog SimulateJointLog(const RobotModel& model, const SimulateOptions& option
 // controller file and its key, or as SimulateJointLog.
 ClosedLoopLog SimulateClosedLoopLog(const RobotModel& model, const SimulateOptions& options);
 
+// A closed loop that did not hold its reference: the largest measured
+// tracking error |q − q_ref| above kLostTrackingRad (5.7°, far beyond what a
+// tuned arm's controller leaves), named by the joint's URDF name and the
+// time; nullopt when it held. The log is still of the motion that happened.
+inline constexpr double kLostTrackingRad = 0.1;
+std::optional<std::string> LostTrackingWarning(const RobotModel& model, const ClosedLoopLog& closed);
+
 // A motor-side log and the same experiment on the joint side.
 struct MotorSideLog {
   // Rows are samples, columns motors, in a joint log's fields: q = θm = A·(q − q0) [rad], qd = θ̇m = A·q̇
