@@ -11,13 +11,16 @@
 #include <stdexcept>
 
 #include "column_names.h"
+#include "held_torque_source.h"
 #include "idbench/engine/input_file.h"
 #include "idbench/engine/json_input.h"
 
 namespace idbench {
 
-std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const RobotModel& model,
-                                             const JointLogFormat& format, TorqueColumns torques) {
+namespace {
+
+std::unique_ptr<JointLogSource> OpenJointLogAsRecorded(const std::string& path, const RobotModel& model,
+                                                       const JointLogFormat& format, TorqueColumns torques) {
   // A rosbag2 bag: a directory with metadata.yaml, a .db3 or an .mcap file
   // (any other directory is refused there, saying it lacks metadata.yaml).
   std::error_code error;
@@ -31,6 +34,15 @@ std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const Robo
   }
   // A CSV file, streamed.
   return OpenJointLogCsv(path, model, format, torques);
+}
+
+}  // namespace
+
+std::unique_ptr<JointLogSource> OpenJointLog(const std::string& path, const RobotModel& model,
+                                             const JointLogFormat& format, TorqueColumns torques) {
+  std::unique_ptr<JointLogSource> source = OpenJointLogAsRecorded(path, model, format, torques);
+  if (!format.torque_held) return source;
+  return std::make_unique<internal::HeldTorqueSource>(std::move(source));
 }
 
 namespace {

@@ -36,6 +36,9 @@ void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<s
       ->type_name("TOPIC");
   command->add_option("--angle-unit", format->angle_unit, "Unit of q, qd, qdd in the logs: rad or deg")
       ->capture_default_str();
+  command->add_flag("--torque-held", format->torque_held,
+                    "The logged torques (or currents) are commands held to the next sample (zero-order hold): each "
+                    "is read as the mean of its hold and the previous one's");
   if (friction) {
     AddFrictionFlag(command, friction, "Friction terms: none or viscous,coulomb,offset,rotor");
     command->add_option("--coulomb-smoothing", *coulomb_smoothing,

@@ -15,6 +15,7 @@ namespace idbench::cli {
 
 // Fields of JointLogFormat named in messages about reading a log.
 inline constexpr FieldFlag kLogReadingSpellings[] = {{"angle_unit", "--angle-unit"},
+                                                     {"torque_held", "--torque-held"},
                                                      {"topic", "--topic"},
                                                      {"columns", "--columns"},
                                                      {"drive_gains", "--drive-gains"},

@@ -37,6 +37,11 @@ struct JointLogFormat {
   // gain k) are read and mapped to the joint side (q = A⁻¹·θm + q0,
   // q̇ = A⁻¹·θ̇m, τ = Aᵀ·τm). A log description's own wins (a note says so).
   std::optional<Transmission> transmission;
+  // The torques (or currents) are commands held from their sample to the
+  // next (zero-order hold, as a controller applies them): each is read as the
+  // mean of its hold and the previous one's, the torque the motion saw around
+  // its sample (held_torque_source.h).
+  bool torque_held = false;
 
   static constexpr int kMaxColumns = 1024;  // named columns, ranges expanded
   // Bounds on |K| [N m/A]: a joint-side gain (motor constant × gear ratio)
