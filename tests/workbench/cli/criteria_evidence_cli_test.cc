@@ -5,11 +5,12 @@
 // them (--no-derivatives: qd, qdd from the filtered q), in kBatches runs of
 // kTrials trials with seeds 1..kBatches, each trial also scored on the held-out
 // motion (montecarlo's default, general-reversed, with fresh noise). This is
-// the experiment behind the table "Which criterion" of docs/commands/design.md:
+// the experiment behind the tables "Which criterion" of docs/commands/design.md:
 // each test prints its rows and checks them against the page's numbers
-// (kExpected*), so a change to the design or the identification that moves
-// them fails here and the page is updated with it. The vendor UR10e and Panda
-// (../shared/data/robots, not part of the project) skip without their files.
+// (kPuma560Default and the others below), so a change to the design or the
+// identification that moves them fails here and the page is updated with it.
+// The vendor UR10e and Panda (../shared/data/robots, not part of the project)
+// skip without their files; their default-budget tables run only when asked.
 #include <gtest/gtest.h>
 
 #include <cmath>
