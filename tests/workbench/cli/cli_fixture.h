@@ -49,6 +49,17 @@ class CliFixture : public ::testing::Test {
     return {WEXITSTATUS(status), Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
   }
 
+  // The PUMA limits of issue 3 (puma_limits.json of docs/commands/design.md):
+  // qd_max 1.5 rad/s and qdd_max 4 rad/s² on joints 1-3, 3 and 8 on joints
+  // 4-6, positions from the robot file. Writes them in dir_; returns the path.
+  std::string PumaLimits() {
+    const std::filesystem::path path = dir_ / "puma_limits.json";
+    std::ofstream(path) << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
+      {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 3, "qdd_max": 8}, {"qd_max": 3, "qdd_max": 8},
+      {"qd_max": 3, "qdd_max": 8}]})";
+    return path.string();
+  }
+
   std::string exe_;
   std::filesystem::path dir_;
 };

@@ -25,14 +25,6 @@ using testing::Slurp;
 
 class DesignCliTest : public testing::CliFixture {
  protected:
-  // The issue's PUMA velocity and acceleration limits (positions from the robot file).
-  std::string PumaLimits() {
-    const fs::path path = dir_ / "limits.json";
-    std::ofstream(path) << R"({"joints": [{"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 1.5, "qdd_max": 4},
-      {"qd_max": 1.5, "qdd_max": 4}, {"qd_max": 3, "qdd_max": 8}, {"qd_max": 3, "qdd_max": 8},
-      {"qd_max": 3, "qdd_max": 8}]})";
-    return path.string();
-  }
   std::string Paper6rLimits() {
     const fs::path path = dir_ / "p6limits.json";
     std::ofstream out(path);
