@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "idbench/ident/linear_estimator.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 
 namespace idbench::internal {
 

@@ -14,7 +14,7 @@
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/ident/plausible_fit.h"
 #include "idbench/ident/streamed_joint_equations.h"
-#include "idbench/ident/streamed_log_filter.h"
+#include "idbench/logs/streamed_log_filter.h"
 
 namespace idbench {
 namespace {

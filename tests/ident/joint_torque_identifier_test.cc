@@ -11,7 +11,7 @@
 #include "idbench/engine/paper6r.h"
 #include "idbench/engine/puma560.h"
 #include "idbench/excitation/builtin_motions.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 #include "ident/offset_geometry.h"
 #include "ident/synthetic_log.h"
 #include "idbench/engine/link_bounding_box.h"

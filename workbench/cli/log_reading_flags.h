@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli_command.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 #include "idbench/logs/joint_log_format.h"
 
 namespace idbench::cli {

@@ -24,7 +24,7 @@
 #include "idbench/engine/enum_names.h"
 #include "idbench/engine/robot_library.h"
 #include "idbench/engine/transmission.h"
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/logs/joint_log_pipeline.h"
 
 namespace idbench::python {
 

@@ -9,6 +9,7 @@
 
 #include "idbench/logs/open_joint_log.h"
 #include "idbench/ident/joint_torque_regressor.h"
+#include "idbench/ident/prepared_log_equations.h"
 #include "idbench/ident/linear_estimator.h"
 #include "idbench/workbench/formats/atomic_file.h"
 #include "idbench/workbench/formats/limits_file.h"

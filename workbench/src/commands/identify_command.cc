@@ -13,6 +13,7 @@
 #include "idbench/workbench/formats/controller_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/engine/urdf.h"
+#include "idbench/ident/prepared_log_equations.h"
 #include "idbench/logs/joint_log_csv_reader.h"
 #include "idbench/logs/joint_log_description.h"
 #include "number_format.h"

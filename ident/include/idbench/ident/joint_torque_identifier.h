@@ -16,7 +16,7 @@
 #include "idbench/ident/physically_consistent.h"
 #include "idbench/ident/plausible_fit.h"
 #include "idbench/ident/reweighted_least_squares.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 
 namespace idbench {
 
@@ -37,15 +37,6 @@ std::string_view ToString(TorqueEstimator estimator);
 bool IsClosedLoopEstimator(TorqueEstimator estimator);
 // false with *why = "estimator: expected ols, wls, pc, tls, irls, iv or didim, got '...'".
 bool ParseTorqueEstimator(std::string_view text, TorqueEstimator* estimator, std::string* why = nullptr);
-
-// Parallel filtering (Gautier 1997): the stacked regressor's columns and the
-// torques pass through the same zero-phase low-pass, per joint; then the end
-// transients are dropped and the rows decimated. For logs whose qd, qdd were
-// estimated from q with that filter and whose torques were left unfiltered.
-struct ParallelFilter {
-  LogFilterOptions filter;   // order, cutoff, decimation and trim (< 0: 5/cutoff)
-  double sample_rate_hz = 0; // of the log
-};
 
 // What makes the physically consistent estimate a robot description one can
 // load, relative to the robot file (plausible_fit.h): bounds and the weight of

@@ -18,10 +18,10 @@
 #include "idbench/ident/base_parameters.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/linear_estimator.h"
-#include "idbench/ident/overlap_windows.h"
+#include "idbench/logs/overlap_windows.h"
 #include "idbench/ident/residual_covariance.h"
-#include "idbench/ident/signal_filter.h"
-#include "idbench/ident/streamed_log_filter.h"
+#include "idbench/logs/signal_filter.h"
+#include "idbench/logs/streamed_log_filter.h"
 
 namespace idbench {
 

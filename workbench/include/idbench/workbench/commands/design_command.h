@@ -14,7 +14,7 @@
 
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/excitation/excitation_design.h"
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/logs/joint_log_pipeline.h"
 
 namespace idbench {
 

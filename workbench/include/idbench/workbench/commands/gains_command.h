@@ -8,7 +8,7 @@
 
 #include "idbench/engine/robot_model.h"
 #include "idbench/ident/drive_gains.h"
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/logs/joint_log_pipeline.h"
 
 namespace idbench {
 

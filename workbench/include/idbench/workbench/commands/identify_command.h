@@ -14,9 +14,9 @@
 #include "idbench/excitation/design_regressor.h"
 #include "idbench/ident/closed_loop_estimators.h"
 #include "idbench/ident/joint_torque_identifier.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 #include "idbench/logs/joint_log_format.h"
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/logs/joint_log_pipeline.h"
 
 namespace idbench {
 

@@ -15,7 +15,7 @@
 #include "idbench/engine/enum_names.h"
 #include "idbench/engine/trajectory.h"
 #include "idbench/ident/joint_torque_identifier.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 
 namespace idbench {
 

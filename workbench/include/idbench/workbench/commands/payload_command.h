@@ -15,7 +15,7 @@
 #include "idbench/engine/base_pose.h"
 #include "idbench/engine/robot_model.h"
 #include "idbench/ident/payload_estimator.h"
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/logs/joint_log_pipeline.h"
 
 namespace idbench {
 

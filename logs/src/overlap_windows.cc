@@ -1,4 +1,4 @@
-#include "idbench/ident/overlap_windows.h"
+#include "idbench/logs/overlap_windows.h"
 
 #include <algorithm>
 #include <stdexcept>

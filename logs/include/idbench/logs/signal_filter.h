@@ -161,6 +161,15 @@ JointLog ProcessJointLog(const Eigen::VectorXd& t, const Eigen::MatrixXd& q, con
 // t.size() × n_dof.
 JointLog ProcessJointLog(const JointLog& log, const LogFilterOptions& options);
 
+// Parallel filtering (Gautier 1997): the stacked regressor's columns and the
+// torques pass through the same zero-phase low-pass, per joint; then the end
+// transients are dropped and the rows decimated. For logs whose qd, qdd were
+// estimated from q with that filter and whose torques were left unfiltered.
+struct ParallelFilter {
+  LogFilterOptions filter;   // order, cutoff, decimation and trim (< 0: 5/cutoff)
+  double sample_rate_hz = 0; // of the log
+};
+
 // Parallel filtering of stacked equations (Gautier 1997): `rows` holds
 // n_samples · n_channels rows interleaved by channel (row = sample·n_channels
 // + channel), e.g. a stacked regressor with its torques as the last column.

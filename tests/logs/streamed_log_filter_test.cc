@@ -1,4 +1,4 @@
-#include "idbench/ident/streamed_log_filter.h"
+#include "idbench/logs/streamed_log_filter.h"
 
 #include <gtest/gtest.h>
 

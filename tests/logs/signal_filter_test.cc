@@ -1,6 +1,6 @@
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 
-#include "idbench/ident/overlap_windows.h"
+#include "idbench/logs/overlap_windows.h"
 
 #include <gtest/gtest.h>
 

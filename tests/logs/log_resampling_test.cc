@@ -1,4 +1,4 @@
-#include "idbench/ident/log_resampling.h"
+#include "idbench/logs/log_resampling.h"
 
 #include <gtest/gtest.h>
 

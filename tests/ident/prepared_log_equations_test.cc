@@ -1,4 +1,4 @@
-#include "idbench/workbench/commands/log_preparation.h"
+#include "idbench/ident/prepared_log_equations.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ namespace {
 
 // A puma560 controller log at 1 kHz (t, q, measured qd, τ with noise; no
 // qdd) of 30 s: ~4 streaming blocks, the last one partial.
-class LogPreparationTest : public ::testing::Test {
+class PreparedLogEquationsTest : public ::testing::Test {
  protected:
   RobotModel model_ = MakePuma560();
   FrictionModel friction_{.viscous = true, .coulomb = true};
@@ -62,7 +62,7 @@ class LogPreparationTest : public ::testing::Test {
 // factors solve to the dense whole-log estimate (ProcessJointLog on the
 // window, W and τ stacked and parallel-filtered whole, one QR) to 1e-9; the
 // held log is every k-th prepared sample when longer than max_held_samples.
-TEST_F(LogPreparationTest, StreamedFitEqualsTheWholeLogFit) {
+TEST_F(PreparedLogEquationsTest, StreamedFitEqualsTheWholeLogFit) {
   JointLog recorded = full_;
   recorded.qdd.resize(0, 0);
   LogPreparationOptions options;
@@ -99,7 +99,7 @@ TEST_F(LogPreparationTest, StreamedFitEqualsTheWholeLogFit) {
 
 // qd and qdd recorded: no filter, every decimation-th sample of the window,
 // as FactorStackedEquations on those samples.
-TEST_F(LogPreparationTest, RecordedDerivativesAreDecimatedAndFolded) {
+TEST_F(PreparedLogEquationsTest, RecordedDerivativesAreDecimatedAndFolded) {
   LogPreparationOptions options;
   options.time_window = {0.4995, 20.0005};  // samples 500 to 20000
   options.filter.decimation = 3;
@@ -122,7 +122,7 @@ TEST_F(LogPreparationTest, RecordedDerivativesAreDecimatedAndFolded) {
 // longer log is refused after the counting pass, the message naming the log,
 // its samples, the bound and the window (and, with qd and qdd recorded, the
 // decimation) that fits; at the bound it is held whole.
-TEST_F(LogPreparationTest, LogsBeyondMaxSamplesAreRefused) {
+TEST_F(PreparedLogEquationsTest, LogsBeyondMaxSamplesAreRefused) {
   LogPreparationOptions options;
   options.max_held_samples = 0;
   options.max_samples = 10000;

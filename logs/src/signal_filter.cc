@@ -1,4 +1,4 @@
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/signal_filter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "idbench/engine/measurements.h"
-#include "idbench/ident/overlap_windows.h"
-#include "idbench/ident/signal_filter.h"
+#include "idbench/logs/overlap_windows.h"
+#include "idbench/logs/signal_filter.h"
 
 namespace idbench {
 

@@ -1,10 +1,12 @@
-// From a joint-log file to what identification needs (README.md, "Joint
-// logs"): read it in its format, keep the time window, bring irregular time
-// stamps onto a uniform grid, and estimate what the log did not record
-// (qd, qdd) with the zero-phase filter, whose regressor and torques are then
-// filtered in parallel. Streamed (issue 24): a first pass over the source
-// counts and checks, FoldPreparedLog streams it again through the filter, the
-// regressor and the fold, so memory does not grow with the log's length.
+// The joint-log pipeline: from a log file to the samples identification
+// needs (README.md, "Joint logs"). Open it in its format (and transmission),
+// keep the time window, bring irregular time stamps onto a uniform grid,
+// estimate what the log did not record (qd, qdd) with the zero-phase filter
+// (whose regressor and torques ident then filters in parallel), decimate.
+// Streamed: a first pass over the source counts and checks; every later pass
+// (StreamPreparedSamples) reads it again block by block, so memory does not
+// grow with the log's length. ident/prepared_log_equations.h folds the
+// prepared samples into equations.
 #pragma once
 
 #include <atomic>
@@ -17,12 +19,11 @@
 
 #include "idbench/engine/measurements.h"
 #include "idbench/engine/robot_model.h"
-#include "idbench/ident/joint_torque_identifier.h"
-#include "idbench/ident/log_resampling.h"
-#include "idbench/ident/signal_filter.h"
-#include "idbench/ident/streamed_joint_equations.h"
 #include "idbench/logs/joint_log_source.h"
+#include "idbench/logs/log_resampling.h"
 #include "idbench/logs/recorded_joint_log.h"
+#include "idbench/logs/signal_filter.h"
+#include "idbench/logs/streamed_log_filter.h"
 
 namespace idbench {
 
@@ -111,44 +112,12 @@ PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string
 PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,
                                   const LogPreparationOptions& options, const StreamObserver* observer = nullptr);
 
-// Streams a prepared log's equations for `base` into factors: the source
-// read again in chunks of kStreamBlockSamples, filtered, the regressor
-// stacked, parallel-filtered and folded (StreamedJointEquations). With
-// series_beta (n_base), *series gets the measured and predicted torques of
-// at most max_series_points kept equations (every k-th; all when fewer).
-// With row_weights, an IRLS pass (StreamedEquationsSettings::row_weights).
-// A progress line goes to stderr when the work takes more than a few
-// seconds (and to the observer, if any: StreamStopped once its stop is
-// set). Throws std::invalid_argument naming the path for too few equations
-// and the source's errors.
-StackedFactors FoldPreparedLog(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
-                               const BaseParameters& base, const Eigen::VectorXd& series_beta = {},
-                               TorqueSeries* series = nullptr,
-                               Eigen::Index max_series_points = LogPreparationOptions::kMaxHeldSamples,
-                               const StreamObserver* observer = nullptr,
-                               const RobustRowWeights* row_weights = nullptr, IrlsPassRecord* residuals = nullptr);
-
-// σ from the residual as it is: the prepared log's equations streamed again
-// (as FoldPreparedLog, without folding them), each kept sample's score at
-// the fit's β̂ summed over blocks (StreamedEquationsSettings::score_fit),
-// then fit's covariance replaced by the batch-means sandwich
-// (ApplyScoreCovariance). Memory O(n_base²) beside the stream's blocks.
-// Progress and errors as FoldPreparedLog.
-void ApplyPreparedLogScoreCovariance(const PreparedLog& log, const RobotModel& model, const FrictionModel& friction,
-                                     const BaseParameters& base, LinearFit* fit,
-                                     const StreamObserver* observer = nullptr);
-
-// The same for a fit to several logs stacked (IdentifyOptions::more_data):
-// the logs streamed one after the other, n_kept[i] the samples log i's fold
-// kept (StackedFactors::n_samples), into one batch-means accumulator whose
-// blocks never straddle two logs (ScoreBatchMeans::EndSeries): the logs are
-// separate series, independent of each other. observer(log) gives each
-// pass's observer (may be empty, or return nullptr). Throws
-// std::invalid_argument unless there is a count per log, and as
-// FoldPreparedLog.
-void ApplyPreparedLogsScoreCovariance(const std::vector<const PreparedLog*>& logs,
-                                      const std::vector<Eigen::Index>& n_kept, const RobotModel& model,
-                                      const FrictionModel& friction, const BaseParameters& base, LinearFit* fit,
-                                      const std::function<const StreamObserver*(const PreparedLog&)>& observer = {});
+// Streams the prepared samples of `log` to `sink`, in order: the source's
+// samples [first, first + n_raw) filtered (StreamedLogFilter) or, used as
+// recorded, every decimation-th. A progress line "<path>: <activity>: N % of
+// M samples" goes to stderr once the pass takes more than 3 s (logs beyond
+// one block), and to the observer, if any (StreamStopped once its stop is set).
+void StreamPreparedSamples(const PreparedLog& log, const StreamedLogFilter::Sink& sink, const std::string& activity,
+                           const StreamObserver* observer = nullptr);
 
 }  // namespace idbench
