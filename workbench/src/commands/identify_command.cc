@@ -13,6 +13,7 @@
 #include "idbench/workbench/formats/controller_file.h"
 #include "idbench/workbench/formats/trajectory_file.h"
 #include "idbench/engine/urdf.h"
+#include "idbench/ident/log_identification.h"
 #include "idbench/ident/prepared_log_equations.h"
 #include "idbench/logs/joint_log_csv_reader.h"
 #include "idbench/logs/joint_log_description.h"
@@ -150,62 +151,6 @@ class IdentifyStages {
   StreamObserver observer_;
 };
 
-// What a closed-loop estimator re-simulates: the robot's controller and reference.
-struct ClosedLoopInputs {
-  JointControllerOptions controller;
-  std::unique_ptr<Trajectory> reference;
-};
-
-// Iterates the closed-loop estimator (iv, didim) from the OLS estimate on the
-// samples the fit used (every sample: the controller's period), then puts its
-// estimate, σ and fit in the report.
-void EstimateInClosedLoop(const RobotModel& model, const IdentifyOptions& options, const BaseParameters& base,
-                          const ClosedLoopInputs& inputs, const StackedFactors& factors, IdentifyReport* report,
-                          const StreamObserver*) {
-  const std::string name(ToString(options.estimator));
-  if (report->log.n_samples() != report->n_samples_read) {
-    throw std::invalid_argument("estimator " + name + ": the log has " + std::to_string(report->n_samples_read) +
-                                " samples, more than the " + std::to_string(LogPreparationOptions::kMaxHeldSamples) +
-                                " held for a re-simulated estimator");
-  }
-  const std::vector<Eigen::Index> kept = StackedSamples(report->log, report->parallel_filter);
-  if (kept.empty() || kept.back() - kept.front() + 1 != static_cast<Eigen::Index>(kept.size())) {
-    throw std::invalid_argument("estimator " + name + ": the re-simulated estimators use every sample (the "
-                                "controller's period): no decimation");
-  }
-  const JointLog& all = report->log;
-  const Eigen::Index first = kept.front(), n = static_cast<Eigen::Index>(kept.size());
-  JointLog used;
-  used.t = all.t.segment(first, n);
-  used.q = all.q.middleRows(first, n);
-  used.tau = all.tau.middleRows(first, n);
-  if (all.has_derivatives()) {
-    used.qd = all.qd.middleRows(first, n);
-    used.qdd = all.qdd.middleRows(first, n);
-  }
-  ClosedLoopEstimatorOptions estimator;
-  estimator.method = options.estimator == TorqueEstimator::kDidim ? ClosedLoopMethod::kDidim
-                                                                   : ClosedLoopMethod::kInstrumentalVariables;
-  estimator.controller = inputs.controller;
-  JointTorqueIdentification& id = report->identification;
-  // From OLS; when its estimate is no mechanism (its mass matrix not positive
-  // definite: it cannot be simulated), from the physically consistent one,
-  // which is by construction.
-  ClosedLoopEstimate estimate =
-      EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.linear.beta, estimator);
-  if (!estimate.converged && estimate.iterations == 0) {
-    estimate = EstimateClosedLoop(model, options.friction_model(), base, used, *inputs.reference, id.consistent.beta,
-                                  estimator);
-    estimate.message = "from the physically consistent estimate (OLS's mass matrix is not positive definite): " +
-                       estimate.message;
-  }
-  id.beta = estimate.beta;
-  id.linear.sigma = estimate.sigma;
-  id.fit = PredictTorques(factors, estimate.beta);
-  if (!estimate.converged) report->warnings.push_back("estimator " + name + ": " + estimate.message);
-  report->closed_loop = estimate;
-}
-
 // IdentifyPreparedLogs, its stages (folding each log, the solve) reported to
 // `stages`. data: the logs identified together (at least one), in order.
 IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& options, std::vector<PreparedLog> data,
@@ -217,7 +162,6 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   id_options.estimator = options.estimator;
   id_options.plausibility = options.plausibility;
   PreparedLog& first = data.front();
-  report.log = std::move(first.log);
   id_options.parallel_filter = first.parallel_filter;
   report.filtered = id_options.parallel_filter.has_value();
   report.parallel_filter = id_options.parallel_filter;
@@ -230,106 +174,44 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
   const std::string data_name = data.size() == 1 ? options.data : "data";
   // The closed loop's controller and reference, read before the logs'
   // messages take over; the re-simulation follows one reference: one log.
-  std::optional<ClosedLoopInputs> closed_loop;
+  std::optional<JointControllerOptions> controller;
+  std::unique_ptr<Trajectory> reference;
   if (IsClosedLoopEstimator(options.estimator)) {
-    if (data.size() > 1) {
-      throw std::invalid_argument("estimator " + std::string(ToString(options.estimator)) + ": one data log (it "
-                                  "re-simulates the closed loop along one reference), got " +
-                                  std::to_string(data.size()));
-    }
-    closed_loop.emplace(ClosedLoopInputs{ReadControllerFile(options.controller, model.n_dof()),
-                                         LoadTrajectoryArg(options.reference, model, BuiltinMotionOptions{})});
+    CheckClosedLoopLogCount(options.estimator, data.size());
+    controller = ReadControllerFile(options.controller, model.n_dof());
+    reference = LoadTrajectoryArg(options.reference, model, BuiltinMotionOptions{});
   }
-  // The equations streamed into factors, each log's in turn stacked onto the
-  // first's (MergeStackedFactors), then solved.
-  const BaseParameters base = ComputeBaseParameters(model, id_options.friction, id_options.base);
+  const ClosedLoopInputs closed_loop{controller.value_or(JointControllerOptions{}), reference.get()};
+  // Identified from the logs streamed again (IdentifyFromLogs), each stage
+  // announced to `stages`.
+  LogIdentification identified;
   try {
-    StackedFactors factors;
-    std::vector<Eigen::Index> n_kept;
-    for (size_t i = 0; i < data.size(); ++i) {
-      const PreparedLog& log = data[i];
-      StackedFactors own = FoldPreparedLog(log, model, id_options.friction, base, {}, nullptr,
-                                           LogPreparationOptions::kMaxHeldSamples,
-                                           stages->Next("identifying from " + log.path));
-      n_kept.push_back(own.n_samples());
-      if (data.size() > 1) {
-        IdentifiedLogPart part{log.path, own.n_samples(), log.n_raw, log.parallel_filter.has_value(),
-                               log.derivatives, log.parallel_filter, log.decimation, SolveOls(own).cond};
-        report.parts.push_back(std::move(part));
-      }
-      if (i == 0) {
-        factors = std::move(own);
-      } else {
-        MergeStackedFactors(own, &factors);
-      }
-    }
-    report.n_samples = factors.n_samples();  // what the fold kept
-    // IRLS reads the logs again for each of its passes (each folded on its own, then stacked).
-    const StreamObserver* solving = stages->Next("solving (" + std::string(ToString(options.estimator)) + ")");
-    const ReweightedFold reweighted_fold = [&](const RobustRowWeights& weights, IrlsPassRecord* residuals) {
-      StackedFactors all;
-      for (size_t i = 0; i < data.size(); ++i) {
-        StackedFactors own = FoldPreparedLog(data[i], model, id_options.friction, base, {}, nullptr,
-                                             LogPreparationOptions::kMaxHeldSamples, solving, &weights, residuals);
-        if (i == 0) {
-          all = std::move(own);
-        } else {
-          MergeStackedFactors(own, &all);
-        }
-      }
-      return all;
-    };
-    report.identification = IdentifyJointTorque(model, base, factors, id_options, &reweighted_fold);
-    // σ from the residual as it is: the logs streamed again for the scores at β̂.
-    if (data.size() == 1) {
-      ApplyPreparedLogScoreCovariance(first, model, id_options.friction, base, &report.identification.linear,
-                                      stages->Next("sigma from the residual of " + options.data));
-    } else {
-      std::vector<const PreparedLog*> logs;
-      for (const PreparedLog& log : data) logs.push_back(&log);
-      ApplyPreparedLogsScoreCovariance(logs, n_kept, model, id_options.friction, base, &report.identification.linear,
-                                       [&](const PreparedLog& log) {
-                                         return stages->Next("sigma from the residual of " + log.path);
-                                       });
-    }
-    if (closed_loop) {
-      EstimateInClosedLoop(model, options, base, *closed_loop, factors, &report,
-                           stages->Next("re-simulating the closed loop (" + std::string(ToString(options.estimator)) +
-                                        ")"));
-    }
+    std::vector<const PreparedLog*> logs;
+    for (const PreparedLog& log : data) logs.push_back(&log);
+    identified = IdentifyFromLogs(model, logs, id_options, controller ? &closed_loop : nullptr,
+                                  [&](const std::string& stage) { return stages->Next(stage); });
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     bool named = what.rfind(data_name + ":", 0) == 0;
     for (const PreparedLog& log : data) named = named || what.rfind(log.path + ":", 0) == 0;
     throw std::invalid_argument(named ? what : data_name + ": " + what);
   }
-  // Actuator-side columns scale as N and N² with the gear ratios N, the link
-  // ones do not: from N = 1000 (N² = 1e6, the fit's rank tolerance) a column
-  // may be lost to that spread rather than to the motion. Said when it happens.
-  const LinearFit& linear = report.identification.linear;
-  if (!linear.solve.converged) {
-    report.warnings.push_back("estimator " + std::string(ToString(options.estimator)) + ": " + linear.solve.message +
-                              "; its beta and sigma are those of where it stopped");
+  report.log = std::move(first.log);
+  report.identification = std::move(identified.identification);
+  report.n_samples = identified.factors.n_samples();  // what the fold kept
+  report.closed_loop = identified.closed_loop;
+  for (size_t i = 0; data.size() > 1 && i < data.size(); ++i) {
+    const PreparedLog& log = data[i];
+    report.parts.push_back(IdentifiedLogPart{log.path, identified.n_kept[i], log.n_raw,
+                                             log.parallel_filter.has_value(), log.derivatives, log.parallel_filter,
+                                             log.decimation, identified.cond[i]});
   }
-  if (id_options.friction.actuator_side() && linear.rank < base.n_base()) {
-    const double ratio = id_options.friction.actuator_from_joint.cwiseAbs().maxCoeff();
-    if (ratio >= 1e3) {
-      char text[600];
-      std::snprintf(text, sizeof(text),
-                    "the transmission's gear ratios, up to %g, make the actuator-side columns (∝ N, N²) up to %.3g times "
-                    "the link columns; W has rank %d of %d, and the %d base parameter(s) marked 'not ident.' may be "
-                    "lost to that scale rather than to the motion (the fit resolves 1e-6 of the largest): check "
-                    "with friction_side joint, or the transmission's ratios",
-                    ratio, ratio * ratio, linear.rank, base.n_base(),
-                    static_cast<int>(std::count(linear.identifiable.begin(), linear.identifiable.end(), false)));
-      report.warnings.push_back(text);
-    }
-  }
+  report.warnings.insert(report.warnings.end(), identified.warnings.begin(), identified.warnings.end());
   report.prepared = std::make_shared<PreparedLog>(std::move(first));
   if (held_out) {
     for (std::string& note : held_out->notes) report.notes.push_back(std::move(note));
     for (std::string& warning : held_out->warnings) report.warnings.push_back(std::move(warning));
-    report.validation = PredictTorques(FoldPreparedLog(*held_out, model, id_options.friction, base, {}, nullptr,
+    report.validation = PredictTorques(FoldPreparedLog(*held_out, model, id_options.friction, report.identification.base, {}, nullptr,
                                                        LogPreparationOptions::kMaxHeldSamples,
                                                        stages->Next("validating on " + options.validate)),
                                        report.identification.beta);
@@ -338,7 +220,7 @@ IdentifyReport IdentifyPrepared(const RobotModel& model, const IdentifyOptions& 
     report.held_out_prepared = std::make_shared<PreparedLog>(std::move(*held_out));
     if (held_out_whole) {  // the whole file, beside the window
       report.validation_whole_file =
-          PredictTorques(FoldPreparedLog(*held_out_whole, model, id_options.friction, base, {}, nullptr,
+          PredictTorques(FoldPreparedLog(*held_out_whole, model, id_options.friction, report.identification.base, {}, nullptr,
                                          LogPreparationOptions::kMaxHeldSamples,
                                          stages->Next("validating on the whole of " + options.validate)),
                          report.identification.beta);
