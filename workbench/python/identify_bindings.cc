@@ -116,7 +116,18 @@ IdentifyResult Identify(const Robot& robot, const py::object& data, const Identi
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   if (!options.format.IsValidFor(model.n_dof(), &why)) throw std::invalid_argument(why);
   if (!options.plausibility.IsValidFor(model, &why)) throw std::invalid_argument(why);
-  PreparedLog prepared = PrepareLogArgument(data, options.data, model, options.preparation(true));
+  // One log, or several of one robot identified together (a list).
+  std::vector<PreparedLog> prepared;
+  const std::vector<std::string> names = options.data_logs();
+  if (py::isinstance<py::list>(data) || py::isinstance<py::tuple>(data)) {
+    size_t k = 0;
+    for (const py::handle item : data) {
+      prepared.push_back(PrepareLogArgument(py::reinterpret_borrow<py::object>(item), names[k++], model,
+                                            options.preparation(true)));
+    }
+  } else {
+    prepared.push_back(PrepareLogArgument(data, options.data, model, options.preparation(true)));
+  }
   std::optional<PreparedLog> held_out, held_out_whole;
   if (!validate.is_none()) held_out = PrepareLogArgument(validate, options.validate, model, options.preparation(false));
   if (!validate.is_none() && !options.validate_window.empty()) {
@@ -230,13 +241,30 @@ void BindIdentify(py::module_& m) {
          double filter_cutoff, int filter_order, int decimate, const std::vector<double>& mass_range,
          double total_mass, double total_mass_tolerance, const std::string& com_bound, double prior_weight,
          double cost_tolerance, bool write_unverified, const std::string& topic, const std::string& friction_side,
-         const py::object& base_pose) {
+         const py::object& base_pose, const py::object& controller, const py::object& reference,
+         bool torque_held) {
         IdentifyOptions options;
         options.friction_side = EnumArgument(kFrictionSideNames, friction_side);
         options.base_pose = BasePoseArgument(base_pose);
         options.format.transmission = robot.transmission;  // a log description's wins (IdentifyOptions::transmission)
         options.robot = robot.source;
-        options.data = py::isinstance<py::dict>(data) ? "<data arrays>" : py::str(data).cast<std::string>();
+        // A log's name in messages: its path, or "<data arrays>" (k-th of a list: "<data arrays k>").
+        auto log_name = [](const py::handle& log, const std::string& arrays) {
+          return py::isinstance<py::dict>(log) ? arrays : py::str(log).cast<std::string>();
+        };
+        if (py::isinstance<py::list>(data) || py::isinstance<py::tuple>(data)) {
+          const py::sequence logs = data.cast<py::sequence>();
+          if (logs.size() == 0) throw std::invalid_argument("data: expected a log, or a list of logs, got an empty list");
+          options.data = log_name(logs[0], "<data arrays 1>");
+          for (size_t k = 1; k < logs.size(); ++k) {
+            options.more_data.push_back(log_name(logs[k], "<data arrays " + std::to_string(k + 1) + ">"));
+          }
+        } else {
+          options.data = log_name(data, "<data arrays>");
+        }
+        options.controller = controller.is_none() ? "" : py::str(controller).cast<std::string>();
+        options.reference = reference.is_none() ? "" : py::str(reference).cast<std::string>();
+        options.format.torque_held = torque_held;
         options.validate = validate.is_none()                ? ""
                            : py::isinstance<py::dict>(validate) ? "<validate arrays>"
                                                                 : py::str(validate).cast<std::string>();
@@ -283,11 +311,15 @@ void BindIdentify(py::module_& m) {
       py::arg("com_bound") = std::string("geometry"), py::arg("prior_weight") = id_defaults.plausibility.prior_weight,
       py::arg("cost_tolerance") = id_defaults.plausibility.cost_tolerance, py::arg("write_unverified") = false,
       py::arg("topic") = std::string(), py::arg("friction_side") = std::string(kFrictionSideNames.Name(id_defaults.friction_side)),
-      py::arg("base_pose") = py::none(),
+      py::arg("base_pose") = py::none(), py::arg("controller") = py::none(), py::arg("reference") = py::none(),
+      py::arg("torque_held") = false,
       "Identifies the robot from a joint log: a CSV path or a ROS 2 bag (a directory with metadata.yaml, a .db3 or "
       ".mcap file; topic= names its JointState topic when it has several), read as `idbench identify --data`, or a dict of arrays "
       "{t, q, [qd, qdd], tau} or with i (motor currents) for drive_gains (n_samples × n_dof, angles in angle_unit; "
-      "without qd/qdd they are estimated by filtering). validate_window=(T0, T1) scores only that part of the held-out "
+      "without qd/qdd they are estimated by filtering); or a list of such logs of one robot, identified together "
+      "(as several --data). estimator=\"iv\" or \"didim\" re-simulates the closed loop: controller= (a controller "
+      "file) and reference= (a built-in motion or trajectory file) as `identify --controller --reference`; "
+      "torque_held=True reads tau as the command held over each sample period (--torque-held). validate_window=(T0, T1) scores only that part of the held-out "
       "log. friction_side=\"actuator\" puts the friction and rotor terms on the motors, through the transmission of the "
       "data's log description or the robot's URDF; base_pose=(x, y, z, roll, pitch, yaw) mounts the robot (gravity "
       "along the world's -z). Options as `idbench identify`'s. The result's verdict says whether the physically consistent estimate is "

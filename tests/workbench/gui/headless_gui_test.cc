@@ -16,6 +16,7 @@
 #include "idbench/gui/gui_script.h"
 #include "idbench/ident/joint_torque_regressor.h"
 #include "idbench/logs/joint_log_csv_writer.h"
+#include "idbench/workbench/commands/simulate_command.h"
 #include "ident/synthetic_log.h"
 #include "render/image_test_util.h"
 #include "workbench/gui/gui_test_util.h"
@@ -263,6 +264,56 @@ frames 2
   EXPECT_EQ(session.identify.friction, (std::vector<std::string>{"viscous", "coulomb"}));
   EXPECT_FALSE(gui.Set("log.time_window", "1", &why));
   EXPECT_EQ(session.identify.time_window, (std::vector<double>{0.5, 3.5}));
+  if (!HasFailure()) fs::remove_all(out);
+}
+
+// The Log tab offers what `identify` offers beyond one open-loop log: with a
+// closed-loop estimator picked (iv) the controller and reference fields
+// appear, and the identification equals RunIdentify's with them (noise-free
+// closed loop: the robot file's base parameters to 1e-9); "more logs" stacks
+// further logs as several --data do, "torque held" reads held torques.
+TEST(HeadlessGuiTest, LogTabOffersTheClosedLoopEstimatorsAndSeveralLogs) {
+  const fs::path out = HeadlessGuiDir("closed_loop");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const fs::path pid = out / "pid.json";
+  std::ofstream(pid) << R"({"kp": [2000, 2000, 1000, 200, 200, 200], "kd": [40, 40, 20, 4, 4, 4], "ki": 50,
+                           "feedforward": "model"})";
+  SimulateOptions simulate;
+  simulate.duration = 4.0;
+  simulate.controller = pid.string();
+  const std::string log = (out / "closed.csv").string(), second = (out / "second.csv").string();
+  std::ofstream(log) << FormatJointLogCsv(SimulateClosedLoopLog(session.model(), simulate).log);
+  simulate.duration = 3.0;
+  std::ofstream(second) << FormatJointLogCsv(SimulateClosedLoopLog(session.model(), simulate).log);
+  EXPECT_EQ(gui.widgets().Find("log.controller"), nullptr);
+  RunScript(gui, "click tab.log\nset log.data " + log + "\nset log.estimator iv\nframes 1\nset log.controller " +
+                     pid.string() + "\nset log.reference general\nclick log.identify\nwait identify 300\nframes 1\n");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  IdentifyOptions options;
+  options.data = log;
+  options.estimator = TorqueEstimator::kInstrumentalVariables;
+  options.controller = pid.string();
+  options.reference = "general";
+  const IdentifyReport expected = RunIdentify(session.model(), options);
+  const JointTorqueIdentification& id = session.identify_report()->identification;
+  EXPECT_EQ(id.beta, expected.identification.beta);
+  ASSERT_TRUE(session.identify_report()->closed_loop.has_value());
+  EXPECT_TRUE(session.identify_report()->closed_loop->converged);
+  EXPECT_LT((id.beta - id.beta_model).norm(), 1e-9 * id.beta_model.norm());
+
+  RunScript(gui, "set log.estimator ols\nframes 1\nset log.more_data " + second +
+                     "\nset log.torque_held true\nclick log.identify\nwait identify 300\nframes 1\n");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  EXPECT_EQ(gui.widgets().Find("log.controller"), nullptr);  // ols: no closed loop to re-simulate
+  IdentifyOptions several;
+  several.data = log;
+  several.more_data = {second};
+  several.format.torque_held = true;
+  const IdentifyReport stacked = RunIdentify(session.model(), several);
+  EXPECT_EQ(session.identify_report()->identification.beta, stacked.identification.beta);
+  ASSERT_EQ(session.identify_report()->parts.size(), 2u);
+  EXPECT_EQ(session.identify_report()->parts[1].path, second);
   if (!HasFailure()) fs::remove_all(out);
 }
 

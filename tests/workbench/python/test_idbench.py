@@ -399,3 +399,52 @@ def test_tls_and_irls_estimators_recover_a_noise_free_log(puma):
         assert solve["converged"], solve
         error = np.linalg.norm(result.beta - result.beta_model) / np.linalg.norm(result.beta_model)
         assert error < 1e-9, (estimator, error)
+
+
+def test_identify_takes_several_logs_as_the_command_line_does(puma, tmp_path):
+    # identify(data=[a, b]) stacks the logs' equations as `identify --data a
+    # --data b`: the same base parameters and per-log parts, to the digit.
+    for name, seed, duration in (("a.csv", "3", "3"), ("b.csv", "4", "2")):
+        code, _, err = cli("simulate", "--robot", "puma560", "--duration", duration, "--rate", "200",
+                           "--tau-noise", "0.05", "--seed", seed, "--out", name, cwd=tmp_path)
+        assert code == 0, err
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "a.csv", "--data", "b.csv", "--out", "id",
+                       cwd=tmp_path)
+    assert code == 0, err
+    expected = json.loads((tmp_path / "id" / "identified.json").read_text())
+    result = idbench.identify(puma, [str(tmp_path / "a.csv"), str(tmp_path / "b.csv")])
+    got = json.loads(result.json)
+    beta = {p["name"]: p["value"] for p in expected["base_parameters"] if p["value"] is not None}
+    assert beta, expected["base_parameters"][:2]
+    for k, name in enumerate(result.base_names):
+        if name in beta:
+            assert result.beta[k] == pytest.approx(beta[name], rel=1e-12, abs=1e-12), name
+    assert [(p["n_samples"], p["cond"]) for p in got["data_logs"]] == \
+        [(p["n_samples"], p["cond"]) for p in expected["data_logs"]]
+    assert len(got["data_logs"]) == 2
+    # One log alone is another fit.
+    alone = idbench.identify(puma, str(tmp_path / "a.csv"))
+    assert np.max(np.abs(alone.beta - result.beta)) > 1e-6
+    with pytest.raises(ValueError, match="data: expected a log, or a list of logs, got an empty list"):
+        idbench.identify(puma, [])
+
+
+def test_closed_loop_estimators_take_the_controller_and_reference(puma, tmp_path):
+    # identify(estimator="iv" | "didim", controller=, reference=) as `identify
+    # --estimator iv --controller --reference`: a noise-free closed-loop log
+    # gives the robot file's base parameters; without the controller, the
+    # command line's message (in the library's terms).
+    (tmp_path / "pid.json").write_text('{"kp": [2000, 2000, 1000, 200, 200, 200], "kd": [40, 40, 20, 4, 4, 4], '
+                                       '"ki": 50, "feedforward": "model"}')
+    code, _, err = cli("simulate", "--robot", "puma560", "--duration", "4", "--controller", "pid.json",
+                       "--out", "closed.csv", cwd=tmp_path)
+    assert code == 0, err
+    for estimator in ("iv", "didim"):
+        result = idbench.identify(puma, str(tmp_path / "closed.csv"), estimator=estimator,
+                                  controller=str(tmp_path / "pid.json"), reference="general")
+        document = json.loads(result.json)
+        assert document["estimator"] == estimator and document["closed_loop"]["converged"]
+        error = np.linalg.norm(result.beta - result.beta_model) / np.linalg.norm(result.beta_model)
+        assert error < 1e-9, (estimator, error)
+    with pytest.raises(ValueError, match="controller: the estimator didim re-simulates the closed loop"):
+        idbench.identify(puma, str(tmp_path / "closed.csv"), estimator="didim", reference="general")

@@ -59,12 +59,7 @@ void GuiApp::Impl::DrawDesignCell() {
   // Sequential design (--given): logs the robot already has, comma-separated.
   auto set_given = [this](const std::string& text) {
     given_text = text;
-    session.design.given.clear();
-    for (size_t start = 0; start <= text.size();) {
-      const size_t comma = std::min(text.find(',', start), text.size());
-      if (comma > start) session.design.given.push_back(text.substr(start, comma - start));
-      start = comma + 1;
-    }
+    session.design.given = SplitPaths(text);
   };
   if (ImGui::InputText("given logs##design.given", &given_text)) set_given(given_text);
   widgets.Record("design.given", [set_given](const std::string& text, std::string*) {

@@ -88,6 +88,7 @@ struct GuiApp::Impl {
   std::string friction_text;    // IdentifyOptions::friction, comma-separated
   std::string time_window_text; // IdentifyOptions::time_window, "T0,T1" [s]; "" = the whole log
   std::string drive_gains_text; // IdentifyOptions::format.drive_gains [N m/A], comma-separated
+  std::string more_data_text;   // IdentifyOptions::more_data, comma-separated paths
   std::string text_error;       // why a field above does not parse ("" = they do)
   bool log_fields_initialised = false;
   std::string preview_path;     // the log previewed, and its first lines split at commas

@@ -5,6 +5,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -30,6 +31,17 @@ inline std::string JoinNumbers(const std::vector<double>& values) {
   std::string text;
   for (double v : values) text += (text.empty() ? "" : ",") + Number(v, "%.17g");
   return text;
+}
+
+// "a.csv,b.csv" → {"a.csv", "b.csv"}: file paths in a list field, empty items dropped.
+inline std::vector<std::string> SplitPaths(const std::string& text) {
+  std::vector<std::string> paths;
+  for (size_t start = 0; start <= text.size();) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    if (comma > start) paths.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return paths;
 }
 
 inline void TextCell(const std::string& text, const ImVec4* color = nullptr) {

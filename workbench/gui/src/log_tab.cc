@@ -159,6 +159,7 @@ void GuiApp::Impl::DrawLogTab() {
     columns_text = JoinList(id.format.columns);
     time_window_text = JoinNumbers(id.time_window);
     drive_gains_text = JoinNumbers(id.format.drive_gains);
+    more_data_text = JoinList(id.more_data);
     log_fields_initialised = true;
   }
   ImGui::BeginDisabled(busy);
@@ -183,6 +184,17 @@ void GuiApp::Impl::DrawLogTab() {
   RecentFilesCombo("log.validate", [&id](const std::string& path) { id.validate = path; });
   ImGui::SameLine(0, 2);
   widgets.InputText("log.validate", "held-out log", &id.validate);
+  // More logs of the robot, identified together with the first (--data A --data B).
+  if (ImGui::InputText("more logs##log.more_data", &more_data_text)) id.more_data = SplitPaths(more_data_text);
+  widgets.Record("log.more_data", [this, &id](const std::string& text, std::string*) {
+    more_data_text = text;
+    id.more_data = SplitPaths(text);
+    return true;
+  });
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("Other logs of this robot, comma-separated, each read, windowed and filtered as the log: their "
+                      "equations are stacked with its own; empty: the log alone");
+  }
   // Option lists: parsed when the field is left, or by a script's set.
   auto list_field = [&](const char* name, const char* label, std::string* text, auto parse) {
     ImGui::InputText((std::string(label) + "##" + name).c_str(), text);
@@ -219,6 +231,23 @@ void GuiApp::Impl::DrawLogTab() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   widgets.Combo("log.angle_unit", "angle unit", &id.format.angle_unit, {"rad", "deg"});
+  ImGui::SameLine();
+  widgets.Checkbox("log.torque_held", "torque held", &id.format.torque_held);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("The logged torques are commands held to the next sample (a controller's zero-order hold)");
+  }
+  // What the closed-loop estimators re-simulate (iv, didim).
+  if (IsClosedLoopEstimator(id.estimator)) {
+    ImGui::PushItemWidth(-110);
+    widgets.InputText("log.controller", "controller file", &id.controller);
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip("The robot's controller: {\"kp\": [...], \"kd\": [...], \"ki\": [...], \"tau_max\": [...], "
+                        "\"feedforward\": \"model\"}");
+    }
+    widgets.InputText("log.reference", "reference", &id.reference);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The motion the controller tracked: a built-in motion or a trajectory file");
+    ImGui::PopItemWidth();
+  }
   ImGui::EndDisabled();
   ImGui::SameLine();
   const bool identifying = session.running(JobKind::kIdentify);

@@ -256,6 +256,9 @@ void Session::StartIdentify() {
   IdentifyOptions options = identify;
   options.robot = robot_source_;
   options.base_pose = design.design.base_pose;  // the session's one mounting (the Design tab's base pose)
+  // The Log tab shows the controller and reference only for the estimators
+  // that re-simulate the loop; kept for them, not used by the others.
+  if (!IsClosedLoopEstimator(options.estimator)) options.controller = options.reference = "";
   if (options.data.empty()) return Error("identify: no joint log yet; simulate first, or open a recorded log in the Log tab");
   // The checks of `idbench identify`, against the loaded robot too.
   std::string why;

@@ -269,12 +269,19 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
   }
 }
 
+IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options,
+                                    std::vector<PreparedLog> data, std::optional<PreparedLog> held_out,
+                                    std::optional<PreparedLog> held_out_whole) {
+  if (data.empty()) throw std::invalid_argument("data: expected at least one log");
+  IdentifyStages none(nullptr, 1);
+  return IdentifyPrepared(model, options, std::move(data), std::move(held_out), std::move(held_out_whole), &none);
+}
+
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
                                     std::optional<PreparedLog> held_out, std::optional<PreparedLog> held_out_whole) {
-  IdentifyStages none(nullptr, 1);
   std::vector<PreparedLog> logs;
   logs.push_back(std::move(data));
-  return IdentifyPrepared(model, options, std::move(logs), std::move(held_out), std::move(held_out_whole), &none);
+  return IdentifyPreparedLogs(model, options, std::move(logs), std::move(held_out), std::move(held_out_whole));
 }
 
 TorqueSeries PredictIdentifiedTorques(const RobotModel& model, const IdentifyOptions& options,

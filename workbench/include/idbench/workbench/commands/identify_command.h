@@ -155,10 +155,14 @@ IdentifyReport RunIdentify(const RobotModel& model, const IdentifyOptions& optio
                            const IdentifyControl& control = {});
 
 // The same for logs already prepared (PrepareJointLog or
-// PrepareRecordedJointLog, e.g. arrays from Python); options.data and
-// options.validate only name them in messages. (options.more_data is read by
-// RunIdentify only: here the data is the one log given.)
+// PrepareRecordedJointLog, e.g. arrays from Python): `data` the logs
+// identified together (at least one, in order); options.data, more_data and
+// validate only name them in messages.
 // held_out_whole: the whole held-out log, when held_out is its validate_window.
+IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options,
+                                    std::vector<PreparedLog> data, std::optional<PreparedLog> held_out,
+                                    std::optional<PreparedLog> held_out_whole = std::nullopt);
+// One log.
 IdentifyReport IdentifyPreparedLogs(const RobotModel& model, const IdentifyOptions& options, PreparedLog data,
                                     std::optional<PreparedLog> held_out,
                                     std::optional<PreparedLog> held_out_whole = std::nullopt);
