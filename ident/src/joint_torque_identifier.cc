@@ -434,6 +434,39 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Joi
   return out;
 }
 
+namespace {
+
+// id->consistent and id->verdict from the combined factor [R z; 0 ρ] of the equations.
+void SolveConsistentFit(const RobotModel& model, const Eigen::MatrixXd& factor, const JointTorqueOptions& options,
+                        JointTorqueIdentification* id) {
+  id->consistent = SolvePlausibleFit(factor, id->base, model.n_links(), StandardParameters(model, options.friction),
+                                     MakePlausibleFitOptions(model, options.friction, options.plausibility));
+  if (!std::isfinite(id->consistent.duality_gap) || !id->consistent.min_pseudo_inertia_eigenvalue.allFinite() ||
+      id->consistent.status.rfind("infeasible", 0) == 0) {
+    throw std::runtime_error("physically consistent estimate: " + id->consistent.status);
+  }
+  id->verdict = JudgePlausibleFit(id->consistent, options.plausibility.cost_tolerance);
+}
+
+}  // namespace
+
+void CentreConsistentFit(const RobotModel& model, const StackedFactors& factors, const JointTorqueOptions& options,
+                         const Eigen::VectorXd& beta_centre, JointTorqueIdentification* id) {
+  Eigen::MatrixXd factor = CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof()));
+  const Eigen::Index p = factor.rows() - 1;
+  if (beta_centre.size() != p) {
+    throw std::invalid_argument("consistent fit: expected a centre of " + std::to_string(p) + " base parameters, got " +
+                                std::to_string(beta_centre.size()));
+  }
+  // [R  R β_c; 0  ρ_c]: for every β, ‖R β − R β_c‖² + ρ_c², with ρ_c² = ‖R β_c − z‖² + ρ²
+  // the residual the centre itself leaves (the cost at β = β_c).
+  const Eigen::MatrixXd R = factor.topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  const double rho_c = std::hypot((R * beta_centre - factor.topRightCorner(p, 1)).norm(), factor(p, p));
+  factor.topRightCorner(p, 1) = R * beta_centre;
+  factor(p, p) = rho_c;
+  SolveConsistentFit(model, factor, options, id);
+}
+
 JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const BaseParameters& base,
                                               const StackedFactors& factors, const JointTorqueOptions& options,
                                               const ReweightedFold* reweighted_fold) {
@@ -465,14 +498,7 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Bas
   out.beta = out.linear.beta;
   // The plausible fit keeps the robot file's values in the directions the
   // log does not determine.
-  const Eigen::MatrixXd factor = CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof()));
-  out.consistent = SolvePlausibleFit(factor, out.base, model.n_links(), pi_model,
-                                     MakePlausibleFitOptions(model, options.friction, options.plausibility));
-  if (!std::isfinite(out.consistent.duality_gap) || !out.consistent.min_pseudo_inertia_eigenvalue.allFinite() ||
-      out.consistent.status.rfind("infeasible", 0) == 0) {
-    throw std::runtime_error("physically consistent estimate: " + out.consistent.status);
-  }
-  out.verdict = JudgePlausibleFit(out.consistent, options.plausibility.cost_tolerance);
+  SolveConsistentFit(model, CombinedFactor(factors, Eigen::VectorXd::Ones(model.n_dof())), options, &out);
   if (options.estimator == TorqueEstimator::kPhysicallyConsistent) out.beta = out.consistent.beta;
   out.fit = Predict(factors, out.beta);
   out.model_fit = Predict(factors, out.beta_model);

@@ -56,6 +56,8 @@ void EstimateInClosedLoop(const RobotModel& model, const JointTorqueOptions& opt
   id.beta = estimate.beta;
   id.linear.sigma = estimate.sigma;
   id.fit = PredictTorques(out->factors, estimate.beta);
+  // The robot model to load: the consistent estimate nearest this one, not least squares'.
+  if (estimate.converged) CentreConsistentFit(model, out->factors, options, estimate.beta, &id);
   if (!estimate.converged) out->warnings.push_back("estimator " + name + ": " + estimate.message);
   out->closed_loop = estimate;
 }

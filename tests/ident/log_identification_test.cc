@@ -75,6 +75,35 @@ TEST_F(LogIdentificationTest, SeveralLogsGiveTheStackedLeastSquaresFit) {
                                               "sigma from the residual of a.csv", "sigma from the residual of b.csv"}));
 }
 
+// The consistent estimate centred on another estimate (what a closed-loop
+// estimator's model is taken from): centred on least squares' own β it is the
+// ordinary consistent fit (the same objective, ‖R β − z‖² + ρ²); centred half
+// way to the truth, its β follows the centre (in the data's metric ‖R·‖), and
+// its verdict judges the cost against the centre's own residual.
+TEST_F(LogIdentificationTest, ConsistentFitCentredOnAnotherEstimate) {
+  const PreparedLog a = Log(0.0, 6.0, 1, "a.csv");
+  const LogIdentification identified = IdentifyFromLogs(model_, {&a}, options_);
+  const JointTorqueIdentification& ols = identified.identification;
+  JointTorqueIdentification centred = ols;
+  ASSERT_NO_THROW(CentreConsistentFit(model_, identified.factors, options_, ols.linear.beta, &centred));
+  EXPECT_LT((centred.consistent.beta - ols.consistent.beta).norm(), 1e-6 * ols.consistent.beta.norm());
+  EXPECT_NEAR(centred.consistent.ols_cost, ols.consistent.ols_cost, 1e-9 * ols.consistent.ols_cost);
+
+  // Centred half way to the truth: its β moves with the centre, away from least squares'.
+  const Eigen::VectorXd half = 0.5 * (ols.linear.beta + ols.beta_model);
+  ASSERT_NO_THROW(CentreConsistentFit(model_, identified.factors, options_, half, &centred));
+  const Eigen::MatrixXd R = CombinedFactor(identified.factors, Eigen::VectorXd::Ones(6))
+                                .topLeftCorner(half.size(), half.size()).triangularView<Eigen::Upper>();
+  auto distance = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (R * (a - b)).norm(); };
+  EXPECT_LT(distance(centred.consistent.beta, half), 0.5 * distance(ols.consistent.beta, half));
+  // ρ_c² = ‖W β_c − τ‖²: above least squares' minimum, the cost judged against it.
+  EXPECT_GT(centred.consistent.ols_cost, ols.consistent.ols_cost);
+  EXPECT_GE(centred.consistent.cost, centred.consistent.ols_cost * (1 - 1e-9));
+  EXPECT_TRUE(centred.verdict.fit_to_load()) << ToKey(centred.verdict.status);
+  EXPECT_THROW(CentreConsistentFit(model_, identified.factors, options_, Eigen::VectorXd::Zero(3), &centred),
+               std::invalid_argument);
+}
+
 // A closed-loop estimator follows one reference: several logs, or no
 // controller and reference, are refused before any work.
 TEST_F(LogIdentificationTest, ClosedLoopEstimatorsNeedOneLogAndTheirInputs) {

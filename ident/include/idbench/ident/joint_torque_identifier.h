@@ -203,6 +203,16 @@ JointTorqueIdentification IdentifyJointTorque(const RobotModel& model, const Bas
                                               const StackedFactors& factors, const JointTorqueOptions& options,
                                               const ReweightedFold* reweighted_fold = nullptr);
 
+// The physically consistent estimate centred on another estimate β_c of the
+// same equations (e.g. a closed-loop estimator's, which least squares does not
+// give): id->consistent and id->verdict replaced by the fit of
+//   ‖R (β − β_c)‖² + ρ_c²,   ρ_c² = ‖W β_c − τ‖²,
+// R the equations' triangular factor: the consistent model nearest to β_c in
+// the data's own metric, its cost judged against β_c's (ols_cost = ρ_c²)
+// instead of against least squares'. Throws as IdentifyJointTorque.
+void CentreConsistentFit(const RobotModel& model, const StackedFactors& factors, const JointTorqueOptions& options,
+                         const Eigen::VectorXd& beta_centre, JointTorqueIdentification* id);
+
 // How well base parameters β predict a log's torques.
 TorquePrediction PredictTorques(const RobotModel& model, const JointTorqueOptions& options,
                                 const BaseParameters& base, const Eigen::VectorXd& beta, const JointLog& log);
