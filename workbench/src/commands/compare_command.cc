@@ -13,6 +13,7 @@
 #include "idbench/workbench/commands/design_command.h"
 #include "idbench/engine/simulation.h"
 #include "idbench/excitation/design_regressor.h"
+#include "idbench/excitation/recorded_motion.h"
 #include "idbench/ident/least_squares.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/workbench/formats/limits_file.h"
@@ -157,62 +158,15 @@ Eigen::VectorXd KnownNoiseSigma(const Eigen::MatrixXd& W, const std::vector<doub
   return R_inv.rowwise().norm();  // cov = R⁻¹R⁻ᵀ
 }
 
-// A recorded log as the motion it ran: q, qd and qdd each interpolated
-// linearly between the recorded samples (exact at every sample). Not one C²
-// curve through all three: a recorded qdd is rarely the second derivative of
-// the recorded q (filtered apart, a sample's lag), and a curve forced through
-// both amplifies the mismatch by 1/h² between samples. Time from the first
-// kept sample; `duration` may cut the end (the simulation's grid).
-class RecordedMotion final : public Trajectory {
- public:
-  RecordedMotion(JointLog log, double duration) : log_(std::move(log)), duration_(duration) {}
-  int n_dof() const override { return log_.n_dof(); }
-  double duration() const override { return duration_; }
-  void Evaluate(double t, JointState* state) const override {
-    const double* begin = log_.t.data();
-    const Eigen::Index n = log_.n_samples();
-    const double at = std::clamp(log_.t[0] + t, log_.t[0], log_.t[n - 1]);
-    const Eigen::Index i = std::clamp<Eigen::Index>((std::upper_bound(begin, begin + n, at) - begin) - 1, 0, n - 2);
-    const double w = (at - log_.t[i]) / (log_.t[i + 1] - log_.t[i]);
-    state->q = ((1.0 - w) * log_.q.row(i) + w * log_.q.row(i + 1)).transpose();
-    state->qd = ((1.0 - w) * log_.qd.row(i) + w * log_.qd.row(i + 1)).transpose();
-    state->qdd = ((1.0 - w) * log_.qdd.row(i) + w * log_.qdd.row(i + 1)).transpose();
-  }
-  void Cut(double duration) { duration_ = duration; }
-
- private:
-  JointLog log_;
-  double duration_;
-};
-
 // Reads a recorded log with PrepareJointLog (identify's reading, resampling
-// and zero-phase filter) and drops the filter's end transients; the reading's
-// notes and warnings go to report's.
+// and zero-phase filter) as the motion it ran (MakeRecordedMotion); the
+// reading's notes and warnings go to report's.
 std::unique_ptr<RecordedMotion> LoadRecordedMotion(const std::string& path, const RobotModel& model,
                                                    const CompareOptions& options, CompareReport* report) {
   const PreparedLog prepared = PrepareJointLog(path, model, options.preparation());
   report->notes.insert(report->notes.end(), prepared.notes.begin(), prepared.notes.end());
   report->warnings.insert(report->warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
-  const JointLog& log = prepared.log;
-  double trim = 0.0;  // [s] at both ends
-  if (prepared.parallel_filter) {
-    trim = static_cast<double>(ParallelFilterTrimSamples(prepared.parallel_filter->filter,
-                                                         prepared.parallel_filter->sample_rate_hz)) /
-           prepared.parallel_filter->sample_rate_hz;
-  }
-  const double t0 = log.t[0] + trim - 1e-9, t1 = log.t[log.n_samples() - 1] - trim + 1e-9;
-  const Eigen::Index first = (log.t.array() < t0).count(), end = (log.t.array() <= t1).count();
-  if (end - first < 2) {
-    throw std::invalid_argument(path + ": " + std::to_string(std::max<Eigen::Index>(end - first, 0)) +
-                                " samples left after the filter's end transients; record a longer log");
-  }
-  JointLog kept;
-  kept.t = log.t.segment(first, end - first);
-  kept.q = log.q.middleRows(first, end - first);
-  kept.qd = log.qd.middleRows(first, end - first);
-  kept.qdd = log.qdd.middleRows(first, end - first);
-  const double duration = kept.t[kept.n_samples() - 1] - kept.t[0];
-  return std::make_unique<RecordedMotion>(std::move(kept), duration);
+  return MakeRecordedMotion(prepared, path);
 }
 
 // "compare: torque model, 40 parameters, ..." without its newline.
