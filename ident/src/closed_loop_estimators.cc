@@ -11,6 +11,7 @@
 #include "idbench/ident/base_parameter_dynamics.h"
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/linear_estimator.h"
+#include "idbench/ident/residual_covariance.h"
 
 namespace idbench {
 
@@ -122,12 +123,17 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
       const Eigen::VectorXd r = tau - W * beta_next;
       const double s2 = r.squaredNorm() / std::max<Eigen::Index>(1, tau.size() - p);
       const Eigen::MatrixXd A = qr.solve(Eigen::MatrixXd::Identity(p, p));  // (ZᵀW)⁻¹
-      const Eigen::MatrixXd cov = s2 * A * (Ws.transpose() * Ws) * A.transpose();
+      const Eigen::MatrixXd white = s2 * A * (Ws.transpose() * Ws) * A.transpose();
+      out.sigma_white = white.diagonal().cwiseMax(0.0).cwiseSqrt();
+      const Eigen::MatrixXd cov = StackedInstrumentSandwich(Ws, r, n_dof, A, white, &out.covariance);
       out.sigma = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
     } else {
-      const LinearFit fit = SolveOls(Ws, tau, n_dof);
+      LinearFit fit = SolveOls(Ws, tau, n_dof);
+      ApplyStackedScoreCovariance(Ws, tau, n_dof, &fit);
       beta_next = fit.beta;
-      out.sigma = fit.sigma_white;
+      out.sigma = fit.sigma;
+      out.sigma_white = fit.sigma_white;
+      out.covariance = fit.covariance_method;
     }
     out.last_change = (beta_next - out.beta).norm() / std::max(out.beta.norm(), 1e-300);
     out.beta = beta_next;

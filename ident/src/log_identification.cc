@@ -55,6 +55,8 @@ void EstimateInClosedLoop(const RobotModel& model, const JointTorqueOptions& opt
   }
   id.beta = estimate.beta;
   id.linear.sigma = estimate.sigma;
+  id.linear.sigma_white = estimate.sigma_white;
+  id.linear.covariance_method = estimate.covariance;
   id.fit = PredictTorques(out->factors, estimate.beta);
   // The robot model to load: the consistent estimate nearest this one, not least squares'.
   if (estimate.converged) CentreConsistentFit(model, out->factors, options, estimate.beta, &id);

@@ -181,35 +181,56 @@ void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit) {
   fit->covariance_method = Summarise(scores, &ratios);
 }
 
-Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
-                                          const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary) {
-  const Eigen::Index p = A.cols();
-  if (n_dof < 1 || A.rows() != residual.size() || A.rows() % n_dof != 0 || G.rows() != p || G.cols() != p) {
+namespace {
+
+// B Ω Bᵀ from the scores Z_tᵀ e_t (B Ω B when b_symmetric: the least-squares
+// G, multiplied as it always was); white: the white-residual covariance, for
+// the summary and for too few samples.
+Eigen::MatrixXd ScoreSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
+                              const Eigen::MatrixXd& B, bool b_symmetric, const Eigen::MatrixXd& white,
+                              CovarianceSummary* summary) {
+  const Eigen::Index p = Z.cols();
+  if (n_dof < 1 || Z.rows() != residual.size() || Z.rows() % n_dof != 0 || B.rows() != p || B.cols() != p ||
+      white.rows() != p || white.cols() != p) {
     throw std::invalid_argument("stacked sandwich: expected A with whole samples of " + std::to_string(n_dof) +
                                 " rows, a residual of its rows and G of " + std::to_string(p) + " x " +
-                                std::to_string(p) + ", got " + std::to_string(A.rows()) + " x " +
+                                std::to_string(p) + ", got " + std::to_string(Z.rows()) + " x " +
                                 std::to_string(p) + ", " + std::to_string(residual.size()) + ", " +
-                                std::to_string(G.rows()) + " x " + std::to_string(G.cols()));
+                                std::to_string(B.rows()) + " x " + std::to_string(B.cols()));
   }
-  const Eigen::Index n = A.rows() / n_dof;
+  const Eigen::Index n = Z.rows() / n_dof;
   if (n < 1 || p < 1 || BatchMeansBlockSamples(n) >= n) {  // fewer than 2 blocks: the white formula
     if (summary) *summary = CovarianceSummary{CovarianceMethod::kWhite, n, 0, 0, static_cast<double>(n)};
-    return sigma2 * G;
+    return white;
   }
   ScoreBatchMeans scores(static_cast<int>(p), n);
   for (Eigen::Index t = 0; t < n; ++t) {
-    scores.Push(A.middleRows(t * n_dof, n_dof).transpose() * residual.segment(t * n_dof, n_dof));
+    scores.Push(Z.middleRows(t * n_dof, n_dof).transpose() * residual.segment(t * n_dof, n_dof));
   }
-  Eigen::MatrixXd covariance = G * scores.Omega() * G;
+  Eigen::MatrixXd covariance = b_symmetric ? Eigen::MatrixXd(B * scores.Omega() * B)
+                                           : Eigen::MatrixXd(B * scores.Omega() * B.transpose());
   covariance = 0.5 * (covariance + covariance.transpose()).eval();
   if (summary) {
     std::vector<double> ratios;
     for (Eigen::Index k = 0; k < p; ++k) {
-      if (G(k, k) > 0.0 && covariance(k, k) > 0.0) ratios.push_back(sigma2 * G(k, k) / covariance(k, k));
+      if (white(k, k) > 0.0 && covariance(k, k) > 0.0) ratios.push_back(white(k, k) / covariance(k, k));
     }
     *summary = Summarise(scores, &ratios);
   }
   return covariance;
+}
+
+}  // namespace
+
+Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
+                                          const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary) {
+  return ScoreSandwich(A, residual, n_dof, G, true, sigma2 * G, summary);
+}
+
+Eigen::MatrixXd StackedInstrumentSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
+                                          const Eigen::MatrixXd& B, const Eigen::MatrixXd& white,
+                                          CovarianceSummary* summary) {
+  return ScoreSandwich(Z, residual, n_dof, B, false, white, summary);
 }
 
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,

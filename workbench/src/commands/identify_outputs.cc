@@ -228,7 +228,7 @@ std::string FormatIdentifiedJson(const RobotModel& model, const IdentifyOptions&
       {"joints", JointDynamicsJson(JointDynamicsOf(model, options, report))},
   };
   if (report.closed_loop) {
-    // The closed-loop estimator's verdict; sigma_method above is the OLS start's.
+    // The closed-loop estimator's verdict; sigma_method above is its last iteration's.
     result["closed_loop"] = {{"controller", options.controller},
                              {"reference", options.reference},
                              {"iterations", report.closed_loop->iterations},

@@ -140,7 +140,7 @@ std::string FormatIdentifyTables(const RobotModel& model, const IdentifyOptions&
   out += NegativeFrictionNotes(options, id);
   if (report.closed_loop) {
     out += "estimator " + std::string(ToString(options.estimator)) + ": " + report.closed_loop->message +
-           "; sigma: of its last iteration, as if the residual were white\n";
+           "; at its last iteration, " + SigmaMethodText(id.linear) + "\n";
   } else {
     out += SigmaMethodText(id.linear) + "\n";
     if (options.estimator == TorqueEstimator::kTls || options.estimator == TorqueEstimator::kIrls) {

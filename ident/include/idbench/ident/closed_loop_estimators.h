@@ -45,7 +45,12 @@ struct ClosedLoopEstimatorOptions {
 
 struct ClosedLoopEstimate {
   Eigen::VectorXd beta;   // base parameters (n_base)
-  Eigen::VectorXd sigma;  // their σ at the last iteration, white residual (n_base)
+  // Their σ at the last iteration (n_base), from the residual as it is: the
+  // batch-means sandwich of the iteration's estimator (residual_covariance.h;
+  // IV: (ZᵀW)⁻¹ Ω (WᵀZ)⁻¹ with the scores Z_tᵀ e_t), as identify's least squares.
+  Eigen::VectorXd sigma;
+  Eigen::VectorXd sigma_white;    // the same as if the residual were white (n_base)
+  CovarianceSummary covariance;   // how sigma was computed (blocks, n_eff)
   int iterations = 0;     // re-simulations run
   bool converged = false;
   double last_change = 0.0;  // ‖β_k − β_{k−1}‖ / ‖β_{k−1}‖ of the last iteration

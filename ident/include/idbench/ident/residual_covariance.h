@@ -118,6 +118,15 @@ void ApplyScoreCovariance(const ScoreBatchMeans& scores, LinearFit* fit);
 Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
                                           const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary);
 
+// The same for an instrumental-variables estimate β̂ = (ZᵀA)⁻¹ Zᵀ b (Z the
+// instruments, rows as A's): B Ω Bᵀ with B = (ZᵀA)⁻¹ (p × p), Ω from the
+// per-sample scores Z_tᵀ e_t of the residual e = b − A β̂. white: the
+// white-residual covariance s² B ZᵀZ Bᵀ, for *summary's n_eff and returned
+// when there are too few samples for 2 blocks. Throws as above.
+Eigen::MatrixXd StackedInstrumentSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
+                                          const Eigen::MatrixXd& B, const Eigen::MatrixXd& white,
+                                          CovarianceSummary* summary);
+
 // The batch-means covariance of a fit to dense stacked rows (the rows the
 // fit was solved from): PushStackedScores, then ApplyScoreCovariance.
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,
