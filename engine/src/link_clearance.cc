@@ -1,5 +1,7 @@
 #include "idbench/engine/link_clearance.h"
 
+#include "hull_climb.h"
+
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
@@ -16,6 +18,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 namespace idbench {
@@ -28,6 +31,33 @@ btTransform ToBt(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   btMatrix3x3 basis(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2));
   return btTransform(basis, ToBt(p));
 }
+
+// A mesh hull as GJK sees it, its support point found by climbing the
+// hull's edges (internal::HullClimb) from the one this object last returned
+// instead of btConvexHullShape's scan of every point: the same point set and
+// margin, so the same shape. One lives for one GJK/EPA query (its warm start
+// is the query's own, so shapes stay shared between threads). Its shape type
+// is CUSTOM_CONVEX_SHAPE_TYPE, for which Bullet's non-virtual support and
+// margin calls fall through to these virtual ones.
+class ClimbingHullShape final : public btConvexInternalShape {
+ public:
+  ClimbingHullShape(const internal::HullClimb& hull, btScalar margin) : hull_(hull) {
+    m_shapeType = CUSTOM_CONVEX_SHAPE_TYPE;
+    setMargin(margin);
+  }
+  btVector3 localGetSupportingVertexWithoutMargin(const btVector3& d) const override {
+    return ToBt(hull_.vertex(hull_.Support(Eigen::Vector3d(d.x(), d.y(), d.z()), &last_)));
+  }
+  void batchedUnitVectorGetSupportingVertexWithoutMargin(const btVector3* d, btVector3* out, int n) const override {
+    for (int i = 0; i < n; ++i) out[i] = localGetSupportingVertexWithoutMargin(d[i]);
+  }
+  void calculateLocalInertia(btScalar, btVector3& inertia) const override { inertia.setZero(); }
+  const char* getName() const override { return "ClimbingHull"; }
+
+ private:
+  const internal::HullClimb& hull_;
+  mutable int last_ = -1;  // the last support vertex: the next climb's start
+};
 
 // The distance between the segments p1–q1 and p2–q2 (Ericson, Real-Time
 // Collision Detection, 5.1.9).
@@ -88,6 +118,9 @@ struct ClearanceModel::Impl {
   struct LinkShape {
     std::unique_ptr<btConvexShape> shape;
     Eigen::Isometry3d X_BG;
+    // A mesh hull's edge graph, for GJK's support calls (ClimbingHullShape);
+    // null (or not usable) for other shapes: Bullet's own support.
+    std::unique_ptr<internal::HullClimb> climb;
     // A capsule holding the shape as GJK sees it (margin included): the
     // points within capsule_radius of the segment e0–e1 (in G).
     Eigen::Vector3d e0 = Eigen::Vector3d::Zero(), e1 = Eigen::Vector3d::Zero();
@@ -102,6 +135,18 @@ struct ClearanceModel::Impl {
   // A shape as GJK checks it (1 mm inflated but a sphere, see the
   // constructor) and the radius of a sphere about its origin holding it.
   static LinkShape Convex(const Shape& s, const Eigen::Isometry3d& X_BG);
+
+  // Closest points of two placed shapes: Pair on their hulls' climbing
+  // support (ClimbingHullShape) where they have one.
+  static Clearance Pair(const LinkShape& a, const btTransform& X_WA, const LinkShape& b, const btTransform& X_WB) {
+    auto climbing = [](const LinkShape& s) -> std::optional<ClimbingHullShape> {
+      if (!s.climb || !s.climb->usable()) return std::nullopt;
+      return std::optional<ClimbingHullShape>(std::in_place, *s.climb, s.shape->getMargin());
+    };
+    const std::optional<ClimbingHullShape> ca = climbing(a), cb = climbing(b);
+    return Pair(ca ? static_cast<const btConvexShape*>(&*ca) : a.shape.get(), X_WA,
+                cb ? static_cast<const btConvexShape*>(&*cb) : b.shape.get(), X_WB);
+  }
 
   // Closest points of two placed convex shapes; distance < 0 when overlapping.
   static Clearance Pair(const btConvexShape* a, const btTransform& X_WA, const btConvexShape* b,
@@ -246,7 +291,7 @@ struct ClearanceModel::Impl {
           bound = std::min(bound, lower);
           continue;
         }
-        const Clearance c = Pair(sa.shape.get(), placed(pair.link_a, sa), sb.shape.get(), placed(pair.link_b, sb));
+        const Clearance c = Pair(sa, placed(pair.link_a, sa), sb, placed(pair.link_b, sb));
         if (c.distance < best.distance) best = c;
       }
     }
@@ -283,7 +328,13 @@ ClearanceModel::Impl::LinkShape ClearanceModel::Impl::Convex(const Shape& s, con
   if (s.kind != Shape::Kind::kSphere) shape->setMargin(kMargin + gap);
   // The bounding capsule: along a box's longest side, a cylinder's axis, a
   // mesh's principal axis (through its vertices' centroid).
-  LinkShape out{std::move(shape), X_BG, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.0};
+  LinkShape out{std::move(shape), X_BG, nullptr, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 0.0};
+  if (s.kind == Shape::Kind::kMesh) {
+    const auto* hull = static_cast<const btConvexHullShape*>(out.shape.get());
+    std::vector<Eigen::Vector3d> points;
+    for (int k = 0; k < hull->getNumPoints(); ++k) points.push_back(FromBt(hull->getUnscaledPoints()[k]));
+    out.climb = std::make_unique<internal::HullClimb>(points);
+  }
   switch (s.kind) {
     case Shape::Kind::kSphere:
       out.capsule_radius = s.size.x();
