@@ -30,7 +30,7 @@ class BenchmarkCliTest : public CliFixture {
   std::string Args(const std::string& more) const {
     return "benchmark --robot " IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf --trajectory " +
            (dir_ / "short.json").string() + " --controller " + (dir_ / "pid.json").string() +
-           " --friction none --estimators ols,wls --trials 2 --preset low,high " + more;
+           " --friction none --estimators ols,wls " + more;
   }
   // benchmark.json with every wall time removed: what a run determines.
   static nlohmann::json WithoutTimes(const fs::path& path) {
@@ -66,14 +66,15 @@ TEST_F(BenchmarkCliTest, BadOptionsExitTwoNamingTheFlag) {
 }
 
 TEST_F(BenchmarkCliTest, FourShardsMergedGiveTheSingleRun) {
-  Result r = Run(Args("--threads 2 --out " + (dir_ / "single").string()));
+  const std::string run = "--trials 2 --preset low,high ";
+  Result r = Run(Args(run + "--threads 2 --out " + (dir_ / "single").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("preset  estimator"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("benchmark: 4/4 trials"), std::string::npos) << r.err;
   std::string dirs;
   for (int k = 0; k < 4; ++k) {
     const fs::path out = dir_ / ("shard" + std::to_string(k));
-    r = Run(Args("--shard " + std::to_string(k) + "/4 --out " + out.string()));
+    r = Run(Args(run + "--shard " + std::to_string(k) + "/4 --out " + out.string()));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     dirs += " " + out.string();
   }
