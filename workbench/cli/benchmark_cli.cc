@@ -15,6 +15,7 @@
 #include "idbench/engine/input_file.h"
 #include "idbench/workbench/commands/benchmark_command.h"
 #include "idbench/workbench/formats/atomic_file.h"
+#include "idbench/workbench/reports/plots.h"
 
 namespace idbench::cli {
 namespace {
@@ -86,7 +87,8 @@ void WriteBenchmark(const BenchmarkResult& result, const std::string& out_dir) {
   const std::filesystem::path dir(out_dir);
   EnsureOutputDirectory(dir);
   WriteFileAtomically(dir / "benchmark.json", FormatBenchmarkJson(result));
-  std::printf("wrote %s\n", (dir / "benchmark.json").c_str());
+  WriteFileAtomically(dir / "parameter_errors.png", RenderPlot(BenchmarkErrorPlot(result), PlotFormat::kPng));
+  std::printf("wrote %s and parameter_errors.png\n", (dir / "benchmark.json").c_str());
 }
 
 int BenchmarkCommand(BenchmarkFlags* flags, const UrdfLoadOptions& load, const CliContext& context) {
@@ -148,12 +150,12 @@ CliCommand AddBenchmarkCommand(CLI::App* app, CliContext* context) {
   command->add_option("--shard", flags->shard,
                       "Run only the K-th (from 0) of N disjoint slices of the trials, e.g. 0/4; join them with "
                       "`benchmark merge`");
-  AddOutFlag(command, &options.out_dir, "Directory for benchmark.json")->capture_default_str();
+  AddOutFlag(command, &options.out_dir, "Directory for benchmark.json and parameter_errors.png")->capture_default_str();
 
   CLI::App* merge = command->add_subcommand(
       "merge", "Join the benchmark.json of the shards of one run into the single run's (bit for bit)");
   merge->add_option("dirs", flags->merge_dirs, "The shards' output directories")->required();
-  AddOutFlag(merge, &flags->merge_out, "Directory for the merged benchmark.json")->required();
+  AddOutFlag(merge, &flags->merge_out, "Directory for the merged benchmark.json and parameter_errors.png")->required();
 
   return {command, [flags, merge, context] {
             if (merge->parsed()) return MergeCommand(*flags, *context);

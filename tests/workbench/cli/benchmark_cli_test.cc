@@ -71,6 +71,7 @@ TEST_F(BenchmarkCliTest, FourShardsMergedGiveTheSingleRun) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("preset  estimator"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("benchmark: 4/4 trials"), std::string::npos) << r.err;
+  EXPECT_GT(fs::file_size(dir_ / "single" / "parameter_errors.png"), 1000u);
   std::string dirs;
   for (int k = 0; k < 4; ++k) {
     const fs::path out = dir_ / ("shard" + std::to_string(k));
