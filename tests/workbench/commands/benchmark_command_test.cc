@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -192,8 +193,41 @@ TEST_F(BenchmarkCommandTest, ClosedLoopEstimatorsUnderHighNoiseAsMeasured) {
   for (const BenchmarkSummary* s : {&ols, &iv, &didim}) EXPECT_EQ(s->trials, 6);
   EXPECT_EQ(ols.diverged, 0);
   EXPECT_NEAR(ols.parameter_error.mean, 0.0294, 0.02 * 0.0294);
+  EXPECT_NEAR(ols.sigma_ratio, 0.834, 0.02 * 0.834);  // σ within 17 % of the spread of 6 trials (measured)
   EXPECT_GT(iv.parameter_error.median, ols.parameter_error.median);
   EXPECT_GT(didim.parameter_error.median, ols.parameter_error.median);
+}
+
+// σ against the spread, by hand: parameter 0 has estimates 1, 2, 3 (std 1)
+// with σ 2 (ratio 2), parameter 1 has 0, 0, 3 (std √3) with σ √3 (ratio 1):
+// the median is 1.5. A diverged trial is left out; pc has no σ.
+TEST(BenchmarkSummaryTest, SigmaRatioIsTheMedianOfRmsSigmaOverTheSpread) {
+  BenchmarkResult result;
+  result.estimators = {TorqueEstimator::kOls};
+  result.presets = {NoisePreset::kLow};
+  result.trials = 4;
+  result.beta_true = Eigen::Vector2d(2.0, 1.0);
+  const double b0[] = {1.0, 2.0, 3.0, 100.0}, b1[] = {0.0, 0.0, 3.0, 100.0};
+  for (int t = 0; t < 4; ++t) {
+    BenchmarkTrial trial;
+    trial.trial = t;
+    BenchmarkEstimate e;
+    e.beta = Eigen::Vector2d(b0[t], b1[t]);
+    e.sigma = Eigen::Vector2d(2.0, std::sqrt(3.0));
+    e.diverged = t == 3;
+    trial.estimates = {e};
+    result.trials_run.push_back(trial);
+  }
+  SummarizeBenchmark(&result);
+  ASSERT_EQ(result.summary.size(), 1u);
+  EXPECT_NEAR(result.summary[0].sigma_ratio, 1.5, 1e-12);
+  EXPECT_EQ(result.summary[0].diverged, 1);
+  // Read back from benchmark.json: the same.
+  const BenchmarkResult back = ParseBenchmarkJson(FormatBenchmarkJson(result), "json");
+  EXPECT_EQ(FormatBenchmarkJson(back), FormatBenchmarkJson(result));
+  for (BenchmarkTrial& trial : result.trials_run) trial.estimates[0].sigma.setConstant(std::nan(""));
+  SummarizeBenchmark(&result);
+  EXPECT_TRUE(std::isnan(result.summary[0].sigma_ratio));
 }
 
 // Options are checked before any work, each message naming its field.

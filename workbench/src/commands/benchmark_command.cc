@@ -116,6 +116,10 @@ BenchmarkEstimate Estimate(const BenchmarkSetup& setup, IdentifyOptions identify
   try {
     const IdentifyReport report = IdentifyPreparedLogs(*setup.model, identify, prepared, std::nullopt);
     const JointTorqueIdentification& id = report.identification;
+    out.beta = id.beta;
+    out.sigma = estimator == TorqueEstimator::kPhysicallyConsistent
+                    ? Eigen::VectorXd::Constant(id.beta.size(), kNaN)
+                    : Eigen::VectorXd(id.linear.sigma);
     out.parameter_error = SymmetricRelativeError(id.beta, setup.beta_true);
     out.torque_error = id.fit.relative_error;
     if (estimator == TorqueEstimator::kPhysicallyConsistent) {
@@ -211,6 +215,28 @@ BenchmarkStatistic Statistic(const std::vector<double>& values) {
   return s;
 }
 
+// Median over the base parameters of RMS(σ_i) / std(β̂_i) over the estimates
+// (BenchmarkSummary::sigma_ratio); NaN with fewer than 2 or without σ.
+double SigmaRatio(const std::vector<const BenchmarkEstimate*>& estimates, Eigen::Index n_base) {
+  if (estimates.size() < 2) return kNaN;
+  std::vector<double> ratios;
+  for (Eigen::Index i = 0; i < n_base; ++i) {
+    std::vector<double> values;
+    double sigma_squares = 0.0;
+    for (const BenchmarkEstimate* e : estimates) {
+      if (e->beta.size() != n_base || e->sigma.size() != n_base) return kNaN;
+      values.push_back(e->beta[i]);
+      sigma_squares += e->sigma[i] * e->sigma[i];
+    }
+    const double rms_sigma = std::sqrt(sigma_squares / static_cast<double>(estimates.size()));
+    ratios.push_back(rms_sigma / Statistic(values).std);
+  }
+  for (double r : ratios) {
+    if (std::isnan(r)) return kNaN;
+  }
+  return ratios.empty() ? kNaN : Statistic(ratios).median;
+}
+
 // The index of a trial in the whole run: presets in the run's order, then trials.
 long RunIndex(const BenchmarkResult& result, NoisePreset preset, int trial) {
   const auto at = std::find(result.presets.begin(), result.presets.end(), preset);
@@ -222,6 +248,11 @@ long RunIndex(const BenchmarkResult& result, NoisePreset preset, int trial) {
 nlohmann::ordered_json Number(double value) {
   if (!std::isfinite(value)) return nullptr;
   return value;
+}
+nlohmann::ordered_json Numbers(const Eigen::VectorXd& values) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (double v : values) out.push_back(Number(v));
+  return out;
 }
 nlohmann::ordered_json StatisticJson(const BenchmarkStatistic& s) {
   return {{"mean", Number(s.mean)}, {"std", Number(s.std)}, {"median", Number(s.median)}};
@@ -341,6 +372,7 @@ void SummarizeBenchmark(BenchmarkResult* result) {
       s.estimator = result->estimators[e];
       s.preset = preset;
       std::vector<double> parameter, torque, coverage, seconds;
+      std::vector<const BenchmarkEstimate*> kept;
       for (const BenchmarkTrial& trial : result->trials_run) {
         if (trial.preset != preset) continue;
         const BenchmarkEstimate& estimate = trial.estimates.at(e);
@@ -353,7 +385,9 @@ void SummarizeBenchmark(BenchmarkResult* result) {
         parameter.push_back(estimate.parameter_error);
         torque.push_back(estimate.torque_error);
         coverage.push_back(estimate.coverage_95);
+        kept.push_back(&estimate);
       }
+      s.sigma_ratio = SigmaRatio(kept, result->beta_true.size());
       s.parameter_error = Statistic(parameter);
       s.torque_error = Statistic(torque);
       s.seconds = Statistic(seconds);
@@ -373,11 +407,11 @@ std::string FormatBenchmarkTable(const BenchmarkResult& result) {
                     ? (", shard " + std::to_string(result.shard_index) + "/" + std::to_string(result.shard_count)).c_str()
                     : "");
   std::string out = line;
-  std::snprintf(line, sizeof line, "%-6s  %-9s  %32s  %21s  %9s  %8s  %9s\n", "preset", "estimator",
-                "parameter error", "torque error", "95% cover", "diverged", "seconds");
+  std::snprintf(line, sizeof line, "%-6s  %-9s  %32s  %21s  %9s  %8s  %8s  %9s\n", "preset", "estimator",
+                "parameter error", "torque error", "95% cover", "sigma/", "diverged", "seconds");
   out += line;
-  std::snprintf(line, sizeof line, "%-6s  %-9s  %10s %10s %10s  %10s %10s  %9s  %8s  %9s\n", "", "", "mean", "std",
-                "median", "mean", "std", "", "", "mean");
+  std::snprintf(line, sizeof line, "%-6s  %-9s  %10s %10s %10s  %10s %10s  %9s  %8s  %8s  %9s\n", "", "", "mean",
+                "std", "median", "mean", "std", "", "spread", "", "mean");
   out += line;
   for (const BenchmarkSummary& s : result.summary) {
     char coverage[32];
@@ -386,14 +420,22 @@ std::string FormatBenchmarkTable(const BenchmarkResult& result) {
     } else {
       std::snprintf(coverage, sizeof coverage, "-");
     }
-    std::snprintf(line, sizeof line, "%-6s  %-9s  %10.4g %10.3g %10.4g  %10.4g %10.3g  %9s  %4d/%-3d  %9.3g\n",
+    char ratio[32];
+    if (std::isfinite(s.sigma_ratio)) {
+      std::snprintf(ratio, sizeof ratio, "%.3g", s.sigma_ratio);
+    } else {
+      std::snprintf(ratio, sizeof ratio, "-");
+    }
+    std::snprintf(line, sizeof line,
+                  "%-6s  %-9s  %10.4g %10.3g %10.4g  %10.4g %10.3g  %9s  %8s  %4d/%-3d  %9.3g\n",
                   std::string(kNoisePresetNames.Name(s.preset)).c_str(), std::string(ToString(s.estimator)).c_str(),
                   s.parameter_error.mean, s.parameter_error.std, s.parameter_error.median, s.torque_error.mean,
-                  s.torque_error.std, coverage, s.diverged, s.trials, s.seconds.mean);
+                  s.torque_error.std, coverage, ratio, s.diverged, s.trials, s.seconds.mean);
     out += line;
   }
   out += "\nparameter error: |b - b_true| / ((|b| + |b_true|)/2) over the base parameters; torque error: "
          "|tau_hat - tau| / |tau| on the trial's log;\n95% cover: base parameters within 1.96 sigma of the truth; "
+         "sigma/spread: median over the base parameters of RMS(sigma) / std(b) over the trials;\n"
          "diverged: error above 50x OLS's on the trial, or failed\n";
   return out;
 }
@@ -424,6 +466,7 @@ std::string FormatBenchmarkJson(const BenchmarkResult& result) {
                        {"parameter_error", StatisticJson(s.parameter_error)},
                        {"torque_error", StatisticJson(s.torque_error)},
                        {"coverage_95", Number(s.coverage_95)},
+                       {"sigma_ratio", Number(s.sigma_ratio)},
                        {"diverged", s.diverged},
                        {"seconds", StatisticJson(s.seconds)}});
   }
@@ -438,7 +481,9 @@ std::string FormatBenchmarkJson(const BenchmarkResult& result) {
                            {"coverage_95", Number(e.coverage_95)},
                            {"diverged", e.diverged},
                            {"seconds", Number(e.seconds)},
-                           {"message", e.message}});
+                           {"message", e.message},
+                           {"beta", Numbers(e.beta)},
+                           {"sigma", Numbers(e.sigma)}});
     }
     trials.push_back({{"preset", std::string(kNoisePresetNames.Name(trial.preset))},
                       {"trial", trial.trial},
@@ -515,6 +560,15 @@ BenchmarkResult ParseBenchmarkJson(const std::string& text, const std::string& s
       if (!diverged.is_boolean()) r.Fail(at + ".diverged", "expected true or false");
       estimate.diverged = diverged.get<bool>();
       estimate.message = r.String(r.At(x, "message", at + ".message"), at + ".message");
+      for (auto [key, vector] : {std::pair<const char*, Eigen::VectorXd*>{"beta", &estimate.beta},
+                                 std::pair<const char*, Eigen::VectorXd*>{"sigma", &estimate.sigma}}) {
+        const auto& values = r.At(x, key, at + "." + key);
+        if (!values.is_array()) r.Fail(at + "." + key, "expected an array");
+        vector->resize(static_cast<Eigen::Index>(values.size()));
+        for (size_t k = 0; k < values.size(); ++k) {
+          (*vector)[static_cast<Eigen::Index>(k)] = r.Double(values[k], at + "." + key);
+        }
+      }
       trial.estimates.push_back(std::move(estimate));
     }
     out.trials_run.push_back(std::move(trial));

@@ -71,6 +71,8 @@ struct BenchmarkEstimate {
   double torque_error = 0.0;
   double coverage_95 = 0.0;
   double seconds = 0.0;  // wall time of the identification [s]
+  Eigen::VectorXd beta;   // the estimate (n_base; empty when it failed)
+  Eigen::VectorXd sigma;  // its printed σ (n_base; NaN for pc)
   bool diverged = false;
   std::string message;   // a closed-loop estimator that did not converge, or the failure
 };
@@ -98,6 +100,10 @@ struct BenchmarkSummary {
   int trials = 0;
   BenchmarkStatistic parameter_error, torque_error, seconds;
   double coverage_95 = 0.0;  // mean of the trials' coverage_95 (NaN for pc)
+  // Is σ a claim the trials bear out: the median over the base parameters of
+  // RMS_trials(σ_i) / std_trials(β̂_i), over the trials that did not diverge
+  // (1: the printed σ is the spread; NaN with fewer than 2 trials, or for pc).
+  double sigma_ratio = 0.0;
   int diverged = 0;
 };
 
@@ -139,7 +145,7 @@ std::string FormatBenchmarkTable(const BenchmarkResult& result);
 
 // benchmark.json: the run, "results" (the summary: per estimator and preset
 // "estimator", "preset", "trials", "parameter_error": {"mean", "std", "median"},
-// "torque_error": {...}, "coverage_95", "diverged", "seconds": {...}) and
+// "torque_error": {...}, "coverage_95", "sigma_ratio", "diverged", "seconds": {...}) and
 // "trials" (every trial's raw values), doubles written so that they read back
 // bit for bit (NaN as null). A shard's adds "shard": "K/N".
 std::string FormatBenchmarkJson(const BenchmarkResult& result);
