@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "held_torque_source.h"
 #include "idbench/logs/open_joint_log.h"
 #include "idbench/logs/prefetching_joint_log_source.h"
 #include "idbench/logs/recorded_joint_log_source.h"
@@ -251,9 +252,11 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
 
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& path,
                                     const LogPreparationOptions& options) {
-  return PrepareJointLogSource(
-      std::make_shared<RecordedJointLogSource>(std::move(recorded), path, options.torques == TorqueColumns::kCurrents),
-      path, options);
+  std::unique_ptr<JointLogSource> source =
+      std::make_unique<RecordedJointLogSource>(std::move(recorded), path, options.torques == TorqueColumns::kCurrents);
+  // Held torques read as a file's are (OpenJointLog).
+  if (options.format.torque_held) source = std::make_unique<internal::HeldTorqueSource>(std::move(source));
+  return PrepareJointLogSource(std::move(source), path, options);
 }
 
 PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const std::string& path,

@@ -12,6 +12,7 @@
 
 #include "engine/test_util.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/logs/joint_log_pipeline.h"
 #include "idbench/logs/open_joint_log.h"
 
 namespace idbench {
@@ -64,6 +65,36 @@ TEST(HeldTorqueSourceTest, EachTorqueIsTheMeanOfItsHoldAndThePreviousOne) {
       [&] { OpenJointLog((dir / "q.csv").string(), model, format, TorqueColumns::kOptional); });
   EXPECT_NE(what.find("q.csv: torque_held: the log has no torque (or current) columns"), std::string::npos) << what;
   fs::remove_all(dir);
+}
+
+// A log held in memory (PrepareRecordedJointLog: the benchmark's simulated
+// logs, Python's arrays) reads its torques as held too when the format says
+// so; before, its format was ignored and the torques read as recorded.
+TEST(HeldTorqueSourceTest, ARecordedLogInMemoryIsReadAsHeldWhenTheFormatSaysSo) {
+  const RobotModel model = MakePaper6r();
+  const int n = 20;
+  RecordedJointLog recorded;
+  JointLog& log = recorded.log;
+  log.t = Eigen::VectorXd::LinSpaced(n, 0.0, 0.01 * (n - 1));
+  log.q = Eigen::MatrixXd::Zero(n, 6);
+  log.qd = Eigen::MatrixXd::Zero(n, 6);
+  log.qdd = Eigen::MatrixXd::Zero(n, 6);
+  log.tau.resize(n, 6);
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < 6; ++j) log.tau(k, j) = std::sin(0.3 * k + j) + 0.01 * k * k;
+  }
+  for (int k = 0; k < n; ++k) recorded.lines.push_back(k);
+  const Eigen::MatrixXd tau = log.tau;
+  LogPreparationOptions options;
+  options.format.torque_held = true;
+  const PreparedLog prepared = PrepareRecordedJointLog(recorded, "arrays", options);
+  ASSERT_EQ(prepared.log.tau.rows(), n);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::RowVectorXd expected = k == 0 ? Eigen::RowVectorXd(tau.row(0)) : 0.5 * (tau.row(k - 1) + tau.row(k));
+    EXPECT_LT((prepared.log.tau.row(k) - expected).cwiseAbs().maxCoeff(), 1e-12) << "sample " << k;
+  }
+  options.format.torque_held = false;
+  EXPECT_EQ(PrepareRecordedJointLog(recorded, "arrays", options).log.tau, tau);
 }
 
 }  // namespace

@@ -87,6 +87,7 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context);
 CliCommand AddGainsCommand(CLI::App* app, CliContext* context);
 CliCommand AddPayloadCommand(CLI::App* app, CliContext* context);
 CliCommand AddMonteCarloCommand(CLI::App* app, CliContext* context);
+CliCommand AddBenchmarkCommand(CLI::App* app, CliContext* context);
 CliCommand AddRenderCommand(CLI::App* app, CliContext* context);
 CliCommand AddDesignCommand(CLI::App* app, CliContext* context);
 CliCommand AddCompareCommand(CLI::App* app, CliContext* context);

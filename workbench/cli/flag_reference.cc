@@ -61,17 +61,30 @@ std::string Description(const CLI::Option& option) {
   return text;
 }
 
-std::string CommandPage(const std::string& program, const CLI::App& command) {
+// The table of a command's flags.
+std::string FlagTable(const CLI::App& command) {
   std::ostringstream md;
-  md << "# " << program << " " << command.get_name() << "\n\n"
-     << command.get_description() << "\n\n"
-     << kGeneratedNote << "\n\n"
-     << "| Flag | Value | Default | Description |\n"
+  md << "| Flag | Value | Default | Description |\n"
      << "|---|---|---|---|\n";
   for (const CLI::Option* option : command.get_options()) {
     if (option == command.get_help_ptr()) continue;  // -h, --help: every command's
     md << "| " << Names(*option) << " | " << Cell(Value(*option)) << " | " << Cell(Default(*option)) << " | "
        << Cell(Description(*option)) << " |\n";
+  }
+  return md.str();
+}
+
+// A command's page: its flags, then each of its own subcommands' (`benchmark merge`).
+std::string CommandPage(const std::string& program, const CLI::App& command) {
+  std::ostringstream md;
+  md << "# " << program << " " << command.get_name() << "\n\n"
+     << command.get_description() << "\n\n"
+     << kGeneratedNote << "\n\n"
+     << FlagTable(command);
+  for (const CLI::App* sub : command.get_subcommands({})) {
+    md << "\n## " << program << " " << command.get_name() << " " << sub->get_name() << "\n\n"
+       << sub->get_description() << "\n\n"
+       << FlagTable(*sub);
   }
   return md.str();
 }

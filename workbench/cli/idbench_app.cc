@@ -13,10 +13,11 @@ std::vector<CliCommand> AddIdbenchCommands(CLI::App* app, CliContext* context) {
   app->description("idbench: a workbench for robot excitation design and dynamic parameter identification");
   app->set_version_flag("--version", std::string("idbench ") + Version() + " (git " + GitRevision() + ")",
                         "Print the version and the git revision built from, then exit");
-  return {AddRunCommand(app, context),      AddSimulateCommand(app, context),   AddIdentifyCommand(app, context),
-          AddGainsCommand(app, context),    AddPayloadCommand(app, context),    AddMonteCarloCommand(app, context),
-          AddRenderCommand(app, context),   AddDesignCommand(app, context),     AddCompareCommand(app, context),
-          AddReportCommand(app, context),   AddExportCommand(app, context),     AddGuiCommand(app, context)};
+  return {AddRunCommand(app, context),        AddSimulateCommand(app, context), AddIdentifyCommand(app, context),
+          AddGainsCommand(app, context),      AddPayloadCommand(app, context),  AddMonteCarloCommand(app, context),
+          AddBenchmarkCommand(app, context),  AddRenderCommand(app, context),   AddDesignCommand(app, context),
+          AddCompareCommand(app, context),    AddReportCommand(app, context),   AddExportCommand(app, context),
+          AddGuiCommand(app, context)};
 }
 
 }  // namespace idbench::cli

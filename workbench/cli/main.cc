@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   // CLI11 parses a line naming several subcommands (`idbench design run`);
   // the first parsed in this order runs.
   const CliCommand* parsed = nullptr;
-  for (const char* name : {"run", "simulate", "identify", "gains", "payload", "montecarlo", "render", "report",
+  for (const char* name : {"run", "simulate", "identify", "gains", "payload", "montecarlo", "benchmark", "render", "report",
                            "export", "design", "compare", "gui"}) {
     const auto command = std::find_if(commands.begin(), commands.end(),
                                       [name](const CliCommand& c) { return c.app->get_name() == name; });
@@ -47,5 +47,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "idbench: error: %s\n", context.FlagSpelling(e.what()).c_str());
     return idbench::cli::kExitFailure;
   }
-  return context.UsageError("a subcommand is required (run, simulate, identify, gains, payload, montecarlo, design, compare, render, report, export, gui); see idbench --help");
+  return context.UsageError("a subcommand is required (run, simulate, identify, gains, payload, montecarlo, benchmark, design, compare, render, report, export, gui); see idbench --help");
 }

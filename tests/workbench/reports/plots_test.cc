@@ -102,5 +102,50 @@ TEST_F(PlotsTest, EveryTorqueAxesHasTicksAndUnits) {
   }
 }
 
+// The box plot's numbers against NumPy's percentiles (type 7: linear between
+// order statistics): np.percentile([1, 2, 3, 4], [25, 50, 75]) = 1.75, 2.5,
+// 3.25; of [4, 1, 100, 3, 2, nan]: 2, 3, 4, with 100 beyond 4 + 1.5·2.
+TEST(BenchmarkPlotTest, BoxesAreTukeysOnNumpysPercentiles) {
+  const BoxSummary even = SummarizeBox({1.0, 2.0, 3.0, 4.0});
+  EXPECT_DOUBLE_EQ(even.q1, 1.75);
+  EXPECT_DOUBLE_EQ(even.median, 2.5);
+  EXPECT_DOUBLE_EQ(even.q3, 3.25);
+  EXPECT_DOUBLE_EQ(even.whisker_low, 1.0);
+  EXPECT_DOUBLE_EQ(even.whisker_high, 4.0);
+  EXPECT_TRUE(even.outliers.empty());
+  const BoxSummary tail = SummarizeBox({4.0, 1.0, 100.0, 3.0, 2.0, std::nan("")});
+  EXPECT_DOUBLE_EQ(tail.q1, 2.0);
+  EXPECT_DOUBLE_EQ(tail.median, 3.0);
+  EXPECT_DOUBLE_EQ(tail.q3, 4.0);
+  EXPECT_DOUBLE_EQ(tail.whisker_low, 1.0);
+  EXPECT_DOUBLE_EQ(tail.whisker_high, 4.0);
+  EXPECT_EQ(tail.outliers, std::vector<double>{100.0});
+  // One panel per preset, one box per estimator, diverged trials left out.
+  BenchmarkResult result;
+  result.estimators = {TorqueEstimator::kOls, TorqueEstimator::kDidim};
+  result.presets = {NoisePreset::kLow, NoisePreset::kHigh};
+  for (NoisePreset preset : result.presets) {
+    for (int t = 0; t < 4; ++t) {
+      BenchmarkTrial trial;
+      trial.preset = preset;
+      trial.trial = t;
+      BenchmarkEstimate ols, didim;
+      ols.parameter_error = 0.01 * (t + 1);
+      didim.estimator = TorqueEstimator::kDidim;
+      didim.parameter_error = 7.0;
+      didim.diverged = t == 0;
+      trial.estimates = {ols, didim};
+      result.trials_run.push_back(trial);
+    }
+  }
+  const PlotFigure figure = BenchmarkErrorPlot(result);
+  ASSERT_EQ(figure.axes.size(), 2u);
+  EXPECT_EQ(figure.axes[1].title, "noise preset high");
+  EXPECT_EQ(figure.axes[0].categories, (std::vector<std::string>{"ols", "didim"}));
+  const PlotSeries& boxes = figure.axes[0].series.at(0);
+  EXPECT_DOUBLE_EQ(boxes.y[0], 0.0175);  // OLS's first quartile of 0.01 … 0.04
+  EXPECT_FALSE(RenderPlot(figure, PlotFormat::kPng).empty());
+}
+
 }  // namespace
 }  // namespace idbench

@@ -232,4 +232,84 @@ PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions, const
   return figure;
 }
 
+BoxSummary SummarizeBox(std::vector<double> values) {
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+               values.end());
+  BoxSummary box;
+  if (values.empty()) {
+    const double nan = std::nan("");
+    box = {nan, nan, nan, nan, nan, {}};
+    return box;
+  }
+  std::sort(values.begin(), values.end());
+  const auto quantile = [&](double p) {
+    const double h = (static_cast<double>(values.size()) - 1.0) * p;
+    const size_t lo = static_cast<size_t>(std::floor(h));
+    const size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  };
+  box.q1 = quantile(0.25);
+  box.median = quantile(0.5);
+  box.q3 = quantile(0.75);
+  const double reach = 1.5 * (box.q3 - box.q1);
+  box.whisker_low = box.q1;
+  box.whisker_high = box.q3;
+  for (double v : values) {
+    if (v < box.q1 - reach || v > box.q3 + reach) {
+      box.outliers.push_back(v);
+    } else {
+      box.whisker_low = std::min(box.whisker_low, v);
+      box.whisker_high = std::max(box.whisker_high, v);
+    }
+  }
+  return box;
+}
+
+PlotFigure BenchmarkErrorPlot(const BenchmarkResult& result) {
+  // The plot draws lines, markers and bars: a box is a line series' closed
+  // outline, its median and whiskers, the boxes apart by NaN.
+  constexpr double kHalfWidth = 0.25;
+  const double nan = std::nan("");
+  PlotFigure figure;
+  for (NoisePreset preset : result.presets) {
+    PlotAxes axes;
+    axes.title = "noise preset " + std::string(kNoisePresetNames.Name(preset));
+    axes.y_label = "parameter error";
+    axes.log_y = true;
+    PlotSeries boxes{"quartiles, median, whiskers (1.5 IQR)", {}, {}, {}, PlotSeries::Style::kLine};
+    PlotSeries outliers{"beyond the whiskers", {}, {}, {}, PlotSeries::Style::kMarkers};
+    for (size_t e = 0; e < result.estimators.size(); ++e) {
+      axes.categories.emplace_back(ToString(result.estimators[e]));
+      std::vector<double> errors;
+      for (const BenchmarkTrial& trial : result.trials_run) {
+        if (trial.preset == preset && !trial.estimates.at(e).diverged) {
+          errors.push_back(trial.estimates[e].parameter_error);
+        }
+      }
+      const BoxSummary box = SummarizeBox(errors);
+      const double x = static_cast<double>(e), l = x - kHalfWidth, r = x + kHalfWidth;
+      const std::vector<std::pair<double, double>> points{
+          {l, box.q1}, {r, box.q1}, {r, box.q3}, {l, box.q3}, {l, box.q1}, {nan, nan},           // box
+          {l, box.median}, {r, box.median}, {nan, nan},                                           // median
+          {x, box.q3}, {x, box.whisker_high}, {nan, nan}, {x, box.q1}, {x, box.whisker_low},       // whiskers
+          {nan, nan}, {x - 0.1, box.whisker_high}, {x + 0.1, box.whisker_high}, {nan, nan},
+          {x - 0.1, box.whisker_low}, {x + 0.1, box.whisker_low}, {nan, nan}};
+      for (const auto& [px, py] : points) {
+        boxes.x.push_back(px);
+        boxes.y.push_back(py);
+      }
+      for (double v : box.outliers) {
+        outliers.x.push_back(x);
+        outliers.y.push_back(v);
+      }
+    }
+    axes.series = {boxes, outliers};
+    figure.axes.push_back(std::move(axes));
+  }
+  figure.columns = static_cast<int>(figure.axes.size());
+  figure.width = 360.0 * figure.columns;
+  figure.height = 360.0;
+  return figure;
+}
+
 }  // namespace idbench

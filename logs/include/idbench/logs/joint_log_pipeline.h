@@ -104,7 +104,8 @@ PreparedLog PrepareJointLog(const std::string& path, const RobotModel& model, co
                             const StreamObserver* observer = nullptr);
 
 // The same for a log already read (e.g. arrays from Python: lines are then
-// row numbers); `source` names it in messages. options.format is not used.
+// row numbers); `source` names it in messages. Of options.format only
+// torque_held is used (the rest was applied when the log was read).
 PreparedLog PrepareRecordedJointLog(RecordedJointLog recorded, const std::string& source,
                                     const LogPreparationOptions& options);
 

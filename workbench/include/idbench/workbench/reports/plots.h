@@ -13,6 +13,7 @@
 #include "idbench/ident/joint_torque_identifier.h"
 #include "idbench/ident/per_body_identifier.h"
 #include "idbench/render/plot.h"
+#include "idbench/workbench/commands/benchmark_command.h"
 
 namespace idbench {
 
@@ -105,5 +106,22 @@ PlotFigure MotionComparisonPlot(const std::vector<MotionSummary>& motions, const
 
 // A motion's summary from its spectra (cond and log det) and the result.
 MotionSummary SummarizeMotion(const std::string& name, const std::vector<Spectrum>& spectra, double max_rel_error);
+
+// Quartiles of values (any order; NaN left out) by linear interpolation
+// between order statistics (Hyndman & Fan's type 7, R's and NumPy's default):
+// q(p) = x_(⌊h⌋) + (h − ⌊h⌋)(x_(⌊h⌋+1) − x_(⌊h⌋)), h = (n − 1) p. Whiskers reach
+// the farthest values within 1.5 IQR of the box (Tukey); the others are
+// outliers. All NaN when no value is finite.
+struct BoxSummary {
+  double q1 = 0.0, median = 0.0, q3 = 0.0;
+  double whisker_low = 0.0, whisker_high = 0.0;
+  std::vector<double> outliers;
+};
+BoxSummary SummarizeBox(std::vector<double> values);
+
+// The benchmark's parameter errors as box plots, one panel per noise preset,
+// one box per estimator (log scale: the closed-loop estimators' tails span
+// decades); diverged trials are left out as in the table.
+PlotFigure BenchmarkErrorPlot(const BenchmarkResult& result);
 
 }  // namespace idbench
