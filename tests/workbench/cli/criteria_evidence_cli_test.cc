@@ -85,7 +85,7 @@ const std::vector<Evidence> kUr10eSmall{
 const std::vector<Evidence> kPandaDefault{
     {"cond", 39.93, 0.01029, 0.000417, 0.08052, 0.08026},
     {"cond-normalised", 87.06, 0.01351, 0.000639, 0.08101, 0.08026},
-    {"logdet", 203.7, 0.0113, 0.000772, 0.08054, 0.08026},
+    {"logdet", 198.2, 0.01118, 0.000723, 0.08054, 0.08026},
     {"hybrid", 45.86, 0.01074, 0.000627, 0.08056, 0.08026},
 };
 const std::vector<Evidence> kPandaSmall{
