@@ -25,7 +25,9 @@ Options: exit=N (expected exit status, default 0), tol=R (relative tolerance of 
 round-off-level numbers), roundoff=X,Y (those numbers of the page match any number: ratios of round-off),
 timeout=S (default 120), needs=shared (skipped with a message when ../shared/data is absent; implied by a
 command naming ../shared), needs=python (implied by ```python), external=TEST (not run here: TEST runs it
-and compares through --check-output), source=PATH (the block must be the tree's file PATH, character for
+and compares through --check-output), sanitizers=TEST (skipped with a message in the sanitizer build, where
+IDBENCH_SANITIZED=1: an example that takes minutes there, whose code TEST runs under the sanitizers),
+source=PATH (the block must be the tree's file PATH, character for
 character). Options of an output marker override its example's.
 
 A fenced block of sh, bash, console or python, or any block whose first line is a command (idbench …,
@@ -129,7 +131,8 @@ def parse_options(text, where):
     options = {}
     for word in shlex.split(text):
         key, eq, value = word.partition("=")
-        if key not in ("exit", "tol", "floor", "roundoff", "timeout", "needs", "file", "external", "source"):
+        if key not in ("exit", "tol", "floor", "roundoff", "timeout", "needs", "file", "external", "source",
+                       "sanitizers"):
             raise Failure(f"{where}: unknown option '{key}'")
         options[key] = value if eq else "1"
     return options
@@ -408,6 +411,9 @@ def run_page(page, examples, folder, env, shared_present, module_dir, top):
         where = f"{example.page}:{example.line} {example.name}"
         if "external" in options:
             results.append((where, 0.0, "skip", f"run and compared by {options['external']}"))
+            continue
+        if "sanitizers" in options and os.environ.get("IDBENCH_SANITIZED") == "1":
+            results.append((where, 0.0, "skip", f"minutes under the sanitizers; {options['sanitizers']} runs its code there"))
             continue
         if "shared" in needs and not shared_present:
             results.append((where, 0.0, "skip", "needs ../shared/data, absent"))
