@@ -809,11 +809,14 @@ TEST_F(IdentifyCliTest, HeldTorquesOfAClosedLoopIdentifyToTheFiltersFloor) {
 }
 
 // Issue 37: with noise in the loop (BIRDy's high preset: 1e-2° on q, which
-// the PID feeds back, 0.1 N m on τ), read as t, q, τ with held torques, the
-// closed-loop estimators beat least squares on table_arm (no friction) over 8
-// seeds: mean base-parameter error OLS 0.0256, IV 0.0243, DIDIM 0.0193
-// (measured; each within 2 % of it is asserted, and the order).
-TEST_F(IdentifyCliTest, ClosedLoopEstimatorsBeatLeastSquaresOnNoisyHeldTorques) {
+// the PID feeds back, 0.1 N m on τ), read as t, q, τ with held torques,
+// table_arm (no friction), 8 seeds. Measured: mean base-parameter error OLS
+// 0.0256, IV 0.0243, DIDIM 0.0193 — pinned here to 2 % as a regression check,
+// not a ranking: over 24 seeds (BENCHMARKS.md, "σ of the closed-loop
+// estimators") the three are level (OLS 0.0213, IV 0.0225, DIDIM 0.0210 over
+// the converged seeds), so the independent check asserted is only that each
+// closed-loop estimate stays within 25 % of least squares' mean error.
+TEST_F(IdentifyCliTest, ClosedLoopEstimatorsOnEightNoisyHeldTorqueSeedsAsMeasured) {
   const std::string urdf = IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf";
   const fs::path pid = dir_ / "pid.json";
   std::ofstream(pid) << R"({"kp": [400, 400, 200], "kd": [10, 10, 5], "feedforward": "model"})";
@@ -835,8 +838,8 @@ TEST_F(IdentifyCliTest, ClosedLoopEstimatorsBeatLeastSquaresOnNoisyHeldTorques) 
   }
   std::printf("mean base-parameter error over %d seeds: ols %.4g, iv %.4g, didim %.4g\n", n_seeds, mean["ols"],
               mean["iv"], mean["didim"]);
-  EXPECT_LT(mean["iv"], mean["ols"]);
-  EXPECT_LT(mean["didim"], mean["iv"]);
+  EXPECT_LT(mean["iv"], 1.25 * mean["ols"]);
+  EXPECT_LT(mean["didim"], 1.25 * mean["ols"]);
   EXPECT_NEAR(mean["ols"], 0.0256, 0.02 * 0.0256);
   EXPECT_NEAR(mean["iv"], 0.0243, 0.02 * 0.0243);
   EXPECT_NEAR(mean["didim"], 0.0193, 0.02 * 0.0193);
