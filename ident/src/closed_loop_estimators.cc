@@ -2,7 +2,9 @@
 
 #include <Eigen/QR>
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <tuple>
 #include <limits>
 #include <utility>
 #include <stdexcept>
@@ -51,7 +53,80 @@ std::pair<double, int> UniformSamples(const JointLog& log) {
   return {period, static_cast<int>(first)};
 }
 
+// Where a log's samples sit on the controller's clock: its period T, its
+// first sample's index, and the re-simulation's length (checked against the
+// reference's).
+struct LogClock {
+  double period = 0.0;
+  int first = 0;
+  int n_samples = 0;
+  double duration = 0.0;
+};
+
+LogClock ClockOf(const JointLog& log, const Trajectory& reference) {
+  LogClock clock;
+  std::tie(clock.period, clock.first) = UniformSamples(log);
+  clock.n_samples = log.n_samples();
+  clock.duration = std::min((clock.first + clock.n_samples) * clock.period, reference.duration());
+  if (std::lround(clock.duration / clock.period) < clock.first + clock.n_samples) {
+    throw std::invalid_argument("closed-loop estimator: the reference lasts " + std::to_string(reference.duration()) +
+                                " s, the log to " + std::to_string(log.t[clock.n_samples - 1]) + " s");
+  }
+  return clock;
+}
+
+// The closed loop re-simulated with the estimate β (its forward dynamics from
+// the regressor), one step per sample, noise-free sensors at the log's rate;
+// its states at the log's samples (t, q, qd, qdd; no τ). Throws
+// std::runtime_error when it fails (β's mass matrix not positive definite, a
+// diverging loop).
+JointLog SimulateAtLogSamples(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                              const Eigen::VectorXd& beta, const Trajectory& reference, const LogClock& clock,
+                              JointController* controller) {
+  SensorOptions exact;
+  exact.rate_hz = 1.0 / clock.period;
+  BaseParameterDynamics dynamics(model, friction, base, beta);
+  ClosedLoopLog simulated = RunClosedLoop(reference, clock.duration, clock.period, controller, exact,
+                                          [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                              const Eigen::VectorXd& t, Eigen::VectorXd* qdd) {
+                                            dynamics.Accelerations(q, qd, t, qdd);
+                                          });
+  JointLog& states = simulated.log;
+  states.t = states.t.segment(clock.first, clock.n_samples).eval();
+  for (Eigen::MatrixXd* m : {&states.q, &states.qd, &states.qdd}) {
+    *m = m->middleRows(clock.first, clock.n_samples).eval();
+  }
+  return std::move(states);
+}
+
+void CheckSizes(const RobotModel& model, const BaseParameters& base, const JointLog& log, const Trajectory& reference,
+                const Eigen::VectorXd& beta) {
+  const int n_dof = model.n_dof();
+  if (log.n_dof() != n_dof || reference.n_dof() != n_dof) {
+    throw std::invalid_argument("closed-loop estimator: the robot has " + std::to_string(n_dof) + " joints, the log " +
+                                std::to_string(log.n_dof()) + ", the reference " + std::to_string(reference.n_dof()));
+  }
+  if (beta.size() != base.n_base()) {
+    throw std::invalid_argument("closed-loop estimator: expected " + std::to_string(base.n_base()) +
+                                " base parameters, got " + std::to_string(beta.size()));
+  }
+}
+
 }  // namespace
+
+double ClosedLoopPositionError(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                               const JointLog& log, const Trajectory& reference, const Eigen::VectorXd& beta,
+                               const JointControllerOptions& controller_options) {
+  std::string why;
+  if (!controller_options.IsValid(model.n_dof(), &why)) throw std::invalid_argument("closed-loop estimator: " + why);
+  CheckSizes(model, base, log, reference, beta);
+  const LogClock clock = ClockOf(log, reference);
+  JointController controller(controller_options, model, clock.period);
+  const JointLog states = SimulateAtLogSamples(model, friction, base, beta, reference, clock, &controller);
+  const double size = log.q.norm();
+  if (!(size > 0.0)) throw std::invalid_argument("closed-loop estimator: the log's positions are all zero");
+  return (states.q - log.q).norm() / size;
+}
 
 ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionModel& friction,
                                       const BaseParameters& base, const JointLog& log, const Trajectory& reference,
@@ -59,29 +134,13 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
   const int n_dof = model.n_dof();
   std::string why;
   if (!options.IsValid(n_dof, &why)) throw std::invalid_argument("closed-loop estimator: " + why);
-  if (log.n_dof() != n_dof || reference.n_dof() != n_dof) {
-    throw std::invalid_argument("closed-loop estimator: the robot has " + std::to_string(n_dof) + " joints, the log " +
-                                std::to_string(log.n_dof()) + ", the reference " + std::to_string(reference.n_dof()));
-  }
-  if (beta_initial.size() != base.n_base()) {
-    throw std::invalid_argument("closed-loop estimator: expected " + std::to_string(base.n_base()) +
-                                " initial base parameters, got " + std::to_string(beta_initial.size()));
-  }
+  CheckSizes(model, base, log, reference, beta_initial);
   const bool iv = options.method == ClosedLoopMethod::kInstrumentalVariables;
   if (iv && !log.has_derivatives()) {
     throw std::invalid_argument("closed-loop estimator: instrumental variables need the log's qd and qdd");
   }
-  const auto [period, first] = UniformSamples(log);
-  const int n_samples = log.n_samples();
-  // The re-simulation: one step per sample, noise-free sensors at the log's rate.
-  SensorOptions exact;
-  exact.rate_hz = 1.0 / period;
-  const double duration = std::min((first + n_samples) * period, reference.duration());
-  if (std::lround(duration / period) < first + n_samples) {
-    throw std::invalid_argument("closed-loop estimator: the reference lasts " + std::to_string(reference.duration()) +
-                                " s, the log to " + std::to_string(log.t[n_samples - 1]) + " s");
-  }
-  JointController controller(options.controller, model, period);
+  const LogClock clock = ClockOf(log, reference);
+  JointController controller(options.controller, model, clock.period);
   // The log's own equations (IV), stacked and filtered as the simulations' will be.
   Eigen::MatrixXd W;
   Eigen::VectorXd tau;
@@ -93,12 +152,9 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
   const int p = base.n_base();
   for (int k = 1; k <= options.max_iterations; ++k) {
     // Simulate the closed loop with the current estimate.
-    ClosedLoopLog simulated;
+    JointLog states;
     try {
-      BaseParameterDynamics dynamics(model, friction, base, out.beta);
-      simulated = RunClosedLoop(reference, duration, period, &controller, exact,
-                                [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& t,
-                                    Eigen::VectorXd* qdd) { dynamics.Accelerations(q, qd, t, qdd); });
+      states = SimulateAtLogSamples(model, friction, base, out.beta, reference, clock, &controller);
     } catch (const std::runtime_error& e) {
       out.message = "diverged at iteration " + std::to_string(k) + ": re-simulating the estimate failed (" +
                     e.what() + ")";
@@ -106,9 +162,6 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
     }
     // The log's samples of the simulation, with the MEASURED torques: its
     // equations are the regressor of the simulated states against them.
-    JointLog& states = simulated.log;
-    states.t = states.t.segment(first, n_samples).eval();
-    for (Eigen::MatrixXd* m : {&states.q, &states.qd, &states.qdd}) *m = m->middleRows(first, n_samples).eval();
     states.tau = log.tau;
     Eigen::MatrixXd Ws;
     Eigen::VectorXd tau_s;

@@ -116,5 +116,43 @@ TEST(ClosedLoopEstimatorsTest, RefusesWhatDoesNotFit) {
                std::invalid_argument);
 }
 
+// The position error of an estimate against a second algorithm: the robot
+// with every mass, inertia and drive term 10 % heavier simulated by Bullet in
+// the same closed loop gives Q'; re-simulating the lighter robot's log with
+// the heavier robot's β (the regressor's forward dynamics) must give
+// ‖Q − Q'‖_F / ‖Q‖_F. The true β gives the log back (round-off).
+TEST(ClosedLoopEstimatorsTest, PositionErrorIsTheHeavierRobotsBulletTrajectory) {
+  ClosedLoopExperiment e;
+  e.simulation.duration = 2.0;
+  const JointLog log = e.Run(SensorOptions{});
+  std::vector<Link> links = e.model.links();
+  for (Link& link : links) {
+    link.inertia.mass *= 1.1;
+    link.inertia.I_Bcm_B *= 1.1;
+    link.dynamics.viscous *= 1.1;
+    link.dynamics.coulomb *= 1.1;
+    link.dynamics.rotor_inertia *= 1.1;
+  }
+  const RobotModel heavier("heavier", links, e.model.gravity_W());
+  SensorOptions at_rate;
+  at_rate.rate_hz = 1.0 / e.simulation.dt;
+  const JointLog heavier_log =
+      SimulateClosedLoop(heavier, *e.reference, e.simulation, e.options.controller, at_rate).log;
+  const Eigen::VectorXd beta_heavier = e.base.combination * StandardParameters(heavier, e.friction);
+  EXPECT_LT((beta_heavier - 1.1 * e.beta_true).norm(), 1e-12 * beta_heavier.norm());
+  const double expected = (heavier_log.q - log.q).norm() / log.q.norm();
+  const double error =
+      ClosedLoopPositionError(e.model, e.friction, e.base, log, *e.reference, beta_heavier, e.options.controller);
+  const double at_truth =
+      ClosedLoopPositionError(e.model, e.friction, e.base, log, *e.reference, e.beta_true, e.options.controller);
+  std::printf("position error: heavier %.6g (Bullet %.6g), true %.3g\n", error, expected, at_truth);
+  EXPECT_GT(expected, 1e-5);
+  EXPECT_NEAR(error, expected, 1e-6 * expected);
+  EXPECT_LT(at_truth, 1e-9);
+  EXPECT_THROW(ClosedLoopPositionError(e.model, e.friction, e.base, log, *e.reference, -e.beta_true,
+                                       e.options.controller),
+               std::runtime_error);
+}
+
 }  // namespace
 }  // namespace idbench

@@ -70,4 +70,14 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
                                       const BaseParameters& base, const JointLog& log, const Trajectory& reference,
                                       const Eigen::VectorXd& beta_initial, const ClosedLoopEstimatorOptions& options);
 
+// The relative position error of an estimate (BIRDy's position metric): the
+// closed loop re-simulated with β as the estimators re-simulate it (the
+// controller, the reference, β's forward dynamics) against the log's measured
+// positions, ‖Q_log − Q_sim‖_F / ‖Q_log‖_F over the log's samples. Throws
+// std::invalid_argument as EstimateClosedLoop does, std::runtime_error when
+// the re-simulation fails (β is no mechanism, the loop diverges).
+double ClosedLoopPositionError(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
+                               const JointLog& log, const Trajectory& reference, const Eigen::VectorXd& beta,
+                               const JointControllerOptions& controller);
+
 }  // namespace idbench

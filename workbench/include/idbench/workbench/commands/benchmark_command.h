@@ -60,6 +60,9 @@ unsigned BenchmarkTrialSeed(unsigned seed, NoisePreset preset, int trial);
 //   parameter_error = ‖β̂ − β‖₂ / (½ (‖β̂‖₂ + ‖β‖₂))   (symmetric relative error)
 //   torque_error    = ‖τ̂ − τ‖₂ / ‖τ‖₂ on the trial's own log, its equations as
 //                     the fit used them (filtered in parallel; identify's "fit")
+//   position_error  = ‖Q − Q̂‖_F / ‖Q‖_F, Q the trial's measured positions, Q̂
+//                     the closed loop re-simulated with β̂ (the controller, the
+//                     reference; ClosedLoopPositionError); NaN when that fails
 //   coverage_95     = fraction of the base parameters with |β̂_i − β_i| ≤ 1.96 σ_i,
 //                     σ the estimator's own (NaN for pc, which has none)
 // diverged: parameter_error > kDivergenceFactor × OLS's on the same trial
@@ -69,8 +72,9 @@ struct BenchmarkEstimate {
   TorqueEstimator estimator = TorqueEstimator::kOls;
   double parameter_error = 0.0;
   double torque_error = 0.0;
+  double position_error = 0.0;
   double coverage_95 = 0.0;
-  double seconds = 0.0;  // wall time of the identification [s]
+  double seconds = 0.0;  // wall time of the identification [s] (not the position error's re-simulation)
   Eigen::VectorXd beta;   // the estimate (n_base; empty when it failed)
   Eigen::VectorXd sigma;  // its printed σ (n_base; NaN for pc)
   bool diverged = false;
@@ -99,6 +103,11 @@ struct BenchmarkSummary {
   NoisePreset preset = NoisePreset::kLow;
   int trials = 0;
   BenchmarkStatistic parameter_error, torque_error, seconds;
+  // Over the trials kept whose re-simulation ran (position_trials of them:
+  // an estimate whose mass matrix is not positive definite along the motion
+  // cannot be simulated, e.g. OLS on a weakly excited arm).
+  BenchmarkStatistic position_error;
+  int position_trials = 0;
   double coverage_95 = 0.0;  // mean of the trials' coverage_95 (NaN for pc)
   // Is σ a claim the trials bear out: the median over the base parameters of
   // RMS_trials(σ_i) / std_trials(β̂_i), over the trials that did not diverge
@@ -145,7 +154,7 @@ std::string FormatBenchmarkTable(const BenchmarkResult& result);
 
 // benchmark.json: the run, "results" (the summary: per estimator and preset
 // "estimator", "preset", "trials", "parameter_error": {"mean", "std", "median"},
-// "torque_error": {...}, "coverage_95", "sigma_ratio", "diverged", "seconds": {...}) and
+// "torque_error": {...}, "position_error": {...}, "coverage_95", "sigma_ratio", "diverged", "seconds": {...}) and
 // "trials" (every trial's raw values), doubles written so that they read back
 // bit for bit (NaN as null). A shard's adds "shard": "K/N".
 std::string FormatBenchmarkJson(const BenchmarkResult& result);
