@@ -233,11 +233,15 @@ StackedFactors FactorStackedRows(const Eigen::MatrixXd& W, const Eigen::VectorXd
         const Eigen::Index row = (s0 + s) * n_dof + j;
         for (Eigen::Index k = 0; k < c; ++k) rows(s, k) = W(row, f.columns[static_cast<size_t>(k)]);
         rows(s, c) = tau[row];
-        if (weights) {  // an IRLS pass: the row scaled by √w at its residual
-          const double r = tau[row] - W.row(row).dot(weights->beta);
-          if (residuals) residuals->Add(j, r, rows.row(s).head(c), f.columns, *weights);
-          rows.row(s) *= std::sqrt(weights->Weight(j, r));
+      }
+      if (weights) {  // an IRLS pass: each row scaled by √w at its residual
+        Eigen::VectorXd r(m);
+        for (Eigen::Index s = 0; s < m; ++s) {
+          const Eigen::Index row = (s0 + s) * n_dof + j;
+          r[s] = tau[row] - W.row(row).dot(weights->beta);
         }
+        if (residuals) residuals->AddRows(j, r, rows.leftCols(c), f.columns, *weights);
+        for (Eigen::Index s = 0; s < m; ++s) rows.row(s) *= std::sqrt(weights->Weight(j, r[s]));
       }
       FoldJointRows(rows, &f);
     }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace idbench {
 
@@ -19,39 +21,63 @@ IrlsPassRecord::IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameter
       log_step_(std::log(kHistogramHigh / kHistogramLow) / kHistogramBins),
       bins_(static_cast<size_t>(reference.size()), std::vector<Eigen::Index>(kHistogramBins + 2, 0)),
       counts_(static_cast<size_t>(reference.size()), 0),
-      hessian_(static_cast<size_t>(reference.size()), Eigen::MatrixXd::Zero(n_parameters, n_parameters)),
+      n_parameters_(n_parameters),
+      columns_(static_cast<size_t>(reference.size())),
+      hessian_(static_cast<size_t>(reference.size())),
       omega_(hessian_) {}
 
-void IrlsPassRecord::Add(int joint, double residual,
-                         const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>& x,
-                         const std::vector<int>& columns, const RobustRowWeights& weights) {
-  Add(joint, residual);
-  const double slope = weights.Slope(joint, residual);
-  const double wr = weights.Weight(joint, residual) * residual;
-  Eigen::MatrixXd& H = hessian_[static_cast<size_t>(joint)];
-  Eigen::MatrixXd& O = omega_[static_cast<size_t>(joint)];
+void IrlsPassRecord::AddRows(int joint, const Eigen::Ref<const Eigen::VectorXd>& residuals,
+                             const Eigen::Ref<const Eigen::MatrixXd>& x, const std::vector<int>& columns,
+                             const RobustRowWeights& weights) {
+  const size_t j = static_cast<size_t>(joint);
   const Eigen::Index c = static_cast<Eigen::Index>(columns.size());
-  for (Eigen::Index b = 0; b < c; ++b) {
-    const int cb = columns[static_cast<size_t>(b)];
-    for (Eigen::Index a = b; a < c; ++a) {  // columns ascending: (ca, cb) in the lower triangle
-      const int ca = columns[static_cast<size_t>(a)];
-      const double xx = x[a] * x[b];
-      H(ca, cb) += slope * xx;
-      O(ca, cb) += wr * wr * xx;
-    }
+  if (hessian_[j].size() == 0) {
+    columns_[j] = columns;
+    hessian_[j] = Eigen::MatrixXd::Zero(c, c);
+    omega_[j] = Eigen::MatrixXd::Zero(c, c);
+  } else if (columns_[j] != columns) {
+    throw std::logic_error("IrlsPassRecord: joint " + std::to_string(joint) + "'s columns changed between calls");
   }
+  const Eigen::Index m = residuals.size();
+  Eigen::VectorXd slope(m), wr2(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const double r = residuals[i];
+    Add(joint, r);
+    slope[i] = weights.Slope(joint, r);
+    const double wr = weights.Weight(joint, r) * r;
+    wr2[i] = wr * wr;
+  }
+  // Σ ψ'/s² x xᵀ and Σ (w r)² x xᵀ over the rows: Xᵀ diag(d) X, lower
+  // triangles only.
+  Eigen::MatrixXd scaled = slope.asDiagonal() * x;
+  hessian_[j].triangularView<Eigen::Lower>() += x.transpose() * scaled;
+  scaled = wr2.asDiagonal() * x;
+  omega_[j].triangularView<Eigen::Lower>() += x.transpose() * scaled;
 }
 
 namespace {
-Eigen::MatrixXd SumLower(const std::vector<Eigen::MatrixXd>& per_joint) {
-  Eigen::MatrixXd sum = per_joint.front();
-  for (size_t j = 1; j < per_joint.size(); ++j) sum += per_joint[j];
-  return sum.selfadjointView<Eigen::Lower>();
+// Σ over joints of each joint's sums, placed at its columns (p × p).
+Eigen::MatrixXd SumOverJoints(const std::vector<Eigen::MatrixXd>& per_joint,
+                              const std::vector<std::vector<int>>& columns, int n_parameters) {
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(n_parameters, n_parameters);
+  for (size_t j = 0; j < per_joint.size(); ++j) {
+    const std::vector<int>& at = columns[j];
+    for (size_t b = 0; b < at.size(); ++b) {
+      for (size_t a = 0; a < at.size(); ++a) {
+        // The lower triangle holds the sums (columns ascending).
+        const Eigen::Index lo = static_cast<Eigen::Index>(std::max(a, b)), hi = static_cast<Eigen::Index>(std::min(a, b));
+        sum(at[a], at[b]) += per_joint[j](lo, hi);
+      }
+    }
+  }
+  return sum;
 }
 }  // namespace
 
-Eigen::MatrixXd IrlsPassRecord::Hessian() const { return SumLower(hessian_); }
-Eigen::MatrixXd IrlsPassRecord::WhiteScoreCovariance() const { return SumLower(omega_); }
+Eigen::MatrixXd IrlsPassRecord::Hessian() const { return SumOverJoints(hessian_, columns_, n_parameters_); }
+Eigen::MatrixXd IrlsPassRecord::WhiteScoreCovariance() const {
+  return SumOverJoints(omega_, columns_, n_parameters_);
+}
 
 void IrlsPassRecord::Add(int joint, double residual) {
   const double a = std::abs(residual);

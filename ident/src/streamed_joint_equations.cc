@@ -233,11 +233,10 @@ void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& r
       f = rows.middleCols(o, c + 1);
       if (settings_.row_weights) {  // an IRLS pass: each row scaled by √w at its residual
         const std::vector<int>& columns = factors_.joints[static_cast<size_t>(j)].columns;
-        for (Eigen::Index i = 0; i < f.rows(); ++i) {
-          const double r = RowResidual(f.row(i), columns, settings_.row_weights->beta);
-          if (settings_.residuals) settings_.residuals->Add(j, r, f.row(i).head(c), columns, *settings_.row_weights);
-          f.row(i) *= std::sqrt(settings_.row_weights->Weight(j, r));
-        }
+        Eigen::VectorXd r(f.rows());
+        for (Eigen::Index i = 0; i < f.rows(); ++i) r[i] = RowResidual(f.row(i), columns, settings_.row_weights->beta);
+        if (settings_.residuals) settings_.residuals->AddRows(j, r, f.leftCols(c), columns, *settings_.row_weights);
+        for (Eigen::Index i = 0; i < f.rows(); ++i) f.row(i) *= std::sqrt(settings_.row_weights->Weight(j, r[i]));
       }
       FoldJointRows(f, &factors_.joints[static_cast<size_t>(j)]);
     }

@@ -74,12 +74,13 @@ class IrlsPassRecord {
   // a smaller value is raised to 10⁻³⁰⁰); p parameters.
   IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameters);
 
-  // Adds a row of `joint`: its residual r, and x its regressor row restricted
-  // to `columns` (indices into β, as a JointRowFactor's) under `weights`.
-  // Rows of different joints may be added from different threads, rows of
-  // one joint from one at a time.
-  void Add(int joint, double residual, const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>& x,
-           const std::vector<int>& columns, const RobustRowWeights& weights);
+  // Adds rows of `joint`: their residuals r (m), and x their regressor rows
+  // restricted to `columns` (m × columns.size(); indices into β, as a
+  // JointRowFactor's, the same at every call for one joint) under `weights`,
+  // as one matrix product per call. Rows of different joints may be added
+  // from different threads, rows of one joint from one at a time.
+  void AddRows(int joint, const Eigen::Ref<const Eigen::VectorXd>& residuals, const Eigen::Ref<const Eigen::MatrixXd>& x,
+               const std::vector<int>& columns, const RobustRowWeights& weights);
   // Only the residual (the histogram).
   void Add(int joint, double residual);
   // Σ over joints and rows of ψ'/s² x xᵀ, and of (w r)² x xᵀ (p × p).
@@ -96,7 +97,10 @@ class IrlsPassRecord {
   // Per joint: kHistogramBins + 2 counts (below the range, bins, above).
   std::vector<std::vector<Eigen::Index>> bins_;
   std::vector<Eigen::Index> counts_;
-  std::vector<Eigen::MatrixXd> hessian_, omega_;  // per joint (p × p, lower triangle)
+  int n_parameters_ = 0;
+  // Per joint: its columns, and the sums over its columns (c × c).
+  std::vector<std::vector<int>> columns_;
+  std::vector<Eigen::MatrixXd> hessian_, omega_;  // lower triangles
 };
 
 }  // namespace idbench
