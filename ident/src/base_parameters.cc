@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 
 namespace idbench {
 
@@ -16,6 +17,7 @@ Eigen::MatrixXd BaseParameters::Reduce(const Eigen::MatrixXd& Y) const {
 
 BaseParameters ComputeBaseParameters(const RobotModel& model, const FrictionModel& friction,
                                      const BaseParameterOptions& options) {
+  if (std::string why; !friction.IsValid(&why)) throw std::invalid_argument(why);
   const int n = model.n_dof();
   const int p = NumStandardParameters(model, friction);
   // 1. Stack the regressor over random states.

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "idbench/engine/adjoint.h"
+#include "number_format.h"
 
 namespace idbench {
 namespace {
@@ -43,6 +45,16 @@ std::optional<Transmission::SingleMotor> SingleMotorOf(const FrictionModel& fric
   Transmission transmission;
   transmission.actuator_from_joint = friction.actuator_from_joint;
   return transmission.SingleMotorOf(j);
+}
+
+bool FrictionModel::IsValid(std::string* why) const {
+  for (const auto& [field, speed] : {std::pair{"coulomb_smoothing", coulomb_smoothing},
+                                     std::pair{"coulomb_min_speed", coulomb_min_speed}}) {
+    if (speed >= 0.0 && std::isfinite(speed)) continue;
+    if (why) *why = std::string(field) + ": expected >= 0 rad/s, got " + Shortest(speed);
+    return false;
+  }
+  return true;
 }
 
 std::optional<FrictionModel> ParseFrictionTerms(const std::vector<std::string>& terms, std::string* why) {
@@ -204,8 +216,13 @@ int FrictionColumns(const FrictionModel& friction, const Scalar& qd, const Scala
   if (friction.viscous) out[c++] = qd;
   if (friction.coulomb) {
     using std::tanh;
-    out[c++] = friction.coulomb_smoothing > 0.0 ? Scalar(tanh(qd / friction.coulomb_smoothing))
-                                                : Scalar(double((ValueOf(qd) > 0.0) - (ValueOf(qd) < 0.0)));
+    if (std::abs(ValueOf(qd)) < friction.coulomb_min_speed) {
+      out[c++] = Scalar(0.0);  // near rest: the sample says nothing of Fc
+    } else if (friction.coulomb_smoothing > 0.0) {
+      out[c++] = Scalar(tanh(qd / friction.coulomb_smoothing));
+    } else {
+      out[c++] = Scalar(double((ValueOf(qd) > 0.0) - (ValueOf(qd) < 0.0)));
+    }
   }
   if (friction.offset) out[c++] = 1.0;
   if (friction.rotor_inertia) out[c++] = qdd;

@@ -2,10 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+
 #include "engine/test_robots.h"
 #include "engine/test_util.h"
 #include "idbench/engine/inverse_dynamics.h"
 #include "idbench/engine/paper6r.h"
+#include "idbench/ident/base_parameters.h"
 
 namespace idbench {
 namespace {
@@ -170,6 +177,110 @@ TEST_P(JointTorqueRegressorTest, DiagonalActuatorSideEqualsItsJointSideEquivalen
     ComputeJointTorqueRegressor(model_, joint, q, qd, qdd, &d, &Y_joint);
     EXPECT_LT(testing::RelativeError(Y_motor * pi_motor, Y_joint * pi_joint), 1e-12) << "trial " << trial;
   }
+}
+
+// coulomb_min_speed: a joint slower than it has a Coulomb column of 0 and
+// every other entry of Y as without it; a faster joint keeps sign(qd), or
+// tanh(qd/v) with smoothing. The contraction (what the excitation design's
+// gradient uses) agrees with the entries.
+TEST_P(JointTorqueRegressorTest, CoulombColumnIsZeroBelowTheMinimumSpeed) {
+  RobotData d(model_);
+  const int n = model_.n_dof(), o = 10 * model_.n_links();
+  constexpr double kMinSpeed = 0.05;  // [rad/s]
+  std::mt19937 rng(46);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int n_slow = 0, n_fast = 0;
+  for (const double smoothing : {0.0, 0.02}) {
+    FrictionModel without;
+    without.viscous = without.coulomb = without.offset = without.rotor_inertia = true;
+    without.coulomb_smoothing = smoothing;
+    FrictionModel with = without;
+    with.coulomb_min_speed = kMinSpeed;
+    Eigen::MatrixXd Y_without, Y_with;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qdd = RandomVector(n, 5.0, &rng);
+      // Every other joint below the speed (down to 0 and −0), the rest above.
+      Eigen::VectorXd qd(n);
+      for (int j = 0; j < n; ++j) {
+        qd[j] = (j + trial) % 2 == 0 ? 0.999 * kMinSpeed * u(rng) : std::copysign(kMinSpeed + 2.0 * std::abs(u(rng)), u(rng));
+      }
+      if (trial == 0) qd[0] = 0.0;
+      if (trial == 2) qd[0] = -0.0;
+      ComputeJointTorqueRegressor(model_, without, q, qd, qdd, &d, &Y_without);
+      ComputeJointTorqueRegressor(model_, with, q, qd, qdd, &d, &Y_with);
+      Eigen::MatrixXd expected = Y_without;
+      for (int j = 0; j < n; ++j) {
+        const double column = smoothing > 0.0 ? std::tanh(qd[j] / smoothing) : double((qd[j] > 0.0) - (qd[j] < 0.0));
+        ASSERT_EQ(Y_without(j, o + 4 * j + 1), column) << "joint " << j + 1;
+        if (std::abs(qd[j]) < kMinSpeed) {
+          expected(j, o + 4 * j + 1) = 0.0;
+          ++n_slow;
+        } else {
+          ++n_fast;
+        }
+      }
+      EXPECT_EQ(Y_with, expected) << "trial " << trial << ", smoothing " << smoothing;
+      Eigen::MatrixXd G(Y_with.rows(), Y_with.cols());
+      for (Eigen::Index k = 0; k < G.size(); ++k) G.data()[k] = u(rng);
+      EXPECT_NEAR(ContractJointTorqueRegressorT<double>(model_, with, q, qd, qdd, G, &d),
+                  (G.array() * Y_with.array()).sum(), 1e-12 * (G.array().abs() * Y_with.array().abs()).sum());
+    }
+  }
+  EXPECT_GT(n_slow, 10);
+  EXPECT_GT(n_fast, 10);
+}
+
+// On the actuator side the speed is the motor's, θ̇m_k = A_k·q̇: a slow motor's
+// Coulomb column is 0 in every joint's row, whatever the joints' own speeds.
+TEST_P(JointTorqueRegressorTest, ActuatorSideCoulombColumnIsZeroBelowTheMotorsMinimumSpeed) {
+  RobotData d(model_);
+  const int n = model_.n_dof(), o = 10 * model_.n_links();
+  if (n < 2) GTEST_SKIP() << "needs two joints for a coupled motor";
+  std::mt19937 rng(47);
+  FrictionModel without;
+  without.viscous = without.coulomb = without.offset = without.rotor_inertia = true;
+  without.actuator_from_joint = Eigen::MatrixXd::Identity(n, n) * 30.0;
+  without.actuator_from_joint(n - 1, n - 2) = 30.0;  // the last motor turns with the joint before
+  FrictionModel with = without;
+  with.coulomb_min_speed = 0.5;  // [rad/s] of the motor
+  // The last motor nearly still (its joints turning against each other at
+  // 1 rad/s), the others at 30 rad/s and more.
+  Eigen::VectorXd theta_d = RandomVector(n, 1.0, &rng);
+  for (int k = 0; k < n; ++k) theta_d[k] = std::copysign(30.0 + 10.0 * std::abs(theta_d[k]), theta_d[k]);
+  theta_d[n - 1] = 0.2;
+  const Eigen::VectorXd qd = without.actuator_from_joint.partialPivLu().solve(theta_d);
+  ASSERT_GT(std::abs(qd[n - 1]), 0.5);
+  const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qdd = RandomVector(n, 5.0, &rng);
+  Eigen::MatrixXd Y_without, Y_with;
+  ComputeJointTorqueRegressor(model_, without, q, qd, qdd, &d, &Y_without);
+  ComputeJointTorqueRegressor(model_, with, q, qd, qdd, &d, &Y_with);
+  Eigen::MatrixXd expected = Y_without;
+  const int fc_last = o + 4 * (n - 1) + 1;
+  EXPECT_EQ(Y_without.col(fc_last).cwiseAbs().maxCoeff(), 30.0);
+  expected.col(fc_last).setZero();
+  EXPECT_EQ(Y_with, expected);
+}
+
+// Negative, NaN or infinite speeds are refused, naming the field; the base
+// parameters (every identification computes them) refuse them too.
+TEST(FrictionModelTest, CoulombSpeedsMustBeFiniteAndNonNegative) {
+  FrictionModel f;
+  f.coulomb = true;
+  std::string why;
+  EXPECT_TRUE(f.IsValid(&why));
+  f.coulomb_min_speed = -0.01;
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_EQ(why, "coulomb_min_speed: expected >= 0 rad/s, got -0.01");
+  EXPECT_THROW(ComputeBaseParameters(MakePaper6r(), f), std::invalid_argument);
+  f.coulomb_min_speed = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_EQ(why, "coulomb_min_speed: expected >= 0 rad/s, got nan");
+  f.coulomb_min_speed = 0.02;
+  f.coulomb_smoothing = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(f.IsValid(&why));
+  EXPECT_EQ(why, "coulomb_smoothing: expected >= 0 rad/s, got inf");
+  f.coulomb_smoothing = 0.01;  // both together: tanh above the speed, 0 below
+  EXPECT_TRUE(f.IsValid(nullptr));
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, JointTorqueRegressorTest, ::testing::Range(0, testing::kNumTestRobots),

@@ -13,6 +13,7 @@ constexpr FieldFlag kSharedSpellings[] = {{"out_dir", "--out"},
                                           {"tip_link", "--tip"},
                                           {"friction", "--friction"},
                                           {"coulomb_smoothing", "--coulomb-smoothing"},
+                                          {"coulomb_min_speed", "--coulomb-min-speed"},
                                           {"duration", "--duration"},
                                           {"dt", "--dt"}};
 

@@ -86,7 +86,7 @@ CliCommand AddCompareCommand(CLI::App* app, CliContext* context) {
   command->add_option("--trials", compare.trials, "Monte-Carlo trials per motion")->capture_default_str();
   AddSeedFlag(command, &compare.seed);
   context->AddSpellings(kLogReadingSpellings);
-  AddLogReadingFlags(command, &compare.format, nullptr, nullptr, &compare.filter, &compare.max_gap_s);
+  AddLogReadingFlags(command, &compare.format, nullptr, {}, &compare.filter, &compare.max_gap_s);
   AddDriveGainsFlag(command, &compare.format);
   AddOutFlag(command, &compare.out_dir, "Output directory for compare.json and compare.csv")->capture_default_str();
   AddReportFlag(command, &flags->report);

@@ -163,7 +163,7 @@ CliCommand AddDesignCommand(CLI::App* app, CliContext* context) {
                    "A motion the robot already has (repeatable): a joint log identify reads, or a designed "
                    "trajectory (.json/.csv); the criterion is that of their union with the new motion")
       ->allow_extra_args(false);
-  AddLogReadingFlags(command, &design.given_reading.format, nullptr, nullptr, &design.given_reading.filter,
+  AddLogReadingFlags(command, &design.given_reading.format, nullptr, {}, &design.given_reading.filter,
                      &design.given_reading.max_gap_s);
   AddDriveGainsFlag(command, &design.given_reading.format);
   command->add_flag("--quiet", design.quiet, "No progress on stderr");

@@ -54,8 +54,8 @@ CliCommand AddGainsCommand(CLI::App* app, CliContext* context) {
   command->add_option("--data", gains.data, "Unloaded log with motor currents i1..in")->required();
   command->add_option("--loaded", gains.loaded, "Log of the same robot with the payload on the last link")->required();
   command->add_option("--payload-mass", gains.payload_mass, "Known payload mass [kg]")->required();
-  AddLogReadingFlags(command, &gains.format, &gains.friction, &gains.coulomb_smoothing, &gains.filter,
-                     &gains.max_gap_s);
+  AddLogReadingFlags(command, &gains.format, &gains.friction, {&gains.coulomb_smoothing, &gains.coulomb_min_speed},
+                     &gains.filter, &gains.max_gap_s);
   command->add_option("--time-window", gains.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")
       ->delimiter(',');
   command->add_option("--loaded-time-window", gains.loaded_time_window, "Use only T0 <= t <= T1 of --loaded: T0,T1 [s]")

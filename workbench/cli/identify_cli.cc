@@ -146,8 +146,8 @@ CliCommand AddIdentifyCommand(CLI::App* app, CliContext* context) {
                       "iv, didim: the robot's controller file (as simulate --controller reads it)");
   command->add_option("--reference", identify.reference,
                       "iv, didim: the reference the robot tracked: a built-in motion (10 s) or a trajectory file");
-  AddLogReadingFlags(command, &identify.format, &identify.friction, &identify.coulomb_smoothing, &identify.filter,
-                     &identify.max_gap_s);
+  AddLogReadingFlags(command, &identify.format, &identify.friction,
+                     {&identify.coulomb_smoothing, &identify.coulomb_min_speed}, &identify.filter, &identify.max_gap_s);
   AddEnumFlag(command, "--friction-side", &identify.friction_side, kFrictionSideNames,
               "joint, or actuator: friction and rotor terms per motor, through the transmission "
               "(log description or URDF <transmission>)");

@@ -16,7 +16,7 @@ void AddFilterFlags(CLI::App* command, LogFilterOptions* filter) {
 }
 
 void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
-                        double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s) {
+                        CoulombFields coulomb, LogFilterOptions* filter, double* max_gap_s) {
   // Split here, not by CLI11 (which drops empty items: `t,q1,,q3` would read
   // as t,q1,q3 and blame a missing q2); an empty item is then named.
   command->add_option_function<std::string>("--columns", [format](const std::string& list) {
@@ -41,8 +41,11 @@ void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<s
                     "is read as the mean of its hold and the previous one's");
   if (friction) {
     AddFrictionFlag(command, friction, "Friction terms: none or viscous,coulomb,offset,rotor");
-    command->add_option("--coulomb-smoothing", *coulomb_smoothing,
+    command->add_option("--coulomb-smoothing", *coulomb.smoothing,
                         "Coulomb tanh(qd/v) transition velocity v [rad/s]; 0 = sign")->capture_default_str();
+    command->add_option("--coulomb-min-speed", *coulomb.min_speed,
+                        "Speed below which a sample's Coulomb column is 0 [rad/s]: Fc from moving samples only; 0 = off")
+        ->capture_default_str();
   }
   AddFilterFlags(command, filter);
   command->add_option("--max-gap", *max_gap_s, "Longest time step resampled [s]; 0 = 10 median steps")

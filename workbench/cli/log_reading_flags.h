@@ -31,11 +31,18 @@ void AddDriveGainsFlag(CLI::App* command, JointLogFormat* format);
 // --filter-cutoff, --filter-order: the low-pass that estimates qd, qdd from q.
 void AddFilterFlags(CLI::App* command, LogFilterOptions* filter);
 
-// --columns, --topic, --angle-unit, --friction, --coulomb-smoothing, --filter-cutoff,
-// --filter-order, --max-gap, filling these fields of the command's options.
-// friction null (a command with its own --friction): no --friction or
-// --coulomb-smoothing (coulomb_smoothing unused).
+// The Coulomb column's two settings (FrictionModel): tanh's velocity and the
+// speed below which the column is 0.
+struct CoulombFields {
+  double* smoothing;  // --coulomb-smoothing
+  double* min_speed;  // --coulomb-min-speed
+};
+
+// --columns, --topic, --angle-unit, --friction, --coulomb-smoothing,
+// --coulomb-min-speed, --filter-cutoff, --filter-order, --max-gap, filling
+// these fields of the command's options. friction null (a command with its
+// own --friction): no --friction or Coulomb flags (coulomb unused).
 void AddLogReadingFlags(CLI::App* command, JointLogFormat* format, std::vector<std::string>* friction,
-                        double* coulomb_smoothing, LogFilterOptions* filter, double* max_gap_s);
+                        CoulombFields coulomb, LogFilterOptions* filter, double* max_gap_s);
 
 }  // namespace idbench::cli

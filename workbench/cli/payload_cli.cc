@@ -72,8 +72,8 @@ CliCommand AddPayloadCommand(CLI::App* app, CliContext* context) {
   command->add_option("--unloaded", payload.unloaded_log,
                       "Joint log of the same motion without the payload: cancels the robot file's errors");
   command->add_option("--link", payload.payload_link, "URDF link carrying the payload (default: the chain's last)");
-  AddLogReadingFlags(command, &payload.format, &payload.friction, &payload.coulomb_smoothing, &payload.filter,
-                     &payload.max_gap_s);
+  AddLogReadingFlags(command, &payload.format, &payload.friction,
+                     {&payload.coulomb_smoothing, &payload.coulomb_min_speed}, &payload.filter, &payload.max_gap_s);
   AddDriveGainsFlag(command, &payload.format);
   AddBasePoseFlag(command, &payload.base_pose);
   command->add_option("--time-window", payload.time_window, "Use only T0 <= t <= T1 of --data: T0,T1 [s]")

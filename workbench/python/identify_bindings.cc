@@ -13,11 +13,13 @@
 namespace idbench::python {
 namespace {
 
-FrictionModel FrictionFor(const std::vector<std::string>& terms, double coulomb_smoothing) {
+FrictionModel FrictionFor(const std::vector<std::string>& terms, double coulomb_smoothing, double coulomb_min_speed) {
   std::string why;
   std::optional<FrictionModel> friction = ParseFrictionTerms(terms, &why);
   if (!friction) throw std::invalid_argument("friction: " + why);
   friction->coulomb_smoothing = coulomb_smoothing;
+  friction->coulomb_min_speed = coulomb_min_speed;
+  if (!friction->IsValid(&why)) throw std::invalid_argument(why);
   return *friction;
 }
 
@@ -154,25 +156,30 @@ void BindIdentificationModel(py::module_& m) {
   const std::vector<std::string> default_friction = IdentifyOptions{}.friction;
   m.def(
       "base_parameters",
-      [](const Robot& robot, const std::vector<std::string>& friction, double coulomb_smoothing) {
-        return ComputeBaseParameters(*robot.model, FrictionFor(friction, coulomb_smoothing));
+      [](const Robot& robot, const std::vector<std::string>& friction, double coulomb_smoothing,
+         double coulomb_min_speed) {
+        return ComputeBaseParameters(*robot.model, FrictionFor(friction, coulomb_smoothing, coulomb_min_speed));
       },
       py::arg("robot"), py::arg("friction") = default_friction, py::arg("coulomb_smoothing") = 0.0,
+      py::arg("coulomb_min_speed") = 0.0,
       "The base parameters of the joint-torque model with these friction terms (as identify)");
   m.def(
       "standard_parameters",
-      [](const Robot& robot, const std::vector<std::string>& friction, double coulomb_smoothing) {
-        const FrictionModel f = FrictionFor(friction, coulomb_smoothing);
+      [](const Robot& robot, const std::vector<std::string>& friction, double coulomb_smoothing,
+         double coulomb_min_speed) {
+        const FrictionModel f = FrictionFor(friction, coulomb_smoothing, coulomb_min_speed);
         return py::make_tuple(StandardParameterNames(*robot.model, f), StandardParameters(*robot.model, f));
       },
       py::arg("robot"), py::arg("friction") = default_friction, py::arg("coulomb_smoothing") = 0.0,
+      py::arg("coulomb_min_speed") = 0.0,
       "(names, values) of the robot file's standard parameters π");
   m.def(
       "regressor",
       [](const Robot& robot, const ArrayRef& q, const ArrayRef& qd, const ArrayRef& qdd,
-         const std::vector<std::string>& friction, double coulomb_smoothing, std::optional<BaseParameters> base) {
+         const std::vector<std::string>& friction, double coulomb_smoothing, double coulomb_min_speed,
+         std::optional<BaseParameters> base) {
         const RobotModel& model = *robot.model;
-        const FrictionModel f = FrictionFor(friction, coulomb_smoothing);
+        const FrictionModel f = FrictionFor(friction, coulomb_smoothing, coulomb_min_speed);
         if (!base) base = ComputeBaseParameters(model, f);
         JointLog log;
         log.q = q;
@@ -187,7 +194,7 @@ void BindIdentificationModel(py::module_& m) {
         return StackBaseRegressor(model, f, *base, log);
       },
       py::arg("robot"), py::arg("q"), py::arg("qd"), py::arg("qdd"), py::arg("friction") = default_friction,
-      py::arg("coulomb_smoothing") = 0.0, py::arg("base") = py::none(),
+      py::arg("coulomb_smoothing") = 0.0, py::arg("coulomb_min_speed") = 0.0, py::arg("base") = py::none(),
       "The base regressor W stacked over the samples (n_samples × n_dof arrays in; rows sample·n_dof + joint), "
       "so that tau.reshape(-1) = W @ beta");
 }
@@ -234,7 +241,8 @@ void BindIdentify(py::module_& m) {
   m.def(
       "identify",
       [](const Robot& robot, const py::object& data, const std::string& estimator,
-         const std::vector<std::string>& friction, double coulomb_smoothing, const py::object& validate,
+         const std::vector<std::string>& friction, double coulomb_smoothing, double coulomb_min_speed,
+         const py::object& validate,
          const std::vector<std::string>& columns, const std::string& angle_unit,
          const std::vector<double>& drive_gains, const std::vector<double>& time_window,
          const std::vector<double>& validate_window, double max_gap,
@@ -271,6 +279,7 @@ void BindIdentify(py::module_& m) {
         options.estimator = EnumArgument(kTorqueEstimatorNames, estimator);
         options.friction = friction;
         options.coulomb_smoothing = coulomb_smoothing;
+        options.coulomb_min_speed = coulomb_min_speed;
         options.format.columns = columns;
         options.format.angle_unit = angle_unit;
         options.format.topic = topic;
@@ -298,6 +307,7 @@ void BindIdentify(py::module_& m) {
       },
       py::arg("robot"), py::arg("data"), py::kw_only(), py::arg("estimator") = std::string(ToString(id_defaults.estimator)),
       py::arg("friction") = id_defaults.friction, py::arg("coulomb_smoothing") = id_defaults.coulomb_smoothing,
+      py::arg("coulomb_min_speed") = id_defaults.coulomb_min_speed,
       py::arg("validate") = py::none(), py::arg("columns") = std::vector<std::string>{},
       py::arg("angle_unit") = id_defaults.format.angle_unit, py::arg("drive_gains") = std::vector<double>{},
       py::arg("time_window") = std::vector<double>{}, py::arg("validate_window") = std::vector<double>{},

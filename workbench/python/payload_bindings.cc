@@ -13,7 +13,8 @@ void BindPayload(py::module_& m) {
          const std::vector<std::string>& columns, const std::string& angle_unit,
          const std::vector<double>& drive_gains, const std::string& topic, const py::object& base_pose,
          const std::vector<double>& time_window, const std::vector<double>& unloaded_time_window,
-         const std::vector<std::string>& friction, double coulomb_smoothing, double max_gap, double filter_cutoff,
+         const std::vector<std::string>& friction, double coulomb_smoothing, double coulomb_min_speed, double max_gap,
+         double filter_cutoff,
          int filter_order, double max_relative_sigma, double max_projection_distance, bool write_unverified) {
         PayloadOptions options;
         options.robot = robot.source;
@@ -32,6 +33,7 @@ void BindPayload(py::module_& m) {
         options.unloaded_time_window = unloaded_time_window;
         options.friction = friction;
         options.coulomb_smoothing = coulomb_smoothing;
+        options.coulomb_min_speed = coulomb_min_speed;
         options.max_gap_s = max_gap;
         options.filter.cutoff_hz = filter_cutoff;
         options.filter.order = filter_order;
@@ -67,7 +69,8 @@ void BindPayload(py::module_& m) {
       py::arg("angle_unit") = defaults.format.angle_unit, py::arg("drive_gains") = std::vector<double>{},
       py::arg("topic") = std::string(), py::arg("base_pose") = py::none(), py::arg("time_window") = std::vector<double>{},
       py::arg("unloaded_time_window") = std::vector<double>{}, py::arg("friction") = defaults.friction,
-      py::arg("coulomb_smoothing") = defaults.coulomb_smoothing, py::arg("max_gap") = defaults.max_gap_s,
+      py::arg("coulomb_smoothing") = defaults.coulomb_smoothing,
+      py::arg("coulomb_min_speed") = defaults.coulomb_min_speed, py::arg("max_gap") = defaults.max_gap_s,
       py::arg("filter_cutoff") = defaults.filter.cutoff_hz, py::arg("filter_order") = defaults.filter.order,
       py::arg("max_relative_sigma") = defaults.max_relative_sigma,
       py::arg("max_projection_distance") = defaults.max_projection_distance, py::arg("write_unverified") = false,

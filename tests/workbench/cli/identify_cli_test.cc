@@ -683,6 +683,45 @@ TEST_F(IdentifyCliTest, WindowAndToleranceMessagesSayWhatIsWrong) {
   }
 }
 
+// --coulomb-min-speed (identify, gains, payload: one flag helper): accepted,
+// it reaches the fold (0 gives the default's estimate to the bit, 0.05 rad/s
+// another Fc), and a negative or NaN speed is refused before anything runs,
+// exit 2, naming the flag.
+TEST_F(IdentifyCliTest, CoulombMinSpeedIsAcceptedAndBadSpeedsAreUsageErrors) {
+  const fs::path log = SimulatePuma("log.csv");
+  const std::string common = "identify --robot puma560 --data " + log.string();
+  std::vector<nlohmann::json> fc;
+  for (const std::string speed : {"", " --coulomb-min-speed 0", " --coulomb-min-speed 0.05"}) {
+    const fs::path out = dir_ / ("id" + std::to_string(fc.size()));
+    const Result r = Run(common + speed + " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << speed << ": " << r.err;
+    nlohmann::json values;
+    const nlohmann::json j = Json(out / "identified.json");
+    for (const auto& p : j["base_parameters"]) {
+      if (p["name"].get<std::string>().rfind("Fc", 0) == 0) values.push_back(p["value"]);
+    }
+    ASSERT_EQ(values.size(), 6u) << speed;
+    fc.push_back(values);
+  }
+  EXPECT_EQ(fc[1], fc[0]);
+  EXPECT_NE(fc[2], fc[0]);
+  const std::string log_args = " --data " + log.string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {common + " --coulomb-min-speed -0.01", "--coulomb-min-speed: expected >= 0 rad/s, got -0.01"},
+      {common + " --coulomb-min-speed nan", "--coulomb-min-speed: expected >= 0 rad/s, got nan"},
+      {common + " --coulomb-smoothing -1", "--coulomb-smoothing: expected >= 0 rad/s, got -1"},
+      {"gains" + log_args + " --loaded " + log.string() + " --loaded-time-window 0,5 --payload-mass 1 "
+       "--coulomb-min-speed -1", "--coulomb-min-speed: expected >= 0 rad/s, got -1"},
+      {"payload --robot puma560" + log_args + " --coulomb-min-speed -1",
+       "--coulomb-min-speed: expected >= 0 rad/s, got -1"}};
+  for (const auto& [command, expected] : cases) {
+    const Result r = Run(command + " --out " + (dir_ / "bad").string());
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("idbench: error: " + expected + "\n"), std::string::npos) << command << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  }
+}
+
 // Gear ratios beyond any drive (|N| > 1e4, as drive gains are bounded) are
 // refused before anything runs, exit 2, naming where they were given: a
 // URDF's <mechanicalReduction> of 1e77 (before: a segfault with

@@ -65,6 +65,38 @@ def test_regressor_times_the_files_parameters_gives_the_simulated_torques(puma, 
     assert np.linalg.norm(W @ beta - tau) / np.linalg.norm(tau) < 1e-8
 
 
+def test_coulomb_min_speed_zeroes_the_coulomb_column_of_slow_samples(puma, puma_log, tmp_path):
+    friction = ["viscous", "coulomb"]
+    base = idbench.base_parameters(puma, friction)
+    q, qd, qdd = puma_log["q"], puma_log["qd"], puma_log["qdd"]
+    W = idbench.regressor(puma, q, qd, qdd, friction, base=base)
+    W_min = idbench.regressor(puma, q, qd, qdd, friction, coulomb_min_speed=0.1, base=base)
+    slow = (np.abs(qd) < 0.1).reshape(-1)  # rows sample·n_dof + joint
+    assert 0 < slow.sum() < slow.size
+    for j in range(6):
+        col = base.names.index(f"Fc{j + 1}")
+        rows = np.arange(j, W.shape[0], 6)
+        np.testing.assert_array_equal(W_min[rows, col], np.where(slow[rows], 0.0, W[rows, col]))
+        W[rows, col] = W_min[rows, col]
+    np.testing.assert_array_equal(W_min, W)  # every other entry as without it
+
+    # identify takes it as --coulomb-min-speed; a negative speed is refused naming the keyword.
+    code, _, err = cli("simulate", "--robot", "puma560", "--duration", "3", "--rate", "200", "--out", "log.csv",
+                       cwd=tmp_path)
+    assert code == 0, err
+    code, _, err = cli("identify", "--robot", "puma560", "--data", "log.csv", "--coulomb-min-speed", "0.05",
+                       "--out", "id", cwd=tmp_path)
+    assert code == 0, err
+    expected = json.loads((tmp_path / "id/identified.json").read_text())
+    result = idbench.identify(puma, str(tmp_path / "log.csv"), coulomb_min_speed=0.05)
+    np.testing.assert_allclose(result.beta, [p["value"] for p in expected["base_parameters"]], rtol=1e-9)
+    with pytest.raises(ValueError) as raised:
+        idbench.identify(puma, str(tmp_path / "log.csv"), coulomb_min_speed=-1)
+    assert str(raised.value) == "coulomb_min_speed: expected >= 0 rad/s, got -1"
+    with pytest.raises(ValueError, match=r"^coulomb_min_speed: expected >= 0 rad/s, got nan$"):
+        idbench.base_parameters(puma, friction, coulomb_min_speed=float("nan"))
+
+
 def test_regressor_rejects_arrays_of_the_wrong_shape(puma):
     q = np.zeros((10, 5))
     with pytest.raises(ValueError, match=r"q: expected an array of 10 samples × 6 joints, got 10 × 5"):

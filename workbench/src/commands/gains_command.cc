@@ -65,6 +65,7 @@ std::string GainsReport::BriefReport() const {
 FrictionModel GainsOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
+  f.coulomb_min_speed = coulomb_min_speed;
   return f;
 }
 
@@ -100,8 +101,8 @@ bool GainsOptions::IsValid(std::string* why) const {
   if (!gains.IsValid(&gains_why)) return fail("payload_mass: " + gains_why);
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
-  if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("coulomb_smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+  const FrictionModel coulomb{.coulomb_smoothing = coulomb_smoothing, .coulomb_min_speed = coulomb_min_speed};
+  if (std::string coulomb_why; !coulomb.IsValid(&coulomb_why)) return fail(coulomb_why);
   if (!preparation(false).IsValid(why) || !preparation(true).IsValid(why)) return false;
   if (std::string out_why; !IsUsableOutputDirectory(out_dir, "out_dir", &out_why)) return fail(out_why);
   return true;

@@ -24,6 +24,7 @@ namespace idbench {
 FrictionModel IdentifyOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
+  f.coulomb_min_speed = coulomb_min_speed;
   if (friction_side == FrictionSide::kActuator) {
     const std::optional<Transmission> t = transmission();
     if (!t) {
@@ -80,8 +81,8 @@ bool IdentifyOptions::IsValid(std::string* why) const {
   }
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
-  if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("coulomb_smoothing: must be >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+  const FrictionModel coulomb{.coulomb_smoothing = coulomb_smoothing, .coulomb_min_speed = coulomb_min_speed};
+  if (std::string coulomb_why; !coulomb.IsValid(&coulomb_why)) return fail(coulomb_why);
   std::string filter_why;
   if (!filter.IsValid(&filter_why)) return fail("filter." + filter_why);
   if (!preparation(true).IsValid(why)) return false;

@@ -51,6 +51,7 @@ std::string Exact(double v) {
 FrictionModel PayloadOptions::friction_model() const {
   FrictionModel f = ParseFrictionTerms(friction, nullptr).value_or(FrictionModel{});
   f.coulomb_smoothing = coulomb_smoothing;
+  f.coulomb_min_speed = coulomb_min_speed;
   return f;
 }
 
@@ -80,8 +81,8 @@ bool PayloadOptions::IsValid(std::string* why) const {
     return fail("unloaded_time_window: given without an unloaded log (unloaded_log)");
   std::string friction_why;
   if (!ParseFrictionTerms(friction, &friction_why)) return fail("friction: " + friction_why);
-  if (!(coulomb_smoothing >= 0.0) || !std::isfinite(coulomb_smoothing))
-    return fail("coulomb_smoothing: expected >= 0 rad/s, got " + Shortest(coulomb_smoothing));
+  const FrictionModel coulomb{.coulomb_smoothing = coulomb_smoothing, .coulomb_min_speed = coulomb_min_speed};
+  if (std::string coulomb_why; !coulomb.IsValid(&coulomb_why)) return fail(coulomb_why);
   if (!(max_relative_sigma > 0.0) || !std::isfinite(max_relative_sigma))
     return fail("max_relative_sigma: expected a fraction > 0, got " + Shortest(max_relative_sigma));
   if (!(max_projection_distance > 0.0) || !std::isfinite(max_projection_distance))

@@ -7,8 +7,8 @@
 // where c = p_BoBcm_B and I = I_Bcm + m (cᵀc 𝟙 − c cᵀ) is the inertia about Bo.
 // Then, per joint j and in this order for all joints, the enabled friction
 // terms: Fv (viscous, τ += Fv·qd), Fc (Coulomb, τ += Fc·sign(qd), or
-// tanh(qd/v) with a smoothing velocity v > 0), offset (τ += τ0), Ia (rotor
-// inertia, τ += Ia·qdd).
+// tanh(qd/v) with a smoothing velocity v > 0; 0 where |qd| < a minimum speed
+// when one is set), offset (τ += τ0), Ia (rotor inertia, τ += Ia·qdd).
 //
 // Actuator side (FrictionModel::actuator_from_joint set, transmission.h):
 // the same terms act per motor k on its θ̇m_k = A_k·q̇ (A_k row k of A) and
@@ -36,6 +36,14 @@ struct FrictionModel {
   bool offset = false;                // τ0 per joint [N m]
   bool rotor_inertia = false;         // Ia per joint [kg m²]
   double coulomb_smoothing = 0.0;     // v [rad/s]; 0 = sign(qd) (θ̇m on the actuator side)
+  // [rad/s]; 0 = off. A sample's Coulomb column is 0 where |qd| (|θ̇m| on the
+  // actuator side) is below it: near rest, where stiction and stick-slip act
+  // and noise flips sign(qd), the sample still holds its inertial, viscous,
+  // offset and rotor terms but says nothing of Fc. With coulomb_smoothing,
+  // tanh(qd/v) above the speed, 0 below it. FloBaRoID's
+  // frictionVelocityDeadZone drops such samples from its per-joint friction
+  // fit; zeroing the one column keeps every equation of the fold.
+  double coulomb_min_speed = 0.0;
   // A (n_dof × n_dof, transmission.h): the terms act on the actuators, per
   // motor; empty: on the joints.
   Eigen::MatrixXd actuator_from_joint{};
@@ -43,6 +51,10 @@ struct FrictionModel {
   bool actuator_side() const { return actuator_from_joint.size() > 0; }
 
   int per_joint() const { return int(viscous) + int(coulomb) + int(offset) + int(rotor_inertia); }
+
+  // coulomb_smoothing and coulomb_min_speed each >= 0 rad/s and finite; names
+  // the field in *why.
+  bool IsValid(std::string* why) const;
 };
 
 // Actuator side: the motor that drives joint j alone and its ratio

@@ -22,6 +22,7 @@ struct GainsOptions {
   std::vector<double> loaded_time_window;  // {T0, T1} [s] of the loaded log; empty: all of it
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
+  double coulomb_min_speed = 0.0;  // [rad/s]; Coulomb column 0 below it (FrictionModel); 0 = off
   LogFilterOptions filter{.trim_s = -1.0};
   double max_gap_s = 0.0;          // [s]; 0: 10 median steps
   std::string out_dir = "out/gains";

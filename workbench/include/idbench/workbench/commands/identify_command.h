@@ -46,6 +46,7 @@ struct IdentifyOptions {
   std::string reference;
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // of: none, viscous, coulomb, offset, rotor
   double coulomb_smoothing = 0.0;  // [rad/s]; 0 = sign(qd)
+  double coulomb_min_speed = 0.0;  // [rad/s]; Coulomb column 0 below it (FrictionModel); 0 = off
   // Where the friction and rotor terms act: kJoint (per joint, on q̇), or
   // kActuator (per motor, on θ̇m = A·q̇, into the joints through Aᵀ; needs
   // the transmission: the data's log description's, else format.transmission,

@@ -30,6 +30,7 @@ struct PayloadOptions {
   std::vector<double> unloaded_time_window;  // {T0, T1} [s] of the unloaded log; empty: all of it
   std::vector<std::string> friction{"viscous", "coulomb", "rotor"};  // the robot's joint terms (two logs)
   double coulomb_smoothing = 0.0;   // [rad/s]; 0 = sign(qd)
+  double coulomb_min_speed = 0.0;   // [rad/s]; Coulomb column 0 below it (FrictionModel); 0 = off
   LogFilterOptions filter{.trim_s = -1.0};
   double max_gap_s = 0.0;           // [s]; 0: 10 median steps
   double max_relative_sigma = PayloadEstimatorOptions{}.max_relative_sigma;  // verdict: σ / scale at most (payload_estimator.h)
