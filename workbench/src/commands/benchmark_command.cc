@@ -390,11 +390,18 @@ std::string FormatBenchmarkTable(const BenchmarkResult& result) {
     } else {
       std::snprintf(ratio, sizeof ratio, "-");
     }
+    char position[40];
+    if (s.position_trials > 0) {
+      std::snprintf(position, sizeof position, "%10.4g %4s", s.position_error.mean,
+                    ("(" + std::to_string(s.position_trials) + ")").c_str());
+    } else {
+      std::snprintf(position, sizeof position, "%10s %4s", "-", "(0)");
+    }
     std::snprintf(line, sizeof line,
-                  "%-6s  %-9s  %10.4g %10.3g %10.4g  %10.4g %10.3g  %10.4g %4s  %9s  %8s  %4d/%-3d  %9.3g\n",
+                  "%-6s  %-9s  %10.4g %10.3g %10.4g  %10.4g %10.3g  %s  %9s  %8s  %4d/%-3d  %9.3g\n",
                   std::string(kNoisePresetNames.Name(s.preset)).c_str(), std::string(ToString(s.estimator)).c_str(),
                   s.parameter_error.mean, s.parameter_error.std, s.parameter_error.median, s.torque_error.mean,
-                  s.torque_error.std, s.position_error.mean, ("(" + std::to_string(s.position_trials) + ")").c_str(), coverage, ratio, s.diverged, s.trials, s.seconds.mean);
+                  s.torque_error.std, position, coverage, ratio, s.diverged, s.trials, s.seconds.mean);
     out += line;
   }
   out += "\nparameter error: |b - b_true| / ((|b| + |b_true|)/2) over the base parameters; torque error: "
