@@ -77,12 +77,13 @@ LogClock ClockOf(const JointLog& log, const Trajectory& reference) {
 
 // The closed loop re-simulated with the estimate β (its forward dynamics from
 // the regressor), one step per sample, noise-free sensors at the log's rate;
-// its states at the log's samples (t, q, qd, qdd; no τ). Throws
-// std::runtime_error when it fails (β's mass matrix not positive definite, a
-// diverging loop).
+// its states at the log's samples (t, q, qd, qdd; no τ), q̈ at a sample the
+// mean of the two holds' when torque_held (ClosedLoopEstimatorOptions).
+// Throws std::runtime_error when it fails (β's mass matrix not positive
+// definite, a diverging loop).
 JointLog SimulateAtLogSamples(const RobotModel& model, const FrictionModel& friction, const BaseParameters& base,
                               const Eigen::VectorXd& beta, const Trajectory& reference, const LogClock& clock,
-                              JointController* controller) {
+                              JointController* controller, bool torque_held) {
   SensorOptions exact;
   exact.rate_hz = 1.0 / clock.period;
   BaseParameterDynamics dynamics(model, friction, base, beta);
@@ -92,6 +93,15 @@ JointLog SimulateAtLogSamples(const RobotModel& model, const FrictionModel& fric
                                             dynamics.Accelerations(q, qd, t, qdd);
                                           });
   JointLog& states = simulated.log;
+  if (torque_held) {
+    // At sample k > 0: ½ (q̈ under τ_{k−1} + q̈ under τ_k), the state the same.
+    Eigen::VectorXd qdd_before;
+    for (Eigen::Index k = std::max(1, clock.first); k < clock.first + clock.n_samples; ++k) {
+      dynamics.Accelerations(states.q.row(k).transpose(), states.qd.row(k).transpose(),
+                             states.tau.row(k - 1).transpose(), &qdd_before);
+      states.qdd.row(k) = 0.5 * (states.qdd.row(k) + qdd_before.transpose());
+    }
+  }
   states.t = states.t.segment(clock.first, clock.n_samples).eval();
   for (Eigen::MatrixXd* m : {&states.q, &states.qd, &states.qdd}) {
     *m = m->middleRows(clock.first, clock.n_samples).eval();
@@ -122,7 +132,8 @@ double ClosedLoopPositionError(const RobotModel& model, const FrictionModel& fri
   CheckSizes(model, base, log, reference, beta);
   const LogClock clock = ClockOf(log, reference);
   JointController controller(controller_options, model, clock.period);
-  const JointLog states = SimulateAtLogSamples(model, friction, base, beta, reference, clock, &controller);
+  const JointLog states =
+      SimulateAtLogSamples(model, friction, base, beta, reference, clock, &controller, /*torque_held=*/false);
   const double size = log.q.norm();
   if (!(size > 0.0)) throw std::invalid_argument("closed-loop estimator: the log's positions are all zero");
   return (states.q - log.q).norm() / size;
@@ -154,7 +165,8 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
     // Simulate the closed loop with the current estimate.
     JointLog states;
     try {
-      states = SimulateAtLogSamples(model, friction, base, out.beta, reference, clock, &controller);
+      states =
+          SimulateAtLogSamples(model, friction, base, out.beta, reference, clock, &controller, options.torque_held);
     } catch (const std::runtime_error& e) {
       out.message = "diverged at iteration " + std::to_string(k) + ": re-simulating the estimate failed (" +
                     e.what() + ")";

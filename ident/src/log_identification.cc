@@ -41,6 +41,7 @@ void EstimateInClosedLoop(const RobotModel& model, const JointTorqueOptions& opt
   estimator.method = options.estimator == TorqueEstimator::kDidim ? ClosedLoopMethod::kDidim
                                                                    : ClosedLoopMethod::kInstrumentalVariables;
   estimator.controller = inputs.controller;
+  estimator.torque_held = log.torque_held;
   JointTorqueIdentification& id = out->identification;
   // From OLS; when its estimate is no mechanism (its mass matrix not positive
   // definite: it cannot be simulated), from the physically consistent one,

@@ -264,6 +264,7 @@ PreparedLog PrepareJointLogSource(std::shared_ptr<JointLogSource> source, const 
   PreparedLog out;
   const JointLogLayout& layout = source->layout();
   out.path = path;
+  out.torque_held = options.format.torque_held;
 
   // First pass: the samples in the time window, its ends, and whether the
   // steps are uniform.

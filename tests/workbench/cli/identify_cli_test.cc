@@ -850,7 +850,8 @@ TEST_F(IdentifyCliTest, HeldTorquesOfAClosedLoopIdentifyToTheFiltersFloor) {
 // Issue 37: with noise in the loop (BIRDy's high preset: 1e-2° on q, which
 // the PID feeds back, 0.1 N m on τ), read as t, q, τ with held torques,
 // table_arm (no friction), 8 seeds. Measured: mean base-parameter error OLS
-// 0.0256, IV 0.0243, DIDIM 0.0193 — pinned here to 2 % as a regression check,
+// 0.0256, IV 0.0243, DIDIM 0.0237 (0.0193 before DIDIM read the simulated q̈
+// across the holds) — pinned here to 2 % as a regression check,
 // not a ranking: over 24 seeds (BENCHMARKS.md, "σ of the closed-loop
 // estimators") the three are level (OLS 0.0213, IV 0.0225, DIDIM 0.0210 over
 // the converged seeds), so the independent check asserted is only that each
@@ -881,7 +882,7 @@ TEST_F(IdentifyCliTest, ClosedLoopEstimatorsOnEightNoisyHeldTorqueSeedsAsMeasure
   EXPECT_LT(mean["didim"], 1.25 * mean["ols"]);
   EXPECT_NEAR(mean["ols"], 0.0256, 0.02 * 0.0256);
   EXPECT_NEAR(mean["iv"], 0.0243, 0.02 * 0.0243);
-  EXPECT_NEAR(mean["didim"], 0.0193, 0.02 * 0.0193);
+  EXPECT_NEAR(mean["didim"], 0.0237, 0.02 * 0.0237);
 }
 
 }  // namespace

@@ -35,6 +35,13 @@ struct ClosedLoopEstimatorOptions {
   // simulations' alike, joint_torque_identifier.h), for a log whose qd, qdd
   // were estimated by that filter; none: the log's qd, qdd as they are.
   std::optional<ParallelFilter> parallel_filter;
+  // The log's τ at a sample is the mean of the hold ending there and the one
+  // starting there (logs' held torques, HeldTorqueSource): the simulated q̈ at
+  // a sample is then read the same way, the mean of the accelerations under
+  // both holds, so that the simulated regressor pairs with that τ (without
+  // it, DIDIM stays ~1 % off noise-free). The log's first sample (t = 0)
+  // keeps its own.
+  bool torque_held = false;
   int max_iterations = 30;            // re-simulations, at most kMaxIterations
   double tolerance = 1e-8;            // relative change of β that counts as converged
   static constexpr int kMaxIterations = 1000;

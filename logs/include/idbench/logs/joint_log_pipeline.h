@@ -76,6 +76,9 @@ struct PreparedLog {
   Eigen::Index log_stride = 1;
   std::optional<ParallelFilter> parallel_filter;  // set when qd or qdd were estimated
   std::string derivatives;  // where qd and qdd come from, for the user
+  // τ read as held commands (JointLogFormat::torque_held): each sample's the
+  // mean of its hold and the previous one's.
+  bool torque_held = false;
   std::vector<std::string> notes;     // one line per step done (window, resampling), for stdout
   std::vector<std::string> warnings;  // for stderr
 
