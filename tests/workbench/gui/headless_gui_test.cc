@@ -326,6 +326,36 @@ std::string WriteSyntheticLog(const Session& session, const fs::path& path, doub
   return path.string();
 }
 
+// The Log tab offers Coulomb's sign near rest as identify does: the
+// identification with "Fc V" and "Fc v" equals RunIdentify's with
+// coulomb_min_speed and coulomb_smoothing, differs from the default's, and a
+// negative speed is refused with the field named; the fields go with
+// "coulomb" in the friction.
+TEST(HeadlessGuiTest, LogTabOffersCoulombsSignNearRest) {
+  const fs::path out = HeadlessGuiDir("coulomb");
+  HeadlessGui gui({.width = 1280, .height = 720, .session = {.robot = "puma560", .out_dir = out.string()}});
+  Session& session = gui.session();
+  const std::string log = WriteSyntheticLog(session, out / "log.csv", 4.0);
+  RunScript(gui, "click tab.log\nset log.data " + log + "\nframes 1\nset log.coulomb_min_speed 0.05\n"
+                 "set log.coulomb_smoothing 0.02\nclick log.identify\nwait identify 300\nframes 1\n");
+  ASSERT_TRUE(session.identify_report().has_value()) << session.last_error();
+  IdentifyOptions options;
+  options.data = log;
+  options.coulomb_min_speed = 0.05;
+  options.coulomb_smoothing = 0.02;
+  const IdentifyReport expected = RunIdentify(session.model(), options);
+  const Eigen::VectorXd beta = session.identify_report()->identification.beta;
+  EXPECT_EQ(beta, expected.identification.beta);
+  options.coulomb_min_speed = options.coulomb_smoothing = 0.0;
+  EXPECT_GT((beta - RunIdentify(session.model(), options).identification.beta).norm(), 1e-6 * beta.norm());
+
+  RunScript(gui, "set log.coulomb_min_speed -1\nclick log.identify\nwait identify 300\nframes 1\n");
+  EXPECT_NE(session.last_error().find("coulomb_min_speed"), std::string::npos) << session.last_error();
+  RunScript(gui, "set log.friction viscous,offset\nframes 1\n");
+  EXPECT_EQ(gui.widgets().Find("log.coulomb_min_speed"), nullptr);
+  if (!HasFailure()) fs::remove_all(out);
+}
+
 // Files dropped onto the window (script verbs drop / shift-drop): the URDF
 // loads as the robot and fills both robot fields, a log fills log.data and
 // its preview and plot, Shift sends the next to the held-out log, anything

@@ -236,6 +236,17 @@ void GuiApp::Impl::DrawLogTab() {
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("The logged torques are commands held to the next sample (a controller's zero-order hold)");
   }
+  // Coulomb's sign near rest (identify --coulomb-smoothing, --coulomb-min-speed),
+  // on a row of their own (Identify follows them).
+  if (std::find(id.friction.begin(), id.friction.end(), "coulomb") != id.friction.end()) {
+    ImGui::SetNextItemWidth(45);
+    widgets.InputDouble("log.coulomb_smoothing", "Fc v", &id.coulomb_smoothing);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Coulomb smoothing v [rad/s]: Fc tanh(qd/v) for Fc sign(qd); 0: the sign");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(45);
+    widgets.InputDouble("log.coulomb_min_speed", "Fc V", &id.coulomb_min_speed);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Coulomb min speed V [rad/s]: no Fc term where |qd| < V; 0: off");
+  }
   // What the closed-loop estimators re-simulate (iv, didim).
   if (IsClosedLoopEstimator(id.estimator)) {
     ImGui::PushItemWidth(-110);
