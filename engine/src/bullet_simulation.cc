@@ -118,6 +118,12 @@ struct BulletSimulation::Impl {
   std::unique_ptr<btMultiBody> body;
   btAlignedObjectArray<btMultiBodyJointFeedback> feedback;
   std::vector<PrincipalFrame> frames;
+  // The last Accelerations's q, and InverseMassMatrix's workspace.
+  Eigen::VectorXd accelerations_q;
+  btAlignedObjectArray<btScalar> unit_torque, delta, scratch_r;
+  btAlignedObjectArray<btVector3> scratch_v;
+  btAlignedObjectArray<btQuaternion> world_to_local;
+  btAlignedObjectArray<btVector3> local_origin;
 };
 
 BulletSimulation::BulletSimulation(const RobotModel& model, JointFeedbackMode feedback_mode)
@@ -211,10 +217,33 @@ void BulletSimulation::Accelerations(const Eigen::VectorXd& q, const Eigen::Vect
     impl_->body->setJointVel(i, qd[i]);
   }
   StepWith(tau, dt, feedback);
+  impl_->accelerations_q = q;
   // Semi-implicit Euler: qd_after = qd + dt·qdd(q, qd, tau), so the step's
   // velocity change is Bullet's acceleration at the state.
   qdd->resize(n);
   for (int i = 0; i < n; ++i) (*qdd)[i] = (impl_->body->getJointVel(i) - qd[i]) / dt;
+}
+
+void BulletSimulation::InverseMassMatrix(Eigen::MatrixXd* M_inverse) {
+  Impl& s = *impl_;
+  const int n = model_.n_dof();
+  if (s.accelerations_q.size() != n) {
+    throw std::logic_error("BulletSimulation::InverseMassMatrix: needs an Accelerations call first");
+  }
+  // The step moved q, and with it the link caches the factors are read with
+  // (m_cachedRVector, the parent rotations in m_matrixBuf): back to its q.
+  for (int i = 0; i < n; ++i) s.body->setJointPos(i, s.accelerations_q[i]);
+  s.body->forwardKinematics(s.world_to_local, s.local_origin);
+  s.unit_torque.resize(6 + n);
+  s.delta.resize(6 + n);
+  for (int k = 0; k < 6 + n; ++k) s.unit_torque[k] = 0.0;
+  M_inverse->resize(n, n);
+  for (int j = 0; j < n; ++j) {
+    s.unit_torque[6 + j] = 1.0;
+    s.body->calcAccelerationDeltasMultiDof(&s.unit_torque[0], &s.delta[0], s.scratch_r, s.scratch_v);
+    s.unit_torque[6 + j] = 0.0;
+    for (int i = 0; i < n; ++i) (*M_inverse)(i, j) = s.delta[6 + i];
+  }
 }
 
 void BulletSimulation::StepWith(const Eigen::VectorXd& tau, double dt, bool feedback) {

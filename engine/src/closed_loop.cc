@@ -97,13 +97,13 @@ ClosedLoopLog SimulateClosedLoop(const RobotModel& model, const Trajectory& refe
     ia[j] = model.link(j).dynamics.rotor_inertia;
   }
   const bool has_rotors = (ia.array() != 0.0).any();
-  Eigen::VectorXd tau_rigid(n), tau_unit(n), qdd_free(n), qdd_unit(n);
-  Eigen::MatrixXd coupled(n, n);
+  Eigen::VectorXd tau_rigid(n), qdd_free(n);
+  Eigen::MatrixXd coupled(n, n), M_inverse(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(n);
   // Bullet has no rotor inertia: with the rigid bodies' M q̈ + h = τ − Fv q̇ −
   // Fc sign(q̇) − Ia q̈ and Bullet's a(τ') = M⁻¹(τ' − h), q̈ solves
-  // (I + M⁻¹ Ia) q̈ = a(τ − Fv q̇ − Fc sign(q̇)), M⁻¹'s columns being
-  // a(τ' + e_j) − a(τ') (Bullet is affine in the torque).
+  // (I + M⁻¹ Ia) q̈ = a(τ − Fv q̇ − Fc sign(q̇)), M⁻¹ from the same step's
+  // articulated-body factors (BulletSimulation::InverseMassMatrix).
   const PlantDynamics plant = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& tau,
                                   Eigen::VectorXd* qdd) {
     for (int j = 0; j < n; ++j) tau_rigid[j] = tau[j] - fv[j] * qd[j] - fc[j] * double((qd[j] > 0.0) - (qd[j] < 0.0));
@@ -112,13 +112,10 @@ ClosedLoopLog SimulateClosedLoop(const RobotModel& model, const Trajectory& refe
       *qdd = qdd_free;
       return;
     }
+    sim.InverseMassMatrix(&M_inverse);
     coupled.setIdentity();
     for (int j = 0; j < n; ++j) {
-      if (ia[j] == 0.0) continue;
-      tau_unit = tau_rigid;
-      tau_unit[j] += 1.0;
-      sim.Accelerations(q, qd, tau_unit, dt, &qdd_unit, /*feedback=*/false);
-      coupled.col(j) += ia[j] * (qdd_unit - qdd_free);
+      if (ia[j] != 0.0) coupled.col(j) += ia[j] * M_inverse.col(j);
     }
     lu.compute(coupled);
     *qdd = lu.solve(qdd_free);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "idbench/engine/adjoint.h"
 #include "number_format.h"
@@ -297,6 +298,51 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
     FrictionColumns(friction, qd[j], qdd[j], columns);
     for (int k = 0; k < per_joint; ++k) (*Y)(j, base + per_joint * j + k) = columns[k];
   }
+}
+
+void ComputeJointSpaceInertia(const RobotModel& model, const FrictionModel& friction, const Eigen::VectorXd& pi,
+                              const KinematicsData<double>& data, Eigen::MatrixXd* M) {
+  const int n = model.n_dof();
+  if (pi.size() != NumStandardParameters(model, friction)) {
+    throw std::invalid_argument("joint-space inertia: expected " +
+                                std::to_string(NumStandardParameters(model, friction)) + " standard parameters, got " +
+                                std::to_string(pi.size()));
+  }
+  M->setZero(n, n);
+  std::vector<int> path;  // link i's joints, i first, then towards the root
+  std::vector<Eigen::Vector3d> u, v;
+  for (int i = 0; i < model.n_links(); ++i) {
+    const auto p = pi.segment<kInertialParametersPerLink>(kInertialParametersPerLink * i);
+    const double m = p[0];
+    const Eigen::Vector3d h = p.segment<3>(1);
+    Eigen::Matrix3d I;
+    I << p[4], p[5], p[7], p[5], p[6], p[8], p[7], p[8], p[9];
+    path.clear(), u.clear(), v.clear();
+    for (int j = i; j >= 0; j = model.link(j).parent) {
+      path.push_back(j);
+      u.emplace_back(), v.emplace_back();
+      JointArms(data, static_cast<size_t>(i), static_cast<size_t>(j), &u.back(), &v.back());
+    }
+    for (size_t a = 0; a < path.size(); ++a) {
+      const Eigen::Vector3d Iu = I * u[a];
+      for (size_t b = 0; b <= a; ++b) {
+        const double value = u[b].dot(Iu) + m * v[b].dot(v[a]) + h.dot(v[b].cross(u[a]) - u[b].cross(v[a]));
+        (*M)(path[b], path[a]) += value;
+        if (a != b) (*M)(path[a], path[b]) += value;
+      }
+    }
+  }
+  if (!friction.rotor_inertia) return;
+  // The drive inertias: the only friction column with q̈ in it (FrictionColumns).
+  const int base = model.n_links() * kInertialParametersPerLink;
+  const int per_joint = friction.per_joint(), rotor = per_joint - 1;
+  if (!friction.actuator_side()) {
+    for (int j = 0; j < n; ++j) (*M)(j, j) += pi[base + per_joint * j + rotor];
+    return;
+  }
+  // Motor k's Ia_k on θ̈m_k = A_k·q̈: Aᵀ diag(Ia) A.
+  const Eigen::MatrixXd& A = friction.actuator_from_joint;
+  for (int k = 0; k < n; ++k) M->noalias() += pi[base + per_joint * k + rotor] * A.row(k).transpose() * A.row(k);
 }
 
 template <typename Scalar>

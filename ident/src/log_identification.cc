@@ -90,13 +90,17 @@ LogIdentification IdentifyFromLogs(const RobotModel& model, const std::vector<co
 
   // The equations streamed into factors, each log's in turn stacked onto the
   // first's (MergeStackedFactors), then solved.
+  // The first pass's rows are held (within kMaxRecordedEquationBytes) for
+  // the later ones to replay.
   LogIdentification out;
   const BaseParameters base = ComputeBaseParameters(model, options.friction, options.base);
+  std::vector<RecordedEquationRows> rows(data.size());
+  for (RecordedEquationRows& r : rows) r.max_bytes = kMaxRecordedEquationBytes / data.size();
   for (size_t i = 0; i < data.size(); ++i) {
     const PreparedLog& log = *data[i];
     StackedFactors own = FoldPreparedLog(log, model, options.friction, base, {}, nullptr,
                                          LogPreparationOptions::kMaxHeldSamples,
-                                         next("identifying from " + log.path));
+                                         next("identifying from " + log.path), nullptr, nullptr, &rows[i]);
     out.n_kept.push_back(own.n_samples());
     if (data.size() > 1) out.cond.push_back(SolveOls(own).cond);
     if (i == 0) {
@@ -105,13 +109,15 @@ LogIdentification IdentifyFromLogs(const RobotModel& model, const std::vector<co
       MergeStackedFactors(own, &out.factors);
     }
   }
-  // IRLS reads the logs again for each of its passes (each folded on its own, then stacked).
+  // IRLS reads the logs again (or their held rows) for each of its passes
+  // (each folded on its own, then stacked).
   const StreamObserver* solving = next("solving (" + estimator_name + ")");
   const ReweightedFold reweighted_fold = [&](const RobustRowWeights& weights, IrlsPassRecord* residuals) {
     StackedFactors all;
     for (size_t i = 0; i < data.size(); ++i) {
       StackedFactors own = FoldPreparedLog(*data[i], model, options.friction, base, {}, nullptr,
-                                           LogPreparationOptions::kMaxHeldSamples, solving, &weights, residuals);
+                                           LogPreparationOptions::kMaxHeldSamples, solving, &weights, residuals,
+                                           &rows[i]);
       if (i == 0) {
         all = std::move(own);
       } else {
@@ -125,13 +131,13 @@ LogIdentification IdentifyFromLogs(const RobotModel& model, const std::vector<co
   LinearFit& linear = out.identification.linear;
   if (data.size() == 1) {
     ApplyPreparedLogScoreCovariance(*data.front(), model, options.friction, base, &linear,
-                                    next("sigma from the residual of " + data.front()->path));
+                                    next("sigma from the residual of " + data.front()->path), &rows.front());
   } else {
-    ApplyPreparedLogsScoreCovariance(data, out.n_kept, model, options.friction, base, &linear,
-                                     [&](const PreparedLog& log) {
-                                       return next("sigma from the residual of " + log.path);
-                                     });
+    ApplyPreparedLogsScoreCovariance(
+        data, out.n_kept, model, options.friction, base, &linear,
+        [&](const PreparedLog& log) { return next("sigma from the residual of " + log.path); }, &rows);
   }
+  rows = {};
   if (re_simulated) {
     next("re-simulating the closed loop (" + estimator_name + ")");
     EstimateInClosedLoop(model, options, *data.front(), *closed_loop, &out);

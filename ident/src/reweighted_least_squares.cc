@@ -83,11 +83,10 @@ LinearFit SolveIrls(const StackedFactors& factors, const ReweightedFold& fold, c
   while (k < options.max_iterations && !converged) {
     ++k;
     // The pass: rows weighted at β_{k−1}; their residuals' median gives s_k.
-    IrlsPassRecord residuals(JointResidualNorms(factors, weights->beta) / root_n, p);
+    IrlsPassRecord residuals(JointResidualNorms(factors, weights->beta) / root_n, p, /*sums=*/false);
     const StackedFactors weighted = fold(*weights, &residuals);
     fit = SolveOls(weighted);
     fit.row_reweighting = weights;
-    SetSandwich(residuals, &fit);
     // At most kScaleShrink smaller than the last pass's: from OLS's RMS the
     // scale comes down to the MAD over a few passes, so the weights never
     // jump to 1/|r| of rows that OLS fits badly (a log whose inliers fit to
@@ -109,6 +108,11 @@ LinearFit SolveIrls(const StackedFactors& factors, const ReweightedFold& fold, c
       weights = next;
     }
   }
+  // The sandwich of the last pass: its rows again, now with their sums
+  // (one more pass instead of the sums on every one).
+  IrlsPassRecord last(JointResidualNorms(factors, weights->beta) / root_n, p);
+  fold(*weights, &last);
+  SetSandwich(last, &fit);
   // The fit of the last pass, with the unweighted residual's RMS.
   fit.joint_rms = JointResidualNorms(factors, fit.beta) / root_n;
   fit.joint_sigma = weights->scale;

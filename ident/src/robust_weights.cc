@@ -16,12 +16,13 @@ constexpr double kHistogramHigh = 1e4;
 
 double DefaultTuning(RobustLoss loss) { return loss == RobustLoss::kHuber ? 1.345 : 4.685; }
 
-IrlsPassRecord::IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameters)
+IrlsPassRecord::IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameters, bool sums)
     : low_(reference.cwiseMax(1e-300) * kHistogramLow),
       log_step_(std::log(kHistogramHigh / kHistogramLow) / kHistogramBins),
       bins_(static_cast<size_t>(reference.size()), std::vector<Eigen::Index>(kHistogramBins + 2, 0)),
       counts_(static_cast<size_t>(reference.size()), 0),
       n_parameters_(n_parameters),
+      sums_(sums),
       columns_(static_cast<size_t>(reference.size())),
       hessian_(static_cast<size_t>(reference.size())),
       omega_(hessian_) {}
@@ -29,6 +30,10 @@ IrlsPassRecord::IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameter
 void IrlsPassRecord::AddRows(int joint, const Eigen::Ref<const Eigen::VectorXd>& residuals,
                              const Eigen::Ref<const Eigen::MatrixXd>& x, const std::vector<int>& columns,
                              const RobustRowWeights& weights) {
+  if (!sums_) {
+    for (Eigen::Index i = 0; i < residuals.size(); ++i) Add(joint, residuals[i]);
+    return;
+  }
   const size_t j = static_cast<size_t>(joint);
   const Eigen::Index c = static_cast<Eigen::Index>(columns.size());
   if (hessian_[j].size() == 0) {

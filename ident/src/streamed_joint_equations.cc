@@ -176,9 +176,27 @@ double RowResidual(const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStr
 }
 }  // namespace
 
+void StreamedJointEquations::Replay(const RecordedEquationRows& rows) {
+  if (n_pushed_ != 0 || !rows.replayable()) {
+    throw std::invalid_argument("streamed equations: a replay needs a whole earlier pass's rows and nothing pushed");
+  }
+  for (const Eigen::MatrixXd& block : rows.blocks) FoldRows(block);
+  n_pushed_ = settings_.n_samples;
+}
+
 // Folds equation rows [W_0 τ_0 | … | t] into the factors; records the series.
 void StreamedJointEquations::FoldRows(const Eigen::Ref<const Eigen::MatrixXd>& rows) {
   const Eigen::Index m = rows.rows();
+  if (RecordedEquationRows* record = settings_.record_rows; record && !record->overflowed) {
+    const std::size_t bytes = static_cast<std::size_t>(rows.size()) * sizeof(double);
+    if (record->bytes + bytes > record->max_bytes) {
+      record->overflowed = true;
+      record->blocks = {};
+    } else {
+      record->bytes += bytes;
+      record->blocks.emplace_back(rows);
+    }
+  }
   if (settings_.series_beta.size() > 0) {
     const Eigen::Index stride = settings_.series_stride;
     for (Eigen::Index i = (n_series_kept_ + stride - 1) / stride * stride - n_series_kept_; i < m; i += stride) {

@@ -90,6 +90,37 @@ TEST_P(BulletSimulationTest, AccelerationsAreTheForwardDynamicsAtTheGivenState) 
   }
 }
 
+// M(q)⁻¹ from the last step's articulated-body factors inverts the mass
+// matrix of our RNEA (columns ID(q, 0, e_j) − ID(q, 0, 0)), and equals the
+// difference of two of Bullet's steps, a(τ + e_j) − a(τ) (affine in τ); the
+// next Accelerations is unchanged by it.
+TEST_P(BulletSimulationTest, InverseMassMatrixInvertsTheRneasMassMatrix) {
+  BulletSimulation sim(model_);
+  RobotData d(model_);
+  std::mt19937 rng(27);
+  const int n = model_.n_dof();
+  Eigen::MatrixXd M_inverse;
+  EXPECT_THROW(sim.InverseMassMatrix(&M_inverse), std::logic_error);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 1.5, &rng),
+                          tau = RandomVector(n, 2.0, &rng);
+    Eigen::VectorXd a, a_unit, a_again;
+    sim.Accelerations(q, qd, tau, 1e-3, &a, /*feedback=*/false);
+    sim.InverseMassMatrix(&M_inverse);
+    Eigen::MatrixXd M(n, n);
+    const Eigen::VectorXd g = InverseDynamics(model_, q, zero, zero, &d);
+    for (int j = 0; j < n; ++j) M.col(j) = InverseDynamics(model_, q, zero, Eigen::VectorXd::Unit(n, j), &d) - g;
+    EXPECT_LT((M_inverse * M - Eigen::MatrixXd::Identity(n, n)).norm(), 1e-10) << "trial " << trial;
+    for (int j = 0; j < n; ++j) {
+      sim.Accelerations(q, qd, tau + Eigen::VectorXd::Unit(n, j), 1e-3, &a_unit, false);
+      EXPECT_LT((a_unit - a - M_inverse.col(j)).norm(), 1e-9 * (1.0 + M_inverse.col(j).norm())) << "column " << j;
+    }
+    sim.Accelerations(q, qd, tau, 1e-3, &a_again, false);
+    EXPECT_EQ(a_again, a);
+  }
+}
+
 // The wrench of every hinge, Bullet's corrected feedback versus our RNEA at
 // the state at the start of the step.
 double FeedbackError(const RobotModel& model, JointFeedbackMode mode, int seed) {

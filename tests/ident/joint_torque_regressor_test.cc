@@ -19,6 +19,17 @@ namespace {
 
 using testing::RandomVector;
 
+// Every friction term; with `coupled`, on the actuator side of gears of 30
+// where the last motor also turns with the joint before it.
+FrictionModel AllFrictionTerms(int n_dof, bool coupled) {
+  FrictionModel friction;
+  friction.viscous = friction.coulomb = friction.offset = friction.rotor_inertia = true;
+  if (!coupled) return friction;
+  friction.actuator_from_joint = Eigen::MatrixXd::Identity(n_dof, n_dof) * 30.0;
+  if (n_dof >= 2) friction.actuator_from_joint(n_dof - 1, n_dof - 2) = 30.0;
+  return friction;
+}
+
 class JointTorqueRegressorTest : public ::testing::TestWithParam<int> {
  protected:
   RobotModel model_ = testing::MakeTestRobot(GetParam());
@@ -115,16 +126,45 @@ TEST_P(JointTorqueRegressorTest, ContractionEqualsTheEntrywiseSum) {
   }
 }
 
+// M(q) of arbitrary standard parameters (not a mechanism: random signs, the
+// friction terms too) equals the q̈ coefficients of the regressor, column by
+// column Y(q, 0, e_k) π − Y(q, 0, 0) π: on the joint side and on a coupled
+// actuator side (rotor inertias through Aᵀ diag(Ia) A).
+TEST_P(JointTorqueRegressorTest, JointSpaceInertiaEqualsTheRegressorsAccelerationColumns) {
+  RobotData d(model_);
+  const int n = model_.n_dof();
+  std::mt19937 rng(46);
+  const FrictionModel joint_side = AllFrictionTerms(n, false), actuator_side = AllFrictionTerms(n, true);
+  for (const FrictionModel& friction : {joint_side, actuator_side}) {
+    Eigen::MatrixXd Y, M, M_regressor(n, n);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng);
+      const Eigen::VectorXd pi = RandomVector(NumStandardParameters(model_, friction), 1.0, &rng);
+      ComputeJointTorqueRegressor(model_, friction, q, zero, zero, &d, &Y);
+      const Eigen::VectorXd g = Y * pi;
+      for (int k = 0; k < n; ++k) {
+        ComputeJointTorqueRegressor(model_, friction, q, zero, Eigen::VectorXd::Unit(n, k), &d, &Y);
+        M_regressor.col(k) = Y * pi - g;
+      }
+      ComputeKinematics(model_, q, qd, RandomVector(n, 5.0, &rng), &d);  // any q̇, q̈: only the poses count
+      ComputeJointSpaceInertia(model_, friction, pi, d, &M);
+      EXPECT_LT((M - M_regressor).norm(), 1e-12 * M_regressor.norm())
+          << (friction.actuator_side() ? "actuator side" : "joint side") << ", trial " << trial;
+      EXPECT_LT((M - M.transpose()).norm(), 1e-14 * M.norm());
+    }
+  }
+  EXPECT_THROW(ComputeJointSpaceInertia(model_, joint_side, Eigen::VectorXd::Zero(3), d, nullptr),
+               std::invalid_argument);
+}
+
 // A coupled actuator side: each motor k's terms on θ̇m_k = A_k·q̇ reach the
 // joints through A_kᵀ, computed here motor by motor; the contraction agrees.
 TEST_P(JointTorqueRegressorTest, ActuatorSideTermsEnterThroughTheTransposedTransmission) {
   RobotData d(model_);
   const int n = model_.n_dof();
   std::mt19937 rng(44);
-  FrictionModel friction;
-  friction.viscous = friction.coulomb = friction.offset = friction.rotor_inertia = true;
-  friction.actuator_from_joint = Eigen::MatrixXd::Identity(n, n) * 30.0;
-  if (n >= 2) friction.actuator_from_joint(n - 1, n - 2) = 30.0;  // the last motor turns with the joint before
+  const FrictionModel friction = AllFrictionTerms(n, true);
   const int o = 10 * model_.n_links();
   Eigen::VectorXd pi = StandardParameters(model_, friction);
   const Eigen::VectorXd motor = RandomVector(4 * n, 1.0, &rng).cwiseAbs();

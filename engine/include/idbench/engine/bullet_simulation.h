@@ -50,6 +50,13 @@ class BulletSimulation {
   void Accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& tau, double dt,
                      Eigen::VectorXd* qdd, bool feedback = true);
 
+  // M(q)⁻¹ (n × n) at the q of the last Accelerations: its step's
+  // articulated-body factors applied to each unit joint torque (Bullet's
+  // calcAccelerationDeltasMultiDof), O(n²) instead of a step per column.
+  // Leaves the state at (q, the step's end velocity). Throws std::logic_error
+  // before any Accelerations.
+  void InverseMassMatrix(Eigen::MatrixXd* M_inverse);
+
   // Joint feedback of the last Step, describing the state at its start.
   const std::vector<HingeWrench>& joint_feedback() const { return feedback_; }
 

@@ -1,8 +1,8 @@
 // Forward dynamics of a base-parameter estimate β, from the regressor alone
 // (no Bullet, no physical bodies needed): the torque W_b(q, q̇, q̈) β is
-// linear in q̈, so
-//   h(q, q̇) = W_b(q, q̇, 0) β,   M(q) e_i = W_b(q, 0, e_i) β − W_b(q, 0, 0) β,
-// and q̈ = M⁻¹ (τ − h). What the closed-loop estimators (IV, DIDIM) simulate.
+// linear in q̈, so with h(q, q̇) = W_b(q, q̇, 0) β and M(q) the coefficients
+// of q̈ (ComputeJointSpaceInertia of β spread over the standard parameters),
+// q̈ = M⁻¹ (τ − h). What the closed-loop estimators (IV, DIDIM) simulate.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -32,7 +32,7 @@ class BaseParameterDynamics {
   Eigen::VectorXd pi_;  // β at the independent standard indices, 0 elsewhere: Y π = W_b β
   RobotData data_;
   Eigen::MatrixXd Y_, M_;
-  Eigen::VectorXd zero_, unit_, h_, g_;
+  Eigen::VectorXd zero_, h_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };
 

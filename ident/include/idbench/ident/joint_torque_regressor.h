@@ -90,6 +90,17 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                  const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y);
 
+// M(q) of standard parameters π (any values: a base-parameter estimate
+// spread over π need not be a mechanism): the coefficients of q̈ in
+// Y(q, q̇, q̈) π, i.e. M e_k = Y(q, 0, e_k) π − Y(q, 0, 0) π, formed without
+// the regressor. A unit q̈_k gives link i (k on its path to the root) the
+// body-axis ω̇ = u_ik and a_Bo = v_ik (JointArms below), so with π_i = (m, h, I)
+//   M_jk = Σ_i u_ijᵀ I u_ik + m v_ijᵀ v_ik + hᵀ (v_ij × u_ik − u_ij × v_ik),
+// plus the drive inertias (rotor). data holds the poses of ComputeKinematics
+// at q (any q̇, q̈); M is resized to n_dof × n_dof.
+void ComputeJointSpaceInertia(const RobotModel& model, const FrictionModel& friction,
+                              const Eigen::VectorXd& pi, const KinematicsData<double>& data, Eigen::MatrixXd* M);
+
 // The same on any scalar (instantiated for double and Adjoint, whose
 // derivatives give ∂Y/∂(q, qd, qdd) exactly; Coulomb's sign has derivative 0).
 template <typename Scalar>

@@ -71,8 +71,10 @@ class IrlsPassRecord {
  public:
   static constexpr int kHistogramBins = 16384;
   // reference: per joint, the RMS residual the bins are placed around (> 0;
-  // a smaller value is raised to 10⁻³⁰⁰); p parameters.
-  IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameters);
+  // a smaller value is raised to 10⁻³⁰⁰); p parameters. Without sums, only
+  // the histogram is kept (Hessian() and WhiteScoreCovariance() are zero):
+  // what a pass needs for its scale, the sums wanted of the last pass only.
+  IrlsPassRecord(const Eigen::VectorXd& reference, int n_parameters, bool sums = true);
 
   // Adds rows of `joint`: their residuals r (m), and x their regressor rows
   // restricted to `columns` (m × columns.size(); indices into β, as a
@@ -98,6 +100,7 @@ class IrlsPassRecord {
   std::vector<std::vector<Eigen::Index>> bins_;
   std::vector<Eigen::Index> counts_;
   int n_parameters_ = 0;
+  bool sums_ = true;
   // Per joint: its columns, and the sums over its columns (c × c).
   std::vector<std::vector<int>> columns_;
   std::vector<Eigen::MatrixXd> hessian_, omega_;  // lower triangles

@@ -10,6 +10,7 @@
 // settling.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,21 @@
 #include "idbench/logs/streamed_log_filter.h"
 
 namespace idbench {
+
+// The equation rows a pass folded (filtered, trimmed, decimated: what
+// FoldRows sees), held so that later passes over the same log (IRLS's, the
+// scores') replay them instead of reading, filtering and regressing the log
+// again: the same rows in the same blocks, so the same sums to the bit.
+// Bounded: once the rows would pass max_bytes they are dropped and every
+// pass streams the log as before.
+struct RecordedEquationRows {
+  std::size_t max_bytes = 0;
+  std::vector<Eigen::MatrixXd> blocks;
+  std::size_t bytes = 0;
+  bool overflowed = false;
+  bool complete = false;  // a whole pass's rows are held (set by the pass's owner)
+  bool replayable() const { return complete && !overflowed; }
+};
 
 struct StreamedEquationsSettings {
   // The parallel filter of W and τ at the log's uniform rate; nullopt: every
@@ -54,6 +70,8 @@ struct StreamedEquationsSettings {
   // rows of one joint from one thread).
   const RobustRowWeights* row_weights = nullptr;
   IrlsPassRecord* residuals = nullptr;
+  // Optional: the folded rows appended here (within its max_bytes). Not owned.
+  RecordedEquationRows* record_rows = nullptr;
 };
 
 class StreamedJointEquations {
@@ -67,6 +85,11 @@ class StreamedJointEquations {
   // when filtered; q, qd, qdd, tau of n_dof columns). Throws
   // std::invalid_argument on a shape mismatch or more samples than announced.
   void Push(const JointLog& samples);
+
+  // Instead of Push: the rows of an earlier pass over the same log, with the
+  // same filter (rows.replayable()); done() after it. Throws
+  // std::invalid_argument unless nothing was pushed and the rows are whole.
+  void Replay(const RecordedEquationRows& rows);
 
   bool done() const { return n_pushed_ == settings_.n_samples; }
   // The folded equations; complete once done().
