@@ -20,8 +20,7 @@ BaseParameterDynamics::BaseParameterDynamics(const RobotModel& model, const Fric
 void BaseParameterDynamics::Accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                           const Eigen::VectorXd& tau, Eigen::VectorXd* qdd) {
   // h(q, q̇) = W_b(q, q̇, 0) β, then M(q) of β from the same poses.
-  ComputeJointTorqueRegressor(model_, friction_, q, qd, zero_, &data_, &Y_);
-  h_.noalias() = Y_ * pi_;
+  ComputeJointTorqueOfParameters(model_, friction_, q, qd, zero_, pi_, &data_, &h_);
   ComputeJointSpaceInertia(model_, friction_, pi_, data_, &M_);
   ldlt_.compute(M_);
   if (ldlt_.info() != Eigen::Success || !ldlt_.isPositive() || (ldlt_.vectorD().array() <= 0.0).any()) {

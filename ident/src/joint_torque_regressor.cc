@@ -300,6 +300,47 @@ void ComputeJointTorqueRegressorT(const RobotModel& model, const FrictionModel& 
   }
 }
 
+void ComputeJointTorqueOfParameters(const RobotModel& model, const FrictionModel& friction, const Eigen::VectorXd& q,
+                                    const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd, const Eigen::VectorXd& pi,
+                                    RobotData* data, Eigen::VectorXd* tau) {
+  const int n = model.n_dof();
+  if (pi.size() != NumStandardParameters(model, friction)) {
+    throw std::invalid_argument("joint torque of parameters: expected " +
+                                std::to_string(NumStandardParameters(model, friction)) +
+                                " standard parameters, got " + std::to_string(pi.size()));
+  }
+  ComputeKinematicsT<double>(model, q, qd, qdd, data);
+  const Eigen::Vector3d g_W = model.gravity_W();
+  tau->setZero(n);
+  for (int i = 0; i < model.n_links(); ++i) {
+    const size_t b = static_cast<size_t>(i);
+    const LinkWrenchTerms<double> t = LinkTerms(*data, b, g_W);
+    const auto p = pi.segment<kInertialParametersPerLink>(kInertialParametersPerLink * i);
+    const Eigen::Vector3d h = p.segment<3>(1);
+    // f = [a K 0] π_i, n = [0 −a× L] π_i (LinkWrenchTerms), both in B.
+    const Eigen::Vector3d f = t.a * p[0] + t.K * h;
+    const Eigen::Vector3d moment = t.L * p.segment<6>(4) - t.a.cross(h);
+    for (int j = i; j >= 0; j = model.link(j).parent) {
+      Eigen::Vector3d u, v;
+      JointArms(*data, b, static_cast<size_t>(j), &u, &v);
+      (*tau)[j] += Dot3<double>(v, f) + Dot3<double>(u, moment);
+    }
+  }
+  const int per_joint = friction.per_joint();
+  if (per_joint == 0) return;
+  const int base = model.n_links() * kInertialParametersPerLink;
+  if (friction.actuator_side()) {
+    VisitActuatorFrictionEntries<double>(friction, qd, qdd, base,
+                                         [&](int j, int c, double value) { (*tau)[j] += value * pi[c]; });
+    return;
+  }
+  double columns[4];
+  for (int j = 0; j < n; ++j) {
+    FrictionColumns(friction, qd[j], qdd[j], columns);
+    for (int k = 0; k < per_joint; ++k) (*tau)[j] += columns[k] * pi[base + per_joint * j + k];
+  }
+}
+
 void ComputeJointSpaceInertia(const RobotModel& model, const FrictionModel& friction, const Eigen::VectorXd& pi,
                               const KinematicsData<double>& data, Eigen::MatrixXd* M) {
   const int n = model.n_dof();

@@ -126,6 +126,31 @@ TEST_P(JointTorqueRegressorTest, ContractionEqualsTheEntrywiseSum) {
   }
 }
 
+// Y(q, q̇, q̈) π without Y equals the product with Y, for arbitrary π (not a
+// mechanism) with every friction term, joint side and coupled actuator side.
+TEST_P(JointTorqueRegressorTest, TorqueOfParametersEqualsTheRegressorTimesThem) {
+  RobotData d(model_);
+  const int n = model_.n_dof();
+  std::mt19937 rng(47);
+  for (const FrictionModel& friction : {AllFrictionTerms(n, false), AllFrictionTerms(n, true)}) {
+    Eigen::MatrixXd Y;
+    Eigen::VectorXd tau;
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd q = RandomVector(n, 3.0, &rng), qd = RandomVector(n, 2.0, &rng),
+                            qdd = RandomVector(n, 5.0, &rng);
+      const Eigen::VectorXd pi = RandomVector(NumStandardParameters(model_, friction), 1.0, &rng);
+      ComputeJointTorqueRegressor(model_, friction, q, qd, qdd, &d, &Y);
+      ComputeJointTorqueOfParameters(model_, friction, q, qd, qdd, pi, &d, &tau);
+      EXPECT_LT((tau - Y * pi).norm(), 1e-12 * (Y.cwiseAbs() * pi.cwiseAbs()).norm())
+          << (friction.actuator_side() ? "actuator side" : "joint side") << ", trial " << trial;
+    }
+  }
+  Eigen::VectorXd tau;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  EXPECT_THROW(ComputeJointTorqueOfParameters(model_, FrictionModel{}, zero, zero, zero, zero, &d, &tau),
+               std::invalid_argument);
+}
+
 // M(q) of arbitrary standard parameters (not a mechanism: random signs, the
 // friction terms too) equals the q̈ coefficients of the regressor, column by
 // column Y(q, 0, e_k) π − Y(q, 0, 0) π: on the joint side and on a coupled

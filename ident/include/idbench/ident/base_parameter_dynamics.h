@@ -31,7 +31,7 @@ class BaseParameterDynamics {
   const FrictionModel& friction_;
   Eigen::VectorXd pi_;  // β at the independent standard indices, 0 elsewhere: Y π = W_b β
   RobotData data_;
-  Eigen::MatrixXd Y_, M_;
+  Eigen::MatrixXd M_;
   Eigen::VectorXd zero_, h_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };

@@ -90,6 +90,14 @@ void ComputeJointTorqueRegressor(const RobotModel& model, const FrictionModel& f
                                  const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                  const Eigen::VectorXd& qdd, RobotData* data, Eigen::MatrixXd* Y);
 
+// τ = Y(q, q̇, q̈) π for standard parameters π (any values), without
+// forming Y: each link's wrench from its 10 parameters, carried to the
+// joints on its path (as the regressor's blocks), plus the friction terms.
+// data is workspace (left at ComputeKinematics of (q, q̇, q̈)).
+void ComputeJointTorqueOfParameters(const RobotModel& model, const FrictionModel& friction,
+                                    const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const Eigen::VectorXd& qdd,
+                                    const Eigen::VectorXd& pi, RobotData* data, Eigen::VectorXd* tau);
+
 // M(q) of standard parameters π (any values: a base-parameter estimate
 // spread over π need not be a mechanism): the coefficients of q̈ in
 // Y(q, q̇, q̈) π, i.e. M e_k = Y(q, 0, e_k) π − Y(q, 0, 0) π, formed without
