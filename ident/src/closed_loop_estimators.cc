@@ -190,11 +190,12 @@ ClosedLoopEstimate EstimateClosedLoop(const RobotModel& model, const FrictionMod
       const Eigen::MatrixXd A = qr.solve(Eigen::MatrixXd::Identity(p, p));  // (ZᵀW)⁻¹
       const Eigen::MatrixXd white = s2 * A * (Ws.transpose() * Ws) * A.transpose();
       out.sigma_white = white.diagonal().cwiseMax(0.0).cwiseSqrt();
-      const Eigen::MatrixXd cov = StackedInstrumentSandwich(Ws, r, n_dof, A, white, &out.covariance);
+      const Eigen::MatrixXd cov =
+          StackedInstrumentSandwich(Ws, r, n_dof, A, white, &out.covariance, BlockBias::kExtrapolated);
       out.sigma = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
     } else {
       LinearFit fit = SolveOls(Ws, tau, n_dof);
-      ApplyStackedScoreCovariance(Ws, tau, n_dof, &fit);
+      ApplyStackedScoreCovariance(Ws, tau, n_dof, &fit, 0, BlockBias::kExtrapolated);
       beta_next = fit.beta;
       out.sigma = fit.sigma;
       out.sigma_white = fit.sigma_white;

@@ -40,8 +40,9 @@ Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples) {
   return block;
 }
 
-ScoreBatchMeans::ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples)
-    : n_samples_(n_samples), automatic_(block_samples == 0) {
+ScoreBatchMeans::ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples,
+                                 BlockBias bias)
+    : n_samples_(n_samples), automatic_(block_samples == 0), bias_(bias) {
   if (n_parameters < 1 || n_samples < 1 || block_samples < 0) {
     throw std::invalid_argument("batch means: expected n_parameters >= 1, n_samples >= 1 and block_samples >= 0, got " +
                                 std::to_string(n_parameters) + ", " + std::to_string(n_samples) + ", " +
@@ -110,11 +111,37 @@ double ScoreBatchMeans::andrews_block_samples() const {
 
 const ScoreBatchMeans::Blocks& ScoreBatchMeans::Chosen() const {
   if (!done() || lengths_.size() == 1) return lengths_.front();
+  if (Extrapolated()) return lengths_.back();
   const double wanted = andrews_block_samples();
   for (const Blocks& blocks : lengths_) {
     if (static_cast<double>(blocks.block) >= wanted) return blocks;
   }
   return lengths_.back();
+}
+
+Eigen::MatrixXd ScoreBatchMeans::BlockOmega(const Blocks& blocks) {
+  const Eigen::Index B = blocks.n_blocks + (blocks.in_block > 0 ? 1 : 0);
+  Eigen::MatrixXd sum = blocks.sum;
+  if (blocks.in_block > 0) sum.selfadjointView<Eigen::Lower>().rankUpdate(blocks.block_sum);  // the shorter last block
+  Eigen::MatrixXd omega = sum.selfadjointView<Eigen::Lower>();
+  return omega * (static_cast<double>(B) / static_cast<double>(B - 1));
+}
+
+double ScoreBatchMeans::block_bias_factor() const {
+  if (!done() || !Extrapolated()) return 1.0;
+  // f = 2 − median_k Ω_kk(L) / Ω_kk(2L) over the components not zero throughout.
+  const Blocks& longer = lengths_.back();
+  const Blocks& shorter = lengths_[lengths_.size() - 2];
+  const Eigen::VectorXd d_long = BlockOmega(longer).diagonal(), d_short = BlockOmega(shorter).diagonal();
+  std::vector<double> ratios;
+  for (Eigen::Index k = 0; k < d_long.size(); ++k) {
+    if (d_long[k] > 0.0) ratios.push_back(d_short[k] / d_long[k]);
+  }
+  if (ratios.empty()) return 1.0;
+  std::sort(ratios.begin(), ratios.end());
+  const size_t h = ratios.size() / 2;
+  const double median = ratios.size() % 2 == 1 ? ratios[h] : 0.5 * (ratios[h - 1] + ratios[h]);
+  return std::clamp(2.0 - median, 0.1, 2.0);
 }
 
 Eigen::MatrixXd ScoreBatchMeans::Omega() const {
@@ -123,11 +150,7 @@ Eigen::MatrixXd ScoreBatchMeans::Omega() const {
     throw std::invalid_argument("batch means: expected " + std::to_string(n_samples_) + " samples in at least 2 blocks, got " +
                                 std::to_string(n_pushed_) + " samples in " + std::to_string(B));
   }
-  const Blocks& blocks = Chosen();
-  Eigen::MatrixXd sum = blocks.sum;
-  if (blocks.in_block > 0) sum.selfadjointView<Eigen::Lower>().rankUpdate(blocks.block_sum);  // the shorter last block
-  Eigen::MatrixXd omega = sum.selfadjointView<Eigen::Lower>();
-  return omega * (static_cast<double>(B) / static_cast<double>(B - 1));
+  return block_bias_factor() * BlockOmega(Chosen());
 }
 
 void PushStackedScores(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, const LinearFit& fit,
@@ -188,7 +211,7 @@ namespace {
 // the summary and for too few samples.
 Eigen::MatrixXd ScoreSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
                               const Eigen::MatrixXd& B, bool b_symmetric, const Eigen::MatrixXd& white,
-                              CovarianceSummary* summary) {
+                              CovarianceSummary* summary, BlockBias bias) {
   const Eigen::Index p = Z.cols();
   if (n_dof < 1 || Z.rows() != residual.size() || Z.rows() % n_dof != 0 || B.rows() != p || B.cols() != p ||
       white.rows() != p || white.cols() != p) {
@@ -203,7 +226,7 @@ Eigen::MatrixXd ScoreSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& r
     if (summary) *summary = CovarianceSummary{CovarianceMethod::kWhite, n, 0, 0, static_cast<double>(n)};
     return white;
   }
-  ScoreBatchMeans scores(static_cast<int>(p), n);
+  ScoreBatchMeans scores(static_cast<int>(p), n, 0, bias);
   for (Eigen::Index t = 0; t < n; ++t) {
     scores.Push(Z.middleRows(t * n_dof, n_dof).transpose() * residual.segment(t * n_dof, n_dof));
   }
@@ -224,19 +247,19 @@ Eigen::MatrixXd ScoreSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& r
 
 Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen::VectorXd& residual, int n_dof,
                                           const Eigen::MatrixXd& G, double sigma2, CovarianceSummary* summary) {
-  return ScoreSandwich(A, residual, n_dof, G, true, sigma2 * G, summary);
+  return ScoreSandwich(A, residual, n_dof, G, true, sigma2 * G, summary, BlockBias::kAsIs);
 }
 
 Eigen::MatrixXd StackedInstrumentSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
                                           const Eigen::MatrixXd& B, const Eigen::MatrixXd& white,
-                                          CovarianceSummary* summary) {
-  return ScoreSandwich(Z, residual, n_dof, B, false, white, summary);
+                                          CovarianceSummary* summary, BlockBias bias) {
+  return ScoreSandwich(Z, residual, n_dof, B, false, white, summary, bias);
 }
 
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,
-                                 Eigen::Index block_samples) {
+                                 Eigen::Index block_samples, BlockBias bias) {
   if (n_dof < 1) throw std::invalid_argument("stacked scores: expected n_dof >= 1, got " + std::to_string(n_dof));
-  ScoreBatchMeans scores(static_cast<int>(W.cols()), W.rows() / n_dof, block_samples);
+  ScoreBatchMeans scores(static_cast<int>(W.cols()), W.rows() / n_dof, block_samples, bias);
   PushStackedScores(W, tau, n_dof, *fit, &scores);
   ApplyScoreCovariance(scores, fit);
 }

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -303,6 +304,80 @@ TEST(ResidualCovarianceTest, InstrumentSandwichMatchesTheMonteCarloSpread) {
   const Eigen::MatrixXd ls = StackedSandwichCovariance(W, r, kDof, G, 1.0, nullptr);
   const Eigen::MatrixXd iv = StackedInstrumentSandwich(W, r, kDof, G, G, nullptr);
   EXPECT_LT((iv - ls).norm(), 1e-12 * ls.norm());
+}
+
+}  // namespace
+}  // namespace idbench
+
+namespace idbench {
+namespace {
+
+// Scores whose spectrum nearly vanishes at zero frequency, as the residual of
+// the closed-loop estimators (the loop's reaction to the position noise):
+// s_t = u_t + c (d_t − d_{t−1}), u and d white of variance 1, so that the
+// differences telescope and the true Ω = Var(Σ_t s_t) = n (+ 2c², nothing per
+// sample). A block of L sums to Σ u + c (d_end − d_before): batch means give
+// n (1 + 2c²/L), here with c = 10 and ⌈√n⌉ = 100 (Andrews' rule sees ρ < 0
+// and keeps it) 3 n, while the extrapolation from 200 and 400 removes the
+// 1/L term: f Ω(400) with E Ω(L) = n (1 + 200/L) and f = 2 − 2/1.5 gives n.
+// Nine components (f is their median, as over a robot's base parameters);
+// the mean over 100 draws and the components of Ω_kk / n (each estimate has a
+// relative spread of about √(2/25) = 0.28 over 25 blocks, the factor's adds
+// to it).
+TEST(ResidualCovarianceTest, ExtrapolatedBlockBiasRemovesTheOneOverLTermOfTelescopingScores) {
+  constexpr Eigen::Index kN = 10000;
+  constexpr int kDraws = 100, kComponents = 9;
+  constexpr double kC = 10.0;
+  std::mt19937_64 rng(37);
+  std::normal_distribution<double> normal;
+  auto draw_vector = [&] {
+    Eigen::VectorXd x(kComponents);
+    for (int k = 0; k < kComponents; ++k) x[k] = normal(rng);
+    return x;
+  };
+  double mean_as_is = 0.0, mean_extrapolated = 0.0, min_factor = 2.0, max_factor = 0.0;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    ScoreBatchMeans as_is(kComponents, kN), extrapolated(kComponents, kN, 0, BlockBias::kExtrapolated);
+    Eigen::VectorXd d_before = draw_vector();
+    for (Eigen::Index t = 0; t < kN; ++t) {
+      const Eigen::VectorXd u = draw_vector(), d = draw_vector();
+      const Eigen::VectorXd s = u + kC * (d - d_before);
+      d_before = d;
+      as_is.Push(s);
+      extrapolated.Push(s);
+    }
+    ASSERT_EQ(as_is.block_samples(), 100);
+    ASSERT_EQ(extrapolated.block_samples(), 400);
+    ASSERT_EQ(extrapolated.n_blocks(), 25);
+    EXPECT_EQ(as_is.block_bias_factor(), 1.0);
+    min_factor = std::min(min_factor, extrapolated.block_bias_factor());
+    max_factor = std::max(max_factor, extrapolated.block_bias_factor());
+    mean_as_is += as_is.Omega().diagonal().mean() / (kN * kDraws);
+    mean_extrapolated += extrapolated.Omega().diagonal().mean() / (kN * kDraws);
+  }
+  std::printf("telescoping scores: Ω_kk / n as is %.3f, extrapolated %.3f (f %.3f to %.3f)\n", mean_as_is,
+              mean_extrapolated, min_factor, max_factor);
+  EXPECT_NEAR(mean_as_is, 3.0, 0.15);  // the old estimate: three times the truth
+  // f is larger where Ω(2L) is (both from the same blocks): about +9 % here.
+  EXPECT_GT(mean_extrapolated, 0.9);
+  EXPECT_LT(mean_extrapolated, 1.2);
+  EXPECT_GT(min_factor, 0.1);  // never at the clamp here
+  EXPECT_LT(max_factor, 1.0);
+}
+
+// A given block length, or a log too short for two lengths, is not
+// extrapolated: the same Ω as kAsIs.
+TEST(ResidualCovarianceTest, ExtrapolatedBlockBiasNeedsTwoLengths) {
+  ScoreBatchMeans given(1, 100, 10, BlockBias::kExtrapolated), given_as_is(1, 100, 10);
+  ScoreBatchMeans short_log(1, 100, 0, BlockBias::kExtrapolated), short_as_is(1, 100);
+  for (int t = 0; t < 100; ++t) {
+    const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, std::sin(0.7 * t) + (t % 3 == 0 ? 1.0 : -0.5));
+    for (ScoreBatchMeans* s : {&given, &given_as_is, &short_log, &short_as_is}) s->Push(x);
+  }
+  EXPECT_EQ(given.block_bias_factor(), 1.0);
+  EXPECT_EQ(short_log.block_bias_factor(), 1.0);
+  EXPECT_EQ(given.Omega()(0, 0), given_as_is.Omega()(0, 0));
+  EXPECT_EQ(short_log.Omega()(0, 0), short_as_is.Omega()(0, 0));
 }
 
 }  // namespace

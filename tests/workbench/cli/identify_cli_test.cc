@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include <cmath>
 #include <cstdio>
@@ -856,11 +857,20 @@ TEST_F(IdentifyCliTest, HeldTorquesOfAClosedLoopIdentifyToTheFiltersFloor) {
 // estimators") the three are level (OLS 0.0213, IV 0.0225, DIDIM 0.0210 over
 // the converged seeds), so the independent check asserted is only that each
 // closed-loop estimate stays within 25 % of least squares' mean error.
+// σ against the spread over the same seeds: per base parameter the mean σ
+// printed over the standard deviation of the estimates, the median over the
+// parameters. Measured on these 8 seeds: OLS 1.17, IV 1.05, DIDIM 1.19 (before
+// the extrapolated batch means, residual_covariance.h: IV 2.44, DIDIM 2.54).
+// Eight draws estimate each spread to about ±25 % (χ² of 7 degrees of
+// freedom), and OLS, right at 1.04 over 24 seeds, reads 1.17 here: the band
+// asserted, 0.7 to 1.5, is that sampling error, not the issue's 25 % (checked
+// over 24 seeds, BENCHMARKS.md).
 TEST_F(IdentifyCliTest, ClosedLoopEstimatorsOnEightNoisyHeldTorqueSeedsAsMeasured) {
   const std::string urdf = IDBENCH_SOURCE_DIR "/tests/data/table_arm/table_arm.urdf";
   const fs::path pid = dir_ / "pid.json";
   std::ofstream(pid) << R"({"kp": [400, 400, 200], "kd": [10, 10, 5], "feedforward": "model"})";
   std::map<std::string, double> mean;
+  std::map<std::string, std::vector<nlohmann::json>> fits;  // identified.json's base_parameters, per estimator
   const int n_seeds = 8;
   for (int seed = 1; seed <= n_seeds; ++seed) {
     const fs::path log = dir_ / ("noisy" + std::to_string(seed) + ".csv");
@@ -873,7 +883,9 @@ TEST_F(IdentifyCliTest, ClosedLoopEstimatorsOnEightNoisyHeldTorqueSeedsAsMeasure
       r = Run("identify --robot " + urdf + " --data " + log.string() + " --friction none --torque-held --estimator " +
               estimator + loop + " --out " + out.string());
       ASSERT_EQ(r.exit_code, 0) << estimator << " seed " << seed << ": " << r.err;
-      mean[estimator] += BaseError(Json(out / "identified.json")) / n_seeds;
+      const nlohmann::json j = Json(out / "identified.json");
+      mean[estimator] += BaseError(j) / n_seeds;
+      fits[estimator].push_back(j["base_parameters"]);
     }
   }
   std::printf("mean base-parameter error over %d seeds: ols %.4g, iv %.4g, didim %.4g\n", n_seeds, mean["ols"],
@@ -883,6 +895,30 @@ TEST_F(IdentifyCliTest, ClosedLoopEstimatorsOnEightNoisyHeldTorqueSeedsAsMeasure
   EXPECT_NEAR(mean["ols"], 0.0256, 0.02 * 0.0256);
   EXPECT_NEAR(mean["iv"], 0.0243, 0.02 * 0.0243);
   EXPECT_NEAR(mean["didim"], 0.0237, 0.02 * 0.0237);
+  // σ / spread, median over the base parameters.
+  auto sigma_over_spread = [&](const std::string& estimator) {
+    const std::vector<nlohmann::json>& f = fits[estimator];
+    std::vector<double> ratios;
+    for (size_t k = 0; k < f.front().size(); ++k) {
+      double mean_value = 0.0, mean_sigma = 0.0, squares = 0.0;
+      for (const nlohmann::json& b : f) mean_value += b[k]["value"].get<double>() / n_seeds;
+      for (const nlohmann::json& b : f) {
+        mean_sigma += b[k]["sigma"].get<double>() / n_seeds;
+        squares += std::pow(b[k]["value"].get<double>() - mean_value, 2);
+      }
+      ratios.push_back(mean_sigma / std::sqrt(squares / (n_seeds - 1)));
+    }
+    std::sort(ratios.begin(), ratios.end());
+    const size_t h = ratios.size() / 2;
+    return ratios.size() % 2 == 1 ? ratios[h] : 0.5 * (ratios[h - 1] + ratios[h]);
+  };
+  const double ols = sigma_over_spread("ols"), iv = sigma_over_spread("iv"), didim = sigma_over_spread("didim");
+  std::printf("sigma / spread over %d seeds, median over the base parameters: ols %.3g, iv %.3g, didim %.3g\n",
+              n_seeds, ols, iv, didim);
+  for (const double ratio : {ols, iv, didim}) {
+    EXPECT_GT(ratio, 0.7);
+    EXPECT_LT(ratio, 1.5);
+  }
 }
 
 }  // namespace

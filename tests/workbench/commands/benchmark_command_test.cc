@@ -181,7 +181,7 @@ TEST_F(BenchmarkCommandTest, NoiseFreeEveryEstimatorReachesTheFiltersFloor) {
 // With BIRDy's high noise (1e-2° on the q the PID feeds back, 0.1 N m on τ)
 // the closed-loop estimators do NOT beat OLS on this arm: over 24 trials of
 // 10 s (seed 7; docs/commands/benchmark.md's table-arm-24) the mean errors
-// are OLS 0.0298, IV 0.195, DIDIM 0.0597 (medians 0.026, 0.026, 0.027), IV
+// are OLS 0.0298, IV 0.195, DIDIM 0.0596 (medians 0.026, 0.026, 0.027), IV
 // and DIDIM near OLS on most trials and running away on a few. On 6 trials
 // of 4 s (measured: OLS mean 0.0294; medians OLS 0.028, IV 1.01, DIDIM 0.29)
 // both are worse than OLS: asserted, so that a change making them better

@@ -54,7 +54,9 @@ struct ClosedLoopEstimate {
   Eigen::VectorXd beta;   // base parameters (n_base)
   // Their σ at the last iteration (n_base), from the residual as it is: the
   // batch-means sandwich of the iteration's estimator (residual_covariance.h;
-  // IV: (ZᵀW)⁻¹ Ω (WᵀZ)⁻¹ with the scores Z_tᵀ e_t), as identify's least squares.
+  // IV: (ZᵀW)⁻¹ Ω (WᵀZ)⁻¹ with the scores Z_tᵀ e_t), Ω extrapolated past its
+  // block length (BlockBias::kExtrapolated: the residual is mostly the loop's
+  // reaction to the position noise, whose block sums telescope).
   Eigen::VectorXd sigma;
   Eigen::VectorXd sigma_white;    // the same as if the residual were white (n_base)
   CovarianceSummary covariance;   // how sigma was computed (blocks, n_eff)

@@ -33,6 +33,22 @@
 // gives σ 0.80–0.86 of the spread of the estimates, the chosen 400 0.90–0.98.
 // It needs only running block sums and p × p accumulators per length:
 // memory O(p² log n), whatever the log's length.
+//
+// Scores whose spectrum nearly vanishes at zero frequency (the residual of
+// the closed-loop estimators, IV and DIDIM, is mostly the loop's reaction to
+// the position noise: about M × its second derivative below the loop's
+// bandwidth) have a long-run variance far below their short-lag variance:
+// Σ_ℓ ℓ γ_ℓ < 0, and batch means over-estimate Ω by about −2 Σ_ℓ ℓ γ_ℓ / L,
+// which a longer block only shrinks as 1/L (measured on table_arm under a PID,
+// BENCHMARKS.md: σ² / spread² = 1 + 3.5 · 95/L for L = 95 … 1800). The
+// extrapolated estimate (BlockBias::kExtrapolated) removes that 1/L term, as
+// the flat-top batch means 2 Ω(2L) − Ω(L) do (Vats & Flegal 2022,
+// Biometrika 109(3), "lugsail" with r = 2, c = 1/2), but with one factor for
+// all of Ω so that it stays positive semi-definite and steady on logs of
+// tens of blocks: with the two longest lengths summed, L and 2L,
+//   Ω = f Ω(2L),  f = 2 − median_k Ω_kk(L) / Ω_kk(2L),  f within [0.1, 2]
+// (f = Ω∞ / Ω(2L) when Ω(L) = Ω∞ + c/L; 2 − ratio is the flat-top's per
+// component). The flat-top per entry, tried, left 10 % of the σ at zero.
 #pragma once
 
 #include <Eigen/Core>
@@ -47,13 +63,19 @@ Eigen::Index BatchMeansBlockSamples(Eigen::Index n_samples);
 // The fewest blocks a longer block length may leave (automatic length).
 inline constexpr Eigen::Index kMinAutoBlocks = 20;
 
+// How Ω treats the bias of the block length (above): kAsIs, Ω(L) at the
+// length chosen; kExtrapolated, f Ω(2L) from the two longest lengths summed
+// (as kAsIs when the length is given or only one length fits).
+enum class BlockBias { kAsIs, kExtrapolated };
+
 // The scores of a fit's samples, pushed in time order, summed over blocks.
 class ScoreBatchMeans {
  public:
   // p parameters, n_samples that will be pushed, block_samples per block
   // (0: chosen from the scores, above). Throws std::invalid_argument for
   // p < 1, n_samples < 1 or block_samples < 0.
-  ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples = 0);
+  ScoreBatchMeans(int n_parameters, Eigen::Index n_samples, Eigen::Index block_samples = 0,
+                  BlockBias bias = BlockBias::kAsIs);
 
   // The next sample's score s_t (p). Throws std::invalid_argument on a size
   // mismatch or more samples than announced.
@@ -74,8 +96,11 @@ class ScoreBatchMeans {
   // Andrews' L_A from the scores so far (0 before two samples, or when the
   // block length was given).
   double andrews_block_samples() const;
-  // B/(B − 1) Σ_b S_b S_bᵀ (p × p); requires done() and at least 2 blocks.
+  // B/(B − 1) Σ_b S_b S_bᵀ (p × p), times f when kExtrapolated; requires
+  // done() and at least 2 blocks.
   Eigen::MatrixXd Omega() const;
+  // kExtrapolated's f (1 otherwise, and before done()).
+  double block_bias_factor() const;
 
  private:
   struct Blocks {                // the sums at one block length
@@ -85,10 +110,13 @@ class ScoreBatchMeans {
     Eigen::MatrixXd sum;         // Σ_b S_b S_bᵀ over the completed blocks (p × p)
   };
   const Blocks& Chosen() const;
+  bool Extrapolated() const { return bias_ == BlockBias::kExtrapolated && lengths_.size() >= 2; }
+  static Eigen::MatrixXd BlockOmega(const Blocks& blocks);  // B/(B − 1) Σ_b S_b S_bᵀ of one length
 
   Eigen::Index n_samples_;
   Eigen::Index n_pushed_ = 0;
   bool automatic_;
+  BlockBias bias_;
   std::vector<Blocks> lengths_;  // L₀, 2L₀, … (one: a given length)
   Eigen::VectorXd previous_, c0_, c1_;  // s_{t−1}; Σ s_t²; Σ s_t s_{t−1} (p)
   bool series_start_ = true;            // the next score starts a series (no s_{t−1})
@@ -125,11 +153,11 @@ Eigen::MatrixXd StackedSandwichCovariance(const Eigen::MatrixXd& A, const Eigen:
 // when there are too few samples for 2 blocks. Throws as above.
 Eigen::MatrixXd StackedInstrumentSandwich(const Eigen::MatrixXd& Z, const Eigen::VectorXd& residual, int n_dof,
                                           const Eigen::MatrixXd& B, const Eigen::MatrixXd& white,
-                                          CovarianceSummary* summary);
+                                          CovarianceSummary* summary, BlockBias bias = BlockBias::kAsIs);
 
 // The batch-means covariance of a fit to dense stacked rows (the rows the
 // fit was solved from): PushStackedScores, then ApplyScoreCovariance.
 void ApplyStackedScoreCovariance(const Eigen::MatrixXd& W, const Eigen::VectorXd& tau, int n_dof, LinearFit* fit,
-                                 Eigen::Index block_samples = 0);
+                                 Eigen::Index block_samples = 0, BlockBias bias = BlockBias::kAsIs);
 
 }  // namespace idbench
